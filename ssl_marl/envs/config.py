@@ -1,0 +1,180 @@
+"""Env configuration: one dataclass that fails loudly, naming the offending field."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields, replace
+from dataclasses import field as dc_field
+from typing import Any, Mapping
+
+from ..physics.field import FieldGeometry
+from ..physics.params import BallParams, RobotParams
+
+REWARD_TERMS = ("goal", "ball_progress", "possession")
+AFTER_GOAL = ("kickoff", "terminate")
+
+
+@dataclass(frozen=True)
+class RealismConfig:
+    """Vision noise, dropout, latency and radio loss. All zero (off) by default.
+
+    Attributes:
+        robot_pos_sigma: Gaussian noise on observed robot positions (m).
+        robot_angle_sigma: Gaussian noise on observed robot headings (rad).
+        ball_pos_sigma: Gaussian noise on the observed ball position (m).
+        vel_sigma: Gaussian noise on observed linear velocities (m/s).
+        ball_dropout: probability that the ball is not detected in a frame; the
+            observation then holds the last seen ball and ``ball_visible`` = 0.
+        obs_latency_steps: vision delay in control steps (observations are this old).
+        cmd_latency_steps: radio delay in control steps (commands act this late).
+        cmd_loss: probability that a robot's command is lost; it keeps the previous one.
+    """
+
+    robot_pos_sigma: float = 0.0
+    robot_angle_sigma: float = 0.0
+    ball_pos_sigma: float = 0.0
+    vel_sigma: float = 0.0
+    ball_dropout: float = 0.0
+    obs_latency_steps: int = 0
+    cmd_latency_steps: int = 0
+    cmd_loss: float = 0.0
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            v = getattr(self, f.name)
+            if f.name.endswith("_steps"):
+                if not isinstance(v, int) or isinstance(v, bool) or v < 0:
+                    raise ValueError(f"realism.{f.name} must be a non-negative integer, got {v!r}")
+            else:
+                if not (isinstance(v, (int, float)) and math.isfinite(v) and v >= 0):
+                    raise ValueError(f"realism.{f.name} must be a non-negative finite number, got {v!r}")
+        for name in ("ball_dropout", "cmd_loss"):
+            if getattr(self, name) > 1:
+                raise ValueError(f"realism.{name} is a probability and must be <= 1, got {getattr(self, name)!r}")
+
+    @property
+    def enabled(self) -> bool:
+        return any(getattr(self, f.name) for f in fields(self))
+
+    @staticmethod
+    def preset(name: str) -> "RealismConfig":
+        """"none" or "realistic" (ER-Force's realistic preset at 60 Hz: ball sigma 1.4 mm,
+        robot 1.3 mm / 0.01 rad, ~45 ms vision delay -> 3 steps, 5 % ball dropout,
+        3 % commands lost, one step of radio delay)."""
+        if name == "none":
+            return RealismConfig()
+        if name == "realistic":
+            return RealismConfig(robot_pos_sigma=0.0013, robot_angle_sigma=0.01, ball_pos_sigma=0.0014,
+                                 vel_sigma=0.02, ball_dropout=0.05, obs_latency_steps=3, cmd_latency_steps=1,
+                                 cmd_loss=0.03)
+        raise ValueError(f"realism: unknown preset {name!r}; expected 'none' or 'realistic'")
+
+
+@dataclass(frozen=True)
+class EnvConfig:
+    """Options of the full-field SSL env (see :class:`ssl_marl.envs.ssl_env.SSLParallelEnv`).
+
+    Attributes:
+        n_blue, n_yellow: robots per team (0-11 each, at least one robot in all, and
+            no more than the division allows unless ``enforce_division_limit`` is False).
+        field: "div_a", "div_b" or a :class:`FieldGeometry`.
+        max_time_s: episode truncation time (s of simulated time).
+        control_hz: control (and vision) rate; the paper uses 60 Hz.
+        physics_substeps: Box2D steps per control step.
+        robot, ball: physical parameters.
+        after_goal: "kickoff" (place the kickoff formation and play on) or "terminate".
+        reward_scales: scale per named reward term ("goal", "ball_progress", "possession").
+        realism: noise / latency settings, or a preset name ("none", "realistic").
+        realtime: advance with the wall clock; a command that arrives after the
+            control deadline misses its step (the paper's evaluation mode).
+        obs_max_teammates, obs_max_opponents: observation slots (padded with a mask).
+        randomize_reset: True: robots and ball at random on reset; False: kickoff formation.
+        render_mode: None, "rgb_array" or "human".
+        render_trails: draw trajectories (the paper's Fig. 7).
+        render_width_px: frame width in pixels.
+    """
+
+    n_blue: int = 6
+    n_yellow: int = 6
+    field: Any = "div_b"
+    max_time_s: float = 300.0
+    control_hz: float = 60.0
+    physics_substeps: int = 2
+    robot: RobotParams = dc_field(default_factory=RobotParams)
+    ball: BallParams = dc_field(default_factory=BallParams)
+    after_goal: str = "kickoff"
+    reward_scales: Mapping[str, float] = dc_field(default_factory=lambda: {"goal": 1.0, "ball_progress": 0.0,
+                                                                       "possession": 0.0})
+    realism: Any = "none"
+    realtime: bool = False
+    obs_max_teammates: int = 10
+    obs_max_opponents: int = 11
+    randomize_reset: bool = False
+    enforce_division_limit: bool = False
+    render_mode: str | None = None
+    render_trails: bool = False
+    render_width_px: int = 960
+
+    def __post_init__(self) -> None:
+        geom = FieldGeometry.from_name(self.field)
+        object.__setattr__(self, "field", geom)
+        if isinstance(self.realism, str):
+            object.__setattr__(self, "realism", RealismConfig.preset(self.realism))
+        elif isinstance(self.realism, Mapping):
+            object.__setattr__(self, "realism", RealismConfig(**self.realism))
+        elif not isinstance(self.realism, RealismConfig):
+            raise ValueError(f"realism: expected a preset name, a dict or a RealismConfig, got {self.realism!r}")
+        for name in ("n_blue", "n_yellow"):
+            v = getattr(self, name)
+            if not isinstance(v, int) or isinstance(v, bool) or not 0 <= v <= 11:
+                raise ValueError(f"{name} must be an integer in 0..11, got {v!r}")
+            if self.enforce_division_limit and v > geom.max_robots_per_team:
+                raise ValueError(f"{name}={v} exceeds the {geom.name} limit of {geom.max_robots_per_team} robots")
+        if self.n_blue + self.n_yellow < 1:
+            raise ValueError("n_blue + n_yellow must be at least 1 robot")
+        if not (isinstance(self.max_time_s, (int, float)) and math.isfinite(self.max_time_s) and self.max_time_s > 0):
+            raise ValueError(f"max_time_s must be a positive finite number, got {self.max_time_s!r}")
+        if not (isinstance(self.control_hz, (int, float)) and math.isfinite(self.control_hz) and self.control_hz > 0):
+            raise ValueError(f"control_hz must be a positive finite number, got {self.control_hz!r}")
+        if not isinstance(self.physics_substeps, int) or self.physics_substeps < 1:
+            raise ValueError(f"physics_substeps must be an integer >= 1, got {self.physics_substeps!r}")
+        if self.after_goal not in AFTER_GOAL:
+            raise ValueError(f"after_goal must be one of {AFTER_GOAL}, got {self.after_goal!r}")
+        scales = dict(self.reward_scales)
+        for k, v in scales.items():
+            if k not in REWARD_TERMS:
+                raise ValueError(f"reward_scales: unknown term {k!r}; expected some of {REWARD_TERMS}")
+            if not (isinstance(v, (int, float)) and math.isfinite(v)):
+                raise ValueError(f"reward_scales[{k!r}] must be a finite number, got {v!r}")
+        full = {"goal": 1.0, "ball_progress": 0.0, "possession": 0.0}
+        full.update(scales)
+        object.__setattr__(self, "reward_scales", full)
+        for name in ("obs_max_teammates", "obs_max_opponents"):
+            v = getattr(self, name)
+            if not isinstance(v, int) or v < 0:
+                raise ValueError(f"{name} must be a non-negative integer, got {v!r}")
+        if self.obs_max_teammates < max(self.n_blue, self.n_yellow) - 1:
+            raise ValueError(f"obs_max_teammates={self.obs_max_teammates} is smaller than the largest team - 1")
+        if self.obs_max_opponents < max(self.n_blue, self.n_yellow):
+            raise ValueError(f"obs_max_opponents={self.obs_max_opponents} is smaller than the largest team")
+        if self.render_mode not in (None, "rgb_array", "human"):
+            raise ValueError(f"render_mode must be None, 'rgb_array' or 'human', got {self.render_mode!r}")
+        if not isinstance(self.render_width_px, int) or self.render_width_px < 64:
+            raise ValueError(f"render_width_px must be an integer >= 64, got {self.render_width_px!r}")
+
+    @property
+    def dt(self) -> float:
+        """Control period (s)."""
+        return 1.0 / self.control_hz
+
+    def with_(self, **changes: Any) -> "EnvConfig":
+        return replace(self, **changes)
+
+
+def make_config(**kwargs: Any) -> EnvConfig:
+    """Build an :class:`EnvConfig`, turning unknown keywords into a clear ValueError."""
+    known = {f.name for f in fields(EnvConfig)}
+    unknown = sorted(set(kwargs) - known)
+    if unknown:
+        raise ValueError(f"unknown env option(s) {unknown}; known options: {sorted(known)}")
+    return EnvConfig(**kwargs)

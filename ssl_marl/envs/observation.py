@@ -1,0 +1,137 @@
+"""Per-agent observation vectors, built for a whole team at once with numpy.
+
+Every observation is in the agent's *team frame* (own goal at -x, opponent goal at
++x; yellow's frame is the field frame rotated by pi), so one policy serves both
+colours. Layout (float32), with K = ``obs_max_teammates``, M = ``obs_max_opponents``:
+
+======  ====================  ===================================================
+index   name                  meaning (team frame; m, m/s, rad/s)
+======  ====================  ===================================================
+0-1     self_x, self_y        own position
+2-3     self_cos, self_sin    cos / sin of own heading
+4-5     self_vx, self_vy      own velocity
+6       self_omega            own angular velocity
+7-8     ball_dx, ball_dy      ball position relative to self
+9-10    ball_vx, ball_vy      ball velocity
+11      ball_on_dribbler      1 if the ball is on own dribbler, else 0
+12      kick_ready            1 if the kicker is charged
+13      ball_visible          0 if vision lost the ball this frame (pos = last seen)
+14-15   opp_goal_dx, _dy      opponent goal centre relative to self
+16-17   own_goal_dx, _dy      own goal centre relative to self
+18      field_half_length     L / 2
+19      field_half_width      W / 2
+20      goal_half_width       goal width / 2
+21...   teammates             K slots x 7: mask, dx, dy, vx, vy, cos, sin
+...     opponents             M slots x 7: mask, dx, dy, vx, vy, cos, sin
+======  ====================  ===================================================
+
+Teammate and opponent slots are sorted by distance to self (nearest first); unused
+slots are all zero (mask 0).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..physics.field import FieldGeometry
+from ..physics.state import TeamState, WorldState
+
+SELF_DIM = 21
+SLOT_DIM = 7
+
+OBS_NAMES_SELF = ("self_x", "self_y", "self_cos", "self_sin", "self_vx", "self_vy", "self_omega", "ball_dx",
+                  "ball_dy", "ball_vx", "ball_vy", "ball_on_dribbler", "kick_ready", "ball_visible", "opp_goal_dx",
+                  "opp_goal_dy", "own_goal_dx", "own_goal_dy", "field_half_length", "field_half_width",
+                  "goal_half_width")
+SLOT_NAMES = ("mask", "dx", "dy", "vx", "vy", "cos", "sin")
+
+
+def obs_dim(max_teammates: int, max_opponents: int) -> int:
+    return SELF_DIM + SLOT_DIM * (max_teammates + max_opponents)
+
+
+def obs_names(max_teammates: int, max_opponents: int) -> list[str]:
+    names = list(OBS_NAMES_SELF)
+    for k in range(max_teammates):
+        names += [f"mate{k}_{s}" for s in SLOT_NAMES]
+    for k in range(max_opponents):
+        names += [f"opp{k}_{s}" for s in SLOT_NAMES]
+    return names
+
+
+def _slots(pos: np.ndarray, other: TeamState, n_slots: int, exclude_self: bool, sgn: float) -> np.ndarray:
+    """(n, n_slots*7) slots of ``other`` robots relative to each row of pos (team frame)."""
+    n, m = pos.shape[0], other.n
+    out = np.zeros((n, n_slots, SLOT_DIM), dtype=np.float64)
+    if m == 0 or n_slots == 0 or n == 0:
+        return out.reshape(n, -1)
+    opos = other.pos * sgn
+    rel = opos[None, :, :] - pos[:, None, :]  # (n, m, 2)
+    d2 = (rel ** 2).sum(-1)
+    if exclude_self:
+        np.fill_diagonal(d2, np.inf)
+    order = np.argsort(d2, axis=1, kind="stable")
+    k = m - 1 if exclude_self else m
+    k = min(k, n_slots)
+    order = order[:, :k]
+    rows = np.arange(n)[:, None]
+    ovel = other.vel * sgn
+    oh = other.heading + (0.0 if sgn > 0 else np.pi)
+    out[:, :k, 0] = 1.0
+    out[:, :k, 1:3] = rel[rows, order]
+    out[:, :k, 3:5] = ovel[order]
+    out[:, :k, 5] = np.cos(oh)[order]
+    out[:, :k, 6] = np.sin(oh)[order]
+    return out.reshape(n, -1)
+
+
+def team_observations(ws: WorldState, team: str, field: FieldGeometry, max_teammates: int,
+                      max_opponents: int) -> np.ndarray:
+    """(n_team, obs_dim) float32 observations for every robot of ``team`` from a
+    field-frame snapshot ``ws``."""
+    sgn = 1.0 if team == "blue" else -1.0
+    own = ws.team(team)
+    opp = ws.opponents(team)
+    n = own.n
+    out = np.zeros((n, obs_dim(max_teammates, max_opponents)), dtype=np.float64)
+    if n == 0:
+        return out.astype(np.float32)
+    pos = own.pos * sgn
+    h = own.heading + (0.0 if sgn > 0 else np.pi)
+    out[:, 0:2] = pos
+    out[:, 2] = np.cos(h)
+    out[:, 3] = np.sin(h)
+    out[:, 4:6] = own.vel * sgn
+    out[:, 6] = own.omega
+    out[:, 7:9] = ws.ball_pos * sgn - pos
+    out[:, 9:11] = ws.ball_vel * sgn
+    out[:, 11] = own.ball_on_dribbler
+    out[:, 12] = own.kick_ready
+    out[:, 13] = 1.0 if ws.ball_visible else 0.0
+    out[:, 14] = field.half_length - pos[:, 0]
+    out[:, 15] = -pos[:, 1]
+    out[:, 16] = -field.half_length - pos[:, 0]
+    out[:, 17] = -pos[:, 1]
+    out[:, 18] = field.half_length
+    out[:, 19] = field.half_width
+    out[:, 20] = field.goal_width / 2
+    a = SELF_DIM
+    b = a + SLOT_DIM * max_teammates
+    out[:, a:b] = _slots(pos, own, max_teammates, True, sgn)
+    out[:, b:] = _slots(pos, opp, max_opponents, False, sgn)
+    return out.astype(np.float32)
+
+
+def state_vector(ws: WorldState) -> np.ndarray:
+    """Whole world in the field frame (for centralised critics): ball x, y, vx, vy,
+    then per robot (blue 0.., yellow 0..): x, y, cos, sin, vx, vy, omega, on_dribbler."""
+    parts = [np.concatenate([ws.ball_pos, ws.ball_vel])]
+    for ts in (ws.blue, ws.yellow):
+        if ts.n:
+            parts.append(np.column_stack([ts.pos, np.cos(ts.heading), np.sin(ts.heading), ts.vel, ts.omega,
+                                          ts.ball_on_dribbler]).ravel())
+    return np.concatenate(parts).astype(np.float32)
+
+
+def state_dim(n_robots: int) -> int:
+    return 4 + 8 * n_robots

@@ -1,0 +1,91 @@
+"""Referee rules as pure functions of a field-frame snapshot.
+
+* Goal: the ball has *fully* crossed the goal line between the posts
+  (|x| >= L/2 + r and |y| <= goal_width/2). The ball can only be there inside
+  the goal, since the goal walls close it.
+* Ball out: the ball has fully crossed a touch line (|y| >= W/2 + r) or a goal line
+  outside the goal. The restart places the ball 0.2 m inside the field at the
+  crossing point (out of the defense area), stopped, and moves robots that stand
+  within 0.5 m of it outwards to 0.5 m (SSL: robots keep 0.5 m at restarts).
+* After a goal: kickoff formation (both teams in their own halves, ball at the
+  centre mark) or termination, per ``EnvConfig.after_goal``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..physics.field import FieldGeometry
+from ..physics.state import WorldState
+
+PLACEMENT_INSET = 0.2  # m inside the lines
+RESTART_CLEARANCE = 0.5  # m between the placed ball and any robot centre
+
+
+@dataclass(frozen=True)
+class RefereeCall:
+    """What the referee saw this step: ``goal_for`` is the scoring team or None;
+    ``ball_out`` is True for out of play; ``placement`` the ball restart point."""
+
+    goal_for: str | None = None
+    ball_out: bool = False
+    placement: np.ndarray | None = None
+
+
+def judge(ws: WorldState, field: FieldGeometry, ball_radius: float) -> RefereeCall:
+    side = field.in_goal(ws.ball_pos, ball_radius)
+    if side:
+        return RefereeCall(goal_for="blue" if side > 0 else "yellow")
+    x, y = float(ws.ball_pos[0]), float(ws.ball_pos[1])
+    out_x = abs(x) >= field.half_length + ball_radius
+    out_y = abs(y) >= field.half_width + ball_radius
+    if not (out_x or out_y):
+        return RefereeCall()
+    return RefereeCall(ball_out=True, placement=placement_point(ws.ball_pos, field))
+
+
+def placement_point(ball_pos: np.ndarray, field: FieldGeometry) -> np.ndarray:
+    """Restart spot for a ball that left the field at ball_pos (0.2 m inside the lines,
+    outside both defense areas)."""
+    p = field.clamp_to_field(ball_pos, margin=PLACEMENT_INSET)
+    for side in (1, -1):
+        if field.in_defense_area(p, side, margin=PLACEMENT_INSET):
+            p[0] = side * (field.half_length - field.defense_depth - PLACEMENT_INSET)
+    return p
+
+
+def clear_robots_from(point: np.ndarray, robot_pos: np.ndarray, field: FieldGeometry,
+                      clearance: float = RESTART_CLEARANCE) -> np.ndarray:
+    """Move robots closer than ``clearance`` to ``point`` radially out to ``clearance``
+    (kept inside the walled area). Returns new (n, 2) positions."""
+    pos = np.array(robot_pos, dtype=float, copy=True)
+    d = pos - point[None, :]
+    dist = np.hypot(d[:, 0], d[:, 1])
+    for i in np.flatnonzero(dist < clearance):
+        u = d[i] / dist[i] if dist[i] > 1e-9 else np.array([-np.sign(point[0]) or -1.0, 0.0])
+        cand = point + u * clearance
+        if not field.in_field(cand, margin=-field.boundary_width + 0.1):
+            cand = point - u * clearance
+        pos[i] = cand
+    return pos
+
+
+def kickoff_formation(field: FieldGeometry, n: int) -> np.ndarray:
+    """(n, 3) poses in the *team frame* (own half, x < 0), all facing +x: a keeper on
+    its goal line, then rows of three field players at x = -0.8, -1.6, ... m
+    (outside the centre circle and the defense area), centre first."""
+    L2, W2 = field.half_length, field.half_width
+    poses = [(-L2 + 0.25, 0.0, 0.0)]
+    x_min = -L2 + field.defense_depth + 0.25
+    ys = (0.0, W2 / 2, -W2 / 2)
+    row = 0
+    while len(poses) < n:
+        x = max(-0.8 * (row + 1), x_min)
+        y_shift = 0.0 if row % 2 == 0 else W2 / 4
+        for y in ys:
+            if len(poses) < n:
+                poses.append((x, float(np.clip(y + y_shift, -W2 + 0.3, W2 - 0.3)), 0.0))
+        row += 1
+    return np.array(poses[:n], dtype=float).reshape(n, 3)

@@ -1,0 +1,515 @@
+"""Top-down pygame-ce renderer for SSL world states, plus GIF/MP4 export.
+
+:class:`FieldRenderer` draws a :class:`~ssl_marl.physics.state.WorldState` onto an
+off-screen ``pygame.Surface`` and returns an ``(H, W, 3)`` ``uint8`` RGB frame
+("rgb_array" mode).  :meth:`FieldRenderer.show` additionally blits frames into a
+window ("human" mode).
+
+Headless operation: drawing never touches the SDL video subsystem (it only needs
+``pygame.Surface``, ``pygame.draw`` and ``pygame.font``), so the off-screen path
+works without a display.  Before the first ``import pygame`` we default
+``SDL_VIDEODRIVER`` to ``"dummy"`` *only* when there is no sign of a display
+(no ``DISPLAY`` / ``WAYLAND_DISPLAY`` on Linux), so that a later ``show()`` in a
+desktop session still gets a real window.  If opening the window fails anyway
+(no video device), :meth:`show` warns once and degrades to a no-op: callers keep
+getting frames from :meth:`draw`, exactly as in "rgb_array" mode.
+
+Screen mapping: field-frame +x (the goal blue attacks) points right, +y points
+up.  The picture covers the whole walled area (playing area + ``boundary_width``
+on each side) plus a thin dark border that stands for the outer wall.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import sys
+import tempfile
+import warnings
+from collections import deque
+from pathlib import Path
+from typing import Iterable
+
+import numpy as np
+
+from ssl_marl.physics.field import FieldGeometry
+from ssl_marl.physics.params import BallParams, RobotParams
+from ssl_marl.physics.state import TeamState, WorldState
+
+os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
+if sys.platform.startswith("linux") and not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")):
+    # Off-screen path: no display server -> make any (accidental) video init headless.
+    os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
+
+import pygame  # noqa: E402  (pygame-ce)
+
+__all__ = ["FieldRenderer", "write_animation", "BLUE", "YELLOW", "BALL_ORANGE"]
+
+# ----------------------------------------------------------------------- colours
+BLUE = (0, 90, 255)
+YELLOW = (255, 220, 0)
+BALL_ORANGE = (255, 140, 0)
+CARPET = (0, 120, 40)
+LINE_WHITE = (255, 255, 255)
+WALL_DARK = (35, 35, 35)
+GOAL_COLOURS = {  # goal walls tinted with the colour of the team defending that goal
+    +1: (150, 130, 20),  # +x goal: yellow defends (blue attacks +x)
+    -1: (20, 60, 160),  # -x goal: blue defends
+}
+TEAM_COLOURS = {"blue": BLUE, "yellow": YELLOW}
+TEAM_MARK = {"blue": (255, 255, 255), "yellow": (0, 0, 0)}  # heading marker / id text
+TEAM_OUTLINE = {"blue": (0, 40, 120), "yellow": (120, 100, 0)}
+TRAIL_COLOURS = {"blue": (110, 170, 255), "yellow": (255, 240, 130), "ball": (255, 175, 90)}
+
+OUTER_WALL_M = 0.05  # drawn thickness of the outer boundary wall (m)
+LINE_WIDTH_M = 0.01  # SSL field-line width (m)
+_ARC_POINTS = 20  # vertices on the round part of the robot outline
+_COORD_LIMIT = 20000.0  # clip pixel coordinates (far-off / inf positions must not overflow SDL)
+
+
+class FieldRenderer:
+    """Render :class:`WorldState` snapshots of one field.
+
+    Args:
+        field: field geometry (any division or a custom one).
+        robot, ball: physical parameters (sizes of the drawn bodies).
+        pixels_per_metre: scale; if ``None`` it is derived from ``width_px`` so that
+            the whole walled area (plus the drawn outer wall) fits exactly.
+        width_px: frame width when ``pixels_per_metre`` is ``None``.
+        trails: draw trajectory polylines of robots and ball.
+        trail_length: number of past positions kept per trail.
+        show_ids: draw each robot's index on it.
+        render_fps: frame rate :meth:`show` ticks at.
+    """
+
+    def __init__(self, field: FieldGeometry, robot: RobotParams, ball: BallParams, *,
+                 pixels_per_metre: float | None = None, width_px: int = 960, trails: bool = False,
+                 trail_length: int = 120, show_ids: bool = True, render_fps: int = 30) -> None:
+        self.field = field
+        self.robot = robot
+        self.ball = ball
+        half_w_m = field.wall_half_length + OUTER_WALL_M
+        half_h_m = field.wall_half_width + OUTER_WALL_M
+        if pixels_per_metre is None:
+            if not (isinstance(width_px, (int, np.integer)) and width_px >= 16):
+                raise ValueError(f"FieldRenderer: width_px must be an int >= 16, got {width_px!r}")
+            self.width = int(width_px)
+            self.ppm = self.width / (2.0 * half_w_m)
+        else:
+            if not (isinstance(pixels_per_metre, (int, float)) and math.isfinite(pixels_per_metre)
+                    and pixels_per_metre > 0):
+                raise ValueError(f"FieldRenderer: pixels_per_metre must be a positive finite number, "
+                                 f"got {pixels_per_metre!r}")
+            self.ppm = float(pixels_per_metre)
+            self.width = max(16, int(round(2.0 * half_w_m * self.ppm)))
+        self.height = max(16, int(round(2.0 * half_h_m * self.ppm)))
+        if self.width * self.height > 64_000_000:
+            raise ValueError(f"FieldRenderer: frame {self.width}x{self.height} px is too large")
+        if not (isinstance(trail_length, (int, np.integer)) and trail_length >= 2):
+            raise ValueError(f"FieldRenderer: trail_length must be an int >= 2, got {trail_length!r}")
+        if not (isinstance(render_fps, (int, float)) and render_fps > 0):
+            raise ValueError(f"FieldRenderer: render_fps must be positive, got {render_fps!r}")
+        # Pixel-centre convention: pixel index i is centred on continuous coordinate i.
+        self._cx = (self.width - 1) / 2.0
+        self._cy = (self.height - 1) / 2.0
+        self.trails = bool(trails)
+        self.trail_length = int(trail_length)
+        self.show_ids = bool(show_ids)
+        self.render_fps = render_fps
+
+        self._line_px = max(1, int(round(LINE_WIDTH_M * self.ppm)))
+        self._robot_r_px = robot.radius * self.ppm
+        self._ball_r_px = max(3, int(round(ball.radius * self.ppm)))
+        self._robot_shape = self._make_robot_shape()  # (K, 2) px, robot frame, y up
+
+        self._font_ok = self._init_fonts()
+        self._id_cache: dict[tuple[str, int], pygame.Surface] = {}
+        self._background = self._draw_background()
+        self._surface = pygame.Surface((self.width, self.height))
+        self._trails: dict[tuple[str, int], deque] = {}
+        self._last_t: float | None = None
+
+        self._window: pygame.Surface | None = None
+        self._window_failed = False
+        self._clock: pygame.time.Clock | None = None
+        self._closed = False
+
+    # ------------------------------------------------------------ coordinates
+    def world_to_px(self, x: float, y: float) -> tuple[int, int]:
+        """Pixel (column, row) of the field-frame point (x, y) in frames from :meth:`draw`
+        (index the frame as ``frame[py, px]``)."""
+        return (int(round(self._cx + float(x) * self.ppm)), int(round(self._cy - float(y) * self.ppm)))
+
+    def _to_px(self, pts: np.ndarray) -> np.ndarray:
+        """(..., 2) metres -> (..., 2) float pixel coordinates (clipped to a safe range)."""
+        pts = np.asarray(pts, dtype=float)
+        out = np.empty(pts.shape, dtype=float)
+        out[..., 0] = self._cx + pts[..., 0] * self.ppm
+        out[..., 1] = self._cy - pts[..., 1] * self.ppm
+        return np.clip(out, -_COORD_LIMIT, _COORD_LIMIT)
+
+    @property
+    def frame_shape(self) -> tuple[int, int, int]:
+        return (self.height, self.width, 3)
+
+    # --------------------------------------------------------------- set-up
+    def _init_fonts(self) -> bool:
+        try:
+            if not pygame.font.get_init():
+                pygame.font.init()
+            id_size = max(9, int(round(self._robot_r_px * 1.5)))
+            self._id_font = pygame.font.Font(None, id_size)
+            self._info_font = pygame.font.Font(None, max(14, self.width // 45))
+            return True
+        except Exception as exc:  # pygame.error, missing SDL_ttf, ...
+            warnings.warn(f"FieldRenderer: font initialisation failed ({exc}); robot ids and info text "
+                          "will not be drawn", RuntimeWarning, stacklevel=3)
+            return False
+
+    def _make_robot_shape(self) -> np.ndarray:
+        """Outline of the robot body (circle cut by the flat front chord), heading +x."""
+        r, d = self.robot.radius, self.robot.front_distance
+        a0 = math.acos(d / r)  # half angle of the removed cap
+        ang = np.linspace(a0, 2.0 * math.pi - a0, _ARC_POINTS)
+        return np.stack([np.cos(ang), np.sin(ang)], axis=1) * r * self.ppm
+
+    def _rect_m(self, x0: float, y0: float, x1: float, y1: float) -> pygame.Rect:
+        """Pixel rect covering the field-frame box [x0, x1] x [y0, y1] (at least 1 px)."""
+        u0, u1 = sorted((self._cx + x0 * self.ppm, self._cx + x1 * self.ppm))
+        v0, v1 = sorted((self._cy - y0 * self.ppm, self._cy - y1 * self.ppm))
+        left, top = int(round(u0)), int(round(v0))
+        return pygame.Rect(left, top, max(1, int(round(u1)) - left), max(1, int(round(v1)) - top))
+
+    def _line_m(self, surf: pygame.Surface, x0: float, y0: float, x1: float, y1: float,
+                colour=LINE_WHITE) -> None:
+        """Axis-aligned field line of width ``_line_px`` centred on the segment."""
+        lw = self._line_px
+        (u0, v0), (u1, v1) = self._to_px(np.array([[x0, y0], [x1, y1]]))
+        u0, u1 = sorted((u0, u1))
+        v0, v1 = sorted((v0, v1))
+        off = (lw - 1) / 2.0
+        left, top = int(round(u0 - off)), int(round(v0 - off))
+        w = int(round(u1 - u0)) + lw
+        h = int(round(v1 - v0)) + lw
+        surf.fill(colour, pygame.Rect(left, top, w, h))
+
+    def _draw_background(self) -> pygame.Surface:
+        f = self.field
+        bg = pygame.Surface((self.width, self.height))
+        bg.fill(WALL_DARK)  # outer boundary wall
+        # carpet: playing area + boundary_width run-off on every side
+        bg.fill(CARPET, self._rect_m(-f.wall_half_length, -f.wall_half_width, f.wall_half_length,
+                                     f.wall_half_width))
+        hl, hw = f.half_length, f.half_width
+        # touch lines, goal lines, half-way line, centre line
+        self._line_m(bg, -hl, hw, hl, hw)
+        self._line_m(bg, -hl, -hw, hl, -hw)
+        self._line_m(bg, -hl, -hw, -hl, hw)
+        self._line_m(bg, hl, -hw, hl, hw)
+        self._line_m(bg, 0.0, -hw, 0.0, hw)
+        self._line_m(bg, -hl, 0.0, hl, 0.0)
+        # centre circle (pygame draws the ring inwards from the given radius)
+        c = self.world_to_px(0.0, 0.0)
+        r_out = int(round(f.center_circle_radius * self.ppm + self._line_px / 2.0))
+        pygame.draw.circle(bg, LINE_WHITE, c, max(1, r_out), width=min(self._line_px, max(1, r_out)))
+        # defense areas
+        dw, dd = f.defense_width / 2.0, f.defense_depth
+        for s in (+1, -1):
+            xg, xi = s * hl, s * (hl - dd)
+            self._line_m(bg, xi, -dw, xi, dw)
+            self._line_m(bg, xi, dw, xg, dw)
+            self._line_m(bg, xi, -dw, xg, -dw)
+        # penalty marks and centre mark (small dots)
+        dot = max(1, self._line_px)
+        for p in ((0.0, 0.0), (hl - f.penalty_mark_distance, 0.0), (-hl + f.penalty_mark_distance, 0.0)):
+            if abs(p[0]) < hl:
+                pygame.draw.circle(bg, LINE_WHITE, self.world_to_px(*p), dot + 1)
+        # goals: side walls and back wall behind each goal line (inner box goal_depth x goal_width)
+        gw, gd, t = f.goal_width / 2.0, f.goal_depth, f.goal_wall_thickness
+        for s in (+1, -1):
+            col = GOAL_COLOURS[s]
+            x_line, x_back = s * hl, s * (hl + gd)
+            x_out = s * (hl + gd + t)
+            bg.fill(col, self._rect_m(x_line, gw, x_out, gw + t))  # wall at +y
+            bg.fill(col, self._rect_m(x_line, -gw - t, x_out, -gw))  # wall at -y
+            bg.fill(col, self._rect_m(x_back, -gw - t, x_out, gw + t))  # back wall
+        return bg
+
+    # ---------------------------------------------------------------- drawing
+    @staticmethod
+    def _field_frame(world: WorldState) -> WorldState:
+        if world.frame in ("field", "blue"):
+            return world
+        if world.frame == "yellow":  # undo to_team_frame(..., "yellow"): rotate by pi
+            def flip(ts: TeamState) -> TeamState:
+                return TeamState(-ts.pos, ts.heading + math.pi, -ts.vel, ts.omega, ts.ball_on_dribbler,
+                                 ts.kick_ready)
+            return WorldState(t=world.t, ball_pos=-np.asarray(world.ball_pos), ball_vel=-np.asarray(world.ball_vel),
+                              blue=flip(world.blue), yellow=flip(world.yellow), ball_visible=world.ball_visible,
+                              frame="field")
+        raise ValueError(f"FieldRenderer.draw: unknown WorldState.frame {world.frame!r}")
+
+    def reset_trails(self) -> None:
+        """Forget all trajectory history."""
+        self._trails.clear()
+        self._last_t = None
+
+    def _update_trails(self, world: WorldState) -> None:
+        t = float(world.t)
+        if self._last_t is not None and t < self._last_t:  # time went backwards: a new episode
+            self._trails.clear()
+        self._last_t = t
+        seen = set()
+        for team in ("blue", "yellow"):
+            ts = world.team(team)
+            if ts.n == 0:
+                continue
+            px = self._to_px(ts.pos)
+            ok = np.isfinite(np.asarray(ts.pos, float)).all(axis=1)
+            for i in range(ts.n):
+                if not ok[i]:
+                    continue
+                key = (team, i)
+                seen.add(key)
+                dq = self._trails.get(key)
+                if dq is None:
+                    dq = self._trails[key] = deque(maxlen=self.trail_length)
+                dq.append((float(px[i, 0]), float(px[i, 1])))
+        bp = np.asarray(world.ball_pos, float)
+        if np.isfinite(bp).all():
+            key = ("ball", 0)
+            seen.add(key)
+            dq = self._trails.get(key)
+            if dq is None:
+                dq = self._trails[key] = deque(maxlen=self.trail_length)
+            u, v = self._to_px(bp)
+            dq.append((float(u), float(v)))
+        for key in [k for k in self._trails if k not in seen]:  # robots that left the field
+            del self._trails[key]
+
+    def _draw_trails(self, surf: pygame.Surface) -> None:
+        w = max(1, int(round(0.015 * self.ppm)))
+        for (team, _), pts in self._trails.items():
+            if len(pts) >= 2:
+                pygame.draw.lines(surf, TRAIL_COLOURS[team], False, list(pts), w)
+
+    def _id_label(self, team: str, idx: int) -> pygame.Surface:
+        key = (team, idx)
+        lab = self._id_cache.get(key)
+        if lab is None:
+            lab = self._id_font.render(str(idx), True, TEAM_MARK[team])
+            self._id_cache[key] = lab
+        return lab
+
+    def _draw_team(self, surf: pygame.Surface, team: str, ts: TeamState) -> None:
+        if ts.n == 0:
+            return
+        pos = np.asarray(ts.pos, float)
+        head = np.asarray(ts.heading, float)
+        ok = np.isfinite(pos).all(axis=1) & np.isfinite(head)
+        c, s = np.cos(head), np.sin(head)
+        shp = self._robot_shape  # (K, 2), screen y flips below
+        centre = self._to_px(pos)  # (n, 2)
+        # rotate in the field frame, then flip y for the screen
+        xs = c[:, None] * shp[None, :, 0] - s[:, None] * shp[None, :, 1]
+        ys = s[:, None] * shp[None, :, 0] + c[:, None] * shp[None, :, 1]
+        poly = np.stack([centre[:, None, 0] + xs, centre[:, None, 1] - ys], axis=2)
+        fd = self.robot.front_distance * self.ppm
+        front = np.stack([centre[:, 0] + c * fd, centre[:, 1] - s * fd], axis=1)
+        colour, outline, mark = TEAM_COLOURS[team], TEAM_OUTLINE[team], TEAM_MARK[team]
+        mark_w = max(1, int(round(self._robot_r_px / 4.0)))
+        draw_outline = self._robot_r_px >= 5.0
+        for i in range(ts.n):
+            if not ok[i]:
+                continue
+            pts = poly[i].tolist()
+            pygame.draw.polygon(surf, colour, pts)
+            if draw_outline:
+                pygame.draw.polygon(surf, outline, pts, 1)
+            pygame.draw.line(surf, mark, centre[i].tolist(), front[i].tolist(), mark_w)
+            if self.show_ids and self._font_ok:
+                lab = self._id_label(team, i)
+                surf.blit(lab, lab.get_rect(center=(int(round(centre[i, 0])), int(round(centre[i, 1])))))
+
+    def _draw_ball(self, surf: pygame.Surface, world: WorldState) -> None:
+        bp = np.asarray(world.ball_pos, float)
+        if not np.isfinite(bp).all():
+            return
+        u, v = self._to_px(bp)
+        centre = (int(round(u)), int(round(v)))
+        if world.ball_visible:
+            pygame.draw.circle(surf, BALL_ORANGE, centre, self._ball_r_px)
+        else:  # vision dropped it: hollow ring at the last seen position
+            pygame.draw.circle(surf, BALL_ORANGE, centre, self._ball_r_px, width=1)
+
+    def _draw_info(self, surf: pygame.Surface, text: str) -> None:
+        if not self._font_ok or not text:
+            return
+        lines = [self._info_font.render(line, True, LINE_WHITE) for line in str(text).splitlines() or [""]]
+        pad = 4
+        w = max(l.get_width() for l in lines) + 2 * pad
+        h = sum(l.get_height() for l in lines) + 2 * pad
+        box = pygame.Surface((w, h), pygame.SRCALPHA)
+        box.fill((0, 0, 0, 150))
+        surf.blit(box, (2, 2))
+        y = 2 + pad
+        for l in lines:
+            surf.blit(l, (2 + pad, y))
+            y += l.get_height()
+
+    def draw(self, world: WorldState, *, info_text: str | None = None) -> np.ndarray:
+        """Render ``world`` and return the frame as an ``(H, W, 3)`` ``uint8`` RGB array."""
+        if self._closed:
+            raise RuntimeError("FieldRenderer.draw: renderer is closed")
+        world = self._field_frame(world)
+        surf = self._surface
+        surf.blit(self._background, (0, 0))
+        if self.trails:
+            self._update_trails(world)
+            self._draw_trails(surf)
+        self._draw_team(surf, "blue", world.blue)
+        self._draw_team(surf, "yellow", world.yellow)
+        self._draw_ball(surf, world)
+        if info_text:
+            self._draw_info(surf, info_text)
+        return self._surface_to_array(surf)
+
+    @staticmethod
+    def _surface_to_array(surf: pygame.Surface) -> np.ndarray:
+        w, h = surf.get_size()
+        buf = bytearray(pygame.image.tobytes(surf, "RGB"))  # writable, row-major (H, W, 3)
+        return np.frombuffer(buf, dtype=np.uint8).reshape(h, w, 3)
+
+    # ------------------------------------------------------------ human mode
+    @property
+    def window_available(self) -> bool:
+        """False once opening the window failed (then :meth:`show` is a no-op)."""
+        return not self._window_failed
+
+    def _open_window(self, size: tuple[int, int]) -> bool:
+        if self._window_failed:
+            return False
+        if self._window is not None and self._window.get_size() == size and pygame.display.get_init():
+            return True
+        try:
+            if not pygame.display.get_init():
+                pygame.display.init()
+            self._window = pygame.display.set_mode(size)
+            pygame.display.set_caption(f"ssl_marl - {self.field.name}")
+            self._clock = pygame.time.Clock()
+            return True
+        except Exception as exc:  # pygame.error: no video device, no display, ...
+            self._window_failed = True
+            self._window = None
+            warnings.warn(f"FieldRenderer.show: cannot open a window ({exc}); continuing without one "
+                          "(frames are still returned by draw(), as in 'rgb_array' mode)",
+                          RuntimeWarning, stacklevel=3)
+            return False
+
+    def show(self, frame_or_world) -> None:
+        """Blit a frame (``(H, W, 3)`` uint8 array) or a freshly drawn :class:`WorldState`
+        into a window, pump window events and tick at ``render_fps``.
+
+        Without a usable display this warns once and does nothing."""
+        if self._closed:
+            raise RuntimeError("FieldRenderer.show: renderer is closed")
+        if isinstance(frame_or_world, WorldState):
+            self.draw(frame_or_world)
+            src = self._surface
+            keep = None
+        else:
+            frame = np.ascontiguousarray(frame_or_world, dtype=np.uint8)
+            if frame.ndim != 3 or frame.shape[2] != 3:
+                raise ValueError(f"FieldRenderer.show: expected an (H, W, 3) frame or a WorldState, "
+                                 f"got shape {frame.shape}")
+            keep = frame  # the surface below borrows this buffer
+            src = pygame.image.frombuffer(keep, (frame.shape[1], frame.shape[0]), "RGB")
+        if not self._open_window(src.get_size()):
+            return
+        try:
+            self._window.blit(src, (0, 0))
+            pygame.display.flip()
+            for event in pygame.event.get():
+                if event.type == pygame.QUIT:
+                    self._close_window()
+                    self._window_failed = True  # user closed it: stop showing
+                    return
+            self._clock.tick(self.render_fps)
+        except pygame.error as exc:
+            self._window_failed = True
+            warnings.warn(f"FieldRenderer.show: window error ({exc}); continuing without a window",
+                          RuntimeWarning, stacklevel=2)
+        del keep
+
+    def _close_window(self) -> None:
+        if self._window is not None:
+            self._window = None
+            try:
+                pygame.display.quit()
+            except Exception:
+                pass
+
+    def close(self) -> None:
+        """Close the window (if any) and drop the surfaces. Idempotent."""
+        self._close_window()
+        self._trails.clear()
+        self._id_cache.clear()
+        self._closed = True
+
+
+# -------------------------------------------------------------------- export
+def write_animation(frames: Iterable[np.ndarray] | list[np.ndarray], path: str | os.PathLike,
+                    fps: int = 30) -> None:
+    """Write RGB frames to ``path`` as an animated GIF (``.gif``) or an MP4 (``.mp4``).
+
+    The file is written atomically (temp file in the same directory, then
+    ``os.replace``).  GIF: Pillow merges consecutive identical frames (adding up
+    their durations), so a still scene gives fewer frames than were passed.  MP4
+    needs the ``imageio-ffmpeg`` package.
+    """
+    # imageio: the standard, well-maintained image/video IO library for numpy arrays
+    # (GIF through Pillow, MP4 through imageio-ffmpeg); imported lazily so that
+    # drawing does not depend on it.
+    import imageio.v3 as iio
+
+    frames = [np.asarray(f) for f in frames]
+    if not frames:
+        raise ValueError("write_animation: no frames given")
+    shape = frames[0].shape
+    for i, f in enumerate(frames):
+        if f.ndim != 3 or f.shape[2] != 3 or f.shape != shape:
+            raise ValueError(f"write_animation: frame {i} has shape {f.shape}; all frames must be "
+                             f"(H, W, 3) with the same shape as frame 0 {shape}")
+    if not (isinstance(fps, (int, float)) and math.isfinite(fps) and fps > 0):
+        raise ValueError(f"write_animation: fps must be positive, got {fps!r}")
+    frames = [np.ascontiguousarray(f, dtype=np.uint8) if f.dtype != np.uint8 else f for f in frames]
+
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix not in (".gif", ".mp4"):
+        raise ValueError(f"write_animation: unsupported suffix {path.suffix!r} for {path}; use .gif or .mp4")
+    if suffix == ".mp4":
+        try:
+            import imageio_ffmpeg  # noqa: F401
+        except ImportError:
+            raise RuntimeError("write_animation: writing .mp4 needs the 'imageio-ffmpeg' package "
+                               "(pip install imageio-ffmpeg); or write a .gif instead") from None
+    directory = path.parent if str(path.parent) else Path(".")
+    fd, tmp_name = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=f".tmp{suffix}", dir=directory)
+    os.close(fd)
+    try:
+        if suffix == ".gif":
+            iio.imwrite(tmp_name, np.stack(frames), extension=".gif", duration=1000.0 / fps, loop=0)
+        else:
+            h, w = shape[:2]
+            if h % 2 or w % 2:  # yuv420p needs even sizes: pad by repeating the last row/column
+                frames = [np.pad(f, ((0, h % 2), (0, w % 2), (0, 0)), mode="edge") for f in frames]
+            iio.imwrite(tmp_name, np.stack(frames), extension=".mp4", plugin="FFMPEG", fps=fps,
+                        codec="libx264", macro_block_size=1)
+        os.replace(tmp_name, path)
+    except BaseException:
+        try:
+            os.unlink(tmp_name)
+        except OSError:
+            pass
+        raise

@@ -1,0 +1,355 @@
+"""The full-field SSL env as a PettingZoo ParallelEnv.
+
+Agents: ``blue_0 .. blue_{n_blue-1}``, ``yellow_0 .. yellow_{n_yellow-1}``.
+
+Observation
+    Per agent, ``Box(-inf, inf, (D,), float32)`` in the agent's team frame (own
+    goal at -x). Index by index layout in :mod:`ssl_marl.envs.observation`
+    (D = 21 + 7 * (obs_max_teammates + obs_max_opponents) = 168 by default).
+    ``state()`` / ``state_space``: the whole world in the field frame (see
+    :func:`ssl_marl.envs.observation.state_vector`).
+
+Action
+    Per agent, ``Box(-1, 1, (5,), float32)``: body-frame vx, vy, omega (fractions of
+    the robot limits), dribbler (on when > 0), kick strength (kick when > 0). See
+    :mod:`ssl_marl.envs.actions`. Agents missing from the action dict do nothing
+    this step (zero action). NaN/inf, a wrong shape or an unknown agent raise
+    ``ValueError`` naming the agent.
+
+Reward
+    Shared by a team: sum over named terms x ``reward_scales``. ``goal``: +1 when
+    the team scores, -1 when it concedes (default scale 1). ``ball_progress``:
+    ball displacement towards the opponent goal / (L/2) (default scale 0).
+    ``possession``: +dt while a robot of the team holds the ball on its dribbler
+    (default 0). Scaled per-term values are in ``infos[agent]["reward_terms"]``.
+
+Termination / truncation
+    Truncation for every agent when simulated time reaches ``max_time_s``.
+    Termination after a goal if ``after_goal == "terminate"``; otherwise the
+    kickoff formation is placed and play goes on. Ball out of play -> ball placed
+    inside the field. Events ("goal", "ball_out", "kick") are listed in
+    ``infos[agent]["events"]``; the score in ``infos[agent]["score"]``.
+
+Reset options
+    ``{"ball": {"pos": (x, y), "vel": (vx, vy)}, "robots": {"blue_0": (x, y, heading), ...},
+    "formation": "kickoff" | "random"}`` (field frame, metres, radians). Robots not
+    named are placed by the formation (``randomize_reset`` picks the default).
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any
+
+import gymnasium
+import numpy as np
+from gymnasium.utils import EzPickle
+from pettingzoo import ParallelEnv
+
+from ..physics.state import WorldState, to_team_frame
+from ..physics.world import PhysicsWorld
+from .actions import ACTION_DIM, scale_actions, validate_actions
+from .config import EnvConfig, make_config
+from .observation import obs_dim, state_dim, state_vector, team_observations
+from .realism import Radio, Vision
+from .referee import clear_robots_from, judge, kickoff_formation
+
+
+class SSLParallelEnv(ParallelEnv, EzPickle):
+    """Full-field SSL simulator (Box2D) with the PettingZoo Parallel API. Options: see
+    :class:`ssl_marl.envs.config.EnvConfig` (all keyword arguments)."""
+
+    metadata = {"name": "ssl_marl_v0", "render_modes": ["human", "rgb_array"], "render_fps": 60,
+                "is_parallelizable": True}
+
+    def __init__(self, **config: Any) -> None:
+        EzPickle.__init__(self, **config)
+        self.config: EnvConfig = make_config(**config)
+        cfg = self.config
+        self.field = cfg.field
+        self.render_mode = cfg.render_mode
+        self.possible_agents = [f"blue_{i}" for i in range(cfg.n_blue)] + [f"yellow_{i}" for i in range(cfg.n_yellow)]
+        self.agents: list[str] = []
+        self._index = {a: i for i, a in enumerate(self.possible_agents)}
+        self.n = len(self.possible_agents)
+        d = obs_dim(cfg.obs_max_teammates, cfg.obs_max_opponents)
+        self._obs_space = gymnasium.spaces.Box(-np.inf, np.inf, (d,), np.float32)
+        self._act_space = gymnasium.spaces.Box(-1.0, 1.0, (ACTION_DIM,), np.float32)
+        self.observation_spaces = {a: self._obs_space for a in self.possible_agents}
+        self.action_spaces = {a: self._act_space for a in self.possible_agents}
+        self.state_space = gymnasium.spaces.Box(-np.inf, np.inf, (state_dim(self.n),), np.float32)
+        self.physics = PhysicsWorld(cfg.field, cfg.robot, cfg.ball, cfg.n_blue, cfg.n_yellow, cfg.dt,
+                                    cfg.physics_substeps)
+        self.vision = Vision(cfg.realism)
+        self.radio = Radio(cfg.realism, self.n, ACTION_DIM)
+        self._truth: WorldState | None = None
+        self._seen: WorldState | None = None
+        self._noise_rng = np.random.default_rng(0)
+        self.np_random = np.random.default_rng()
+        self.score = {"blue": 0, "yellow": 0}
+        self._prev_cmd = np.zeros((self.n, ACTION_DIM))
+        self._next_tick = 0.0
+        self._renderer = None
+        self.steps = 0
+
+    # ------------------------------------------------------------------ spaces
+    def observation_space(self, agent: str) -> gymnasium.spaces.Box:
+        self._check_agent(agent)
+        return self._obs_space
+
+    def action_space(self, agent: str) -> gymnasium.spaces.Box:
+        self._check_agent(agent)
+        return self._act_space
+
+    def _check_agent(self, agent: str) -> int:
+        try:
+            return self._index[agent]
+        except KeyError:
+            raise ValueError(f"unknown agent {agent!r}; agents are {self.possible_agents}") from None
+
+    # ------------------------------------------------------------------- reset
+    def reset(self, seed: int | None = None, options: dict | None = None):
+        if seed is not None:
+            self.np_random = np.random.default_rng(seed)
+        self._noise_rng = np.random.default_rng(self.np_random.integers(2 ** 63))
+        options = dict(options or {})
+        pose, ball_pos, ball_vel = self._initial_scene(options)
+        self.physics.reset(pose, ball_pos, ball_vel)
+        self.agents = list(self.possible_agents)
+        self.score = {"blue": 0, "yellow": 0}
+        self._prev_cmd = np.zeros((self.n, ACTION_DIM))
+        self.radio.reset()
+        self.steps = 0
+        self._truth = self.physics.snapshot()
+        self._seen = self.vision.reset(self._truth, self._noise_rng)
+        self._prev_ball_x = float(self._truth.ball_pos[0])
+        if self._renderer is not None:
+            self._renderer.reset_trails()
+        self._next_tick = time.perf_counter() + self.config.dt
+        obs = self._observations()
+        infos = {a: {"events": [], "score": dict(self.score)} for a in self.agents}
+        if self.render_mode == "human":
+            self.render()
+        return obs, infos
+
+    def _initial_scene(self, options: dict) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        cfg, f = self.config, self.field
+        known = {"ball", "robots", "formation"}
+        unknown = set(options) - known
+        if unknown:  # tolerated (PettingZoo's API test passes arbitrary options), but said
+            gymnasium.logger.warn(f"reset options: ignoring unknown key(s) {sorted(unknown)}; known: {sorted(known)}")
+        formation = options.get("formation", "random" if cfg.randomize_reset else "kickoff")
+        if formation not in ("kickoff", "random"):
+            raise ValueError(f"reset options: formation must be 'kickoff' or 'random', got {formation!r}")
+        ball = options.get("ball", {})
+        if not isinstance(ball, dict):
+            raise ValueError("reset options: 'ball' must be a dict with 'pos' and/or 'vel'")
+        robots = options.get("robots", {})
+        for name in robots:
+            self._check_agent(name)
+        ball_pos = self._vec(ball.get("pos"), 2, "ball.pos")
+        ball_vel = self._vec(ball.get("vel", (0.0, 0.0)), 2, "ball.vel")
+        fixed = {name: self._vec(p, 3, f"robots.{name}") for name, p in robots.items()}
+        pose = np.zeros((self.n, 3))
+        if formation == "kickoff":
+            if ball_pos is None:
+                ball_pos = np.zeros(2)
+            for team, sgn, count, off in (("blue", 1.0, cfg.n_blue, 0), ("yellow", -1.0, cfg.n_yellow, cfg.n_blue)):
+                tf = kickoff_formation(f, count)
+                pose[off:off + count, 0:2] = tf[:, 0:2] * sgn
+                pose[off:off + count, 2] = 0.0 if sgn > 0 else np.pi
+        placed: list[np.ndarray] = [p[:2] for p in fixed.values()]
+        if ball_pos is None:
+            ball_pos = self._free_spot(placed, 0.15, margin=0.1)
+        for i, name in enumerate(self.possible_agents):
+            if name in fixed:
+                pose[i] = fixed[name]
+            elif formation == "random":
+                xy = self._free_spot(placed + [ball_pos], 0.25, margin=0.1)
+                placed.append(xy)
+                pose[i] = (xy[0], xy[1], self.np_random.uniform(-np.pi, np.pi))
+        return pose, ball_pos, ball_vel
+
+    def _free_spot(self, taken: list[np.ndarray], min_dist: float, margin: float) -> np.ndarray:
+        f = self.field
+        for _ in range(1000):
+            p = self.np_random.uniform([-f.half_length + margin, -f.half_width + margin],
+                                       [f.half_length - margin, f.half_width - margin])
+            if all(np.hypot(*(p - q)) >= min_dist for q in taken):
+                return p
+        raise RuntimeError("could not find a free spot on the field for a robot or the ball")
+
+    @staticmethod
+    def _vec(v: Any, n: int, name: str) -> np.ndarray | None:
+        if v is None:
+            return None
+        a = np.asarray(v, dtype=float)
+        if a.shape != (n,) or not np.isfinite(a).all():
+            raise ValueError(f"reset options: {name} must be {n} finite numbers, got {v!r}")
+        return a
+
+    # -------------------------------------------------------------------- step
+    def _action_array(self, actions: dict) -> np.ndarray:
+        if not isinstance(actions, dict):
+            raise ValueError(f"actions must be a dict agent -> action, got {type(actions).__name__}")
+        arr = np.zeros((self.n, ACTION_DIM))
+        for agent, act in actions.items():
+            i = self._check_agent(agent)
+            if agent not in self.agents:
+                raise ValueError(f"agent {agent!r} is not live (episode over: call reset())")
+            a = np.asarray(act, dtype=float)
+            if a.shape != (ACTION_DIM,):
+                raise ValueError(f"action for agent {agent!r} must have shape ({ACTION_DIM},), got {a.shape}")
+            arr[i] = a
+        validate_actions(arr, self.possible_agents)
+        return arr
+
+    def step(self, actions: dict):
+        if not self.agents:
+            raise RuntimeError("step() called on a finished episode: call reset() first")
+        cmd = self._action_array(actions)
+        events: list[dict] = []
+        n_ticks = 1
+        if self.config.realtime:
+            n_ticks = self._wait_for_tick()
+            if n_ticks > 1:
+                events.append({"type": "missed_deadline", "steps": n_ticks - 1})
+        goal_for = None
+        for tick in range(n_ticks):
+            sent = self._prev_cmd if tick < n_ticks - 1 else cmd
+            goal_for = self._physics_tick(sent, events)
+            if goal_for is not None:
+                break
+        self._prev_cmd = cmd
+        rewards, terms = self._rewards(goal_for)
+        t = self._truth.t
+        terminated = goal_for is not None and self.config.after_goal == "terminate"
+        truncated = (t >= self.config.max_time_s - 1e-9) and not terminated
+        if goal_for is not None and not terminated:
+            self._kickoff()
+        self._seen = self.vision.observe(self._truth, self._noise_rng)
+        obs = self._observations()
+        term = {a: bool(terminated) for a in self.agents}
+        trunc = {a: bool(truncated) for a in self.agents}
+        infos = {}
+        for a in self.agents:
+            team = a.split("_")[0]
+            infos[a] = {"events": events, "score": dict(self.score), "reward_terms": terms[team]}
+        if terminated or truncated:
+            self.agents = []
+        if self.render_mode == "human":
+            self.render()
+        return obs, rewards, term, trunc, infos
+
+    def _physics_tick(self, cmd: np.ndarray, events: list[dict]) -> str | None:
+        executed = self.radio.transmit(cmd, self._noise_rng)
+        v, w, drib, kick = scale_actions(executed, self.config.robot)
+        self.physics.step(v, w, drib, kick)
+        self.steps += 1
+        for i, speed in self.physics.kicks_this_step:
+            events.append({"type": "kick", "agent": self.possible_agents[i], "speed": speed})
+        self._truth = self.physics.snapshot()
+        call = judge(self._truth, self.field, self.config.ball.radius)
+        if call.goal_for is not None:
+            self.score[call.goal_for] += 1
+            events.append({"type": "goal", "team": call.goal_for, "t": self._truth.t})
+            return call.goal_for
+        if call.ball_out:
+            events.append({"type": "ball_out", "t": self._truth.t, "placement": call.placement.tolist()})
+            new_pos = clear_robots_from(call.placement, self.physics.pos, self.field)
+            moved = np.flatnonzero(np.any(new_pos != self.physics.pos, axis=1))
+            if moved.size:
+                pose = np.column_stack([self.physics.pos, self.physics.heading])
+                pose[moved, 0:2] = new_pos[moved]
+                self.physics.set_robots(pose, only=moved)
+            self.physics.set_ball(call.placement)
+            self._truth = self.physics.snapshot()
+            self._prev_ball_x = float(self._truth.ball_pos[0])
+        return None
+
+    def _kickoff(self) -> None:
+        cfg, f = self.config, self.field
+        pose = np.zeros((self.n, 3))
+        for sgn, count, off in ((1.0, cfg.n_blue, 0), (-1.0, cfg.n_yellow, cfg.n_blue)):
+            tf = kickoff_formation(f, count)
+            pose[off:off + count, 0:2] = tf[:, 0:2] * sgn
+            pose[off:off + count, 2] = 0.0 if sgn > 0 else np.pi
+        self.physics.set_robots(pose)
+        self.physics.set_ball(np.zeros(2))
+        self._truth = self.physics.snapshot()
+        self._prev_ball_x = 0.0
+
+    def _wait_for_tick(self) -> int:
+        """Real-time mode: sleep until the next control tick; return how many ticks
+        elapsed (1 = on time; k > 1 = the command missed k - 1 ticks)."""
+        dt = self.config.dt
+        now = time.perf_counter()
+        if now <= self._next_tick:
+            time.sleep(self._next_tick - now)
+            self._next_tick += dt
+            return 1
+        missed = int((now - self._next_tick) // dt) + 1
+        self._next_tick += (missed + 1) * dt
+        return missed + 1
+
+    def _rewards(self, goal_for: str | None) -> tuple[dict, dict]:
+        scales = self.config.reward_scales
+        bx = float(self._truth.ball_pos[0])
+        progress = (bx - self._prev_ball_x) / self.field.half_length
+        self._prev_ball_x = bx
+        possess = {"blue": bool(self._truth.blue.ball_on_dribbler.any()),
+                   "yellow": bool(self._truth.yellow.ball_on_dribbler.any())}
+        terms = {}
+        for team, sgn in (("blue", 1.0), ("yellow", -1.0)):
+            goal = 0.0 if goal_for is None else (1.0 if goal_for == team else -1.0)
+            terms[team] = {"goal": scales["goal"] * goal,
+                           "ball_progress": scales["ball_progress"] * sgn * progress,
+                           "possession": scales["possession"] * (self.config.dt if possess[team] else 0.0)}
+        rewards = {a: float(sum(terms[a.split("_")[0]].values())) for a in self.agents}
+        return rewards, terms
+
+    # ------------------------------------------------------------ observations
+    def _observations(self) -> dict[str, np.ndarray]:
+        cfg = self.config
+        out: dict[str, np.ndarray] = {}
+        for team, count, off in (("blue", cfg.n_blue, 0), ("yellow", cfg.n_yellow, cfg.n_blue)):
+            if count == 0:
+                continue
+            ob = team_observations(self._seen, team, self.field, cfg.obs_max_teammates, cfg.obs_max_opponents)
+            for k in range(count):
+                out[self.possible_agents[off + k]] = ob[k]
+        return out
+
+    def world_state(self) -> WorldState:
+        """Ground-truth snapshot in the field frame (what the referee and rewards read)."""
+        return self._truth
+
+    def vision_state(self, team: str | None = None) -> WorldState:
+        """What the teams see (noise, dropout, latency applied when realism is on), in
+        the field frame, or in ``team``'s frame (own goal at -x) if given."""
+        return self._seen if team is None else to_team_frame(self._seen, team)
+
+    def state(self) -> np.ndarray:
+        return state_vector(self._truth)
+
+    # ---------------------------------------------------------------- render
+    def render(self):
+        if self.render_mode is None:
+            gymnasium.logger.warn("render() called without a render_mode; pass render_mode='rgb_array' or 'human'")
+            return None
+        if self._renderer is None:
+            from .render import FieldRenderer
+
+            self._renderer = FieldRenderer(self.field, self.config.robot, self.config.ball,
+                                           width_px=self.config.render_width_px, trails=self.config.render_trails)
+        text = f"t={self._truth.t:5.1f} s   blue {self.score['blue']} - {self.score['yellow']} yellow"
+        frame = self._renderer.draw(self._truth, info_text=text)
+        if self.render_mode == "human":
+            self._renderer.show(frame)
+            return None
+        return frame
+
+    def close(self) -> None:
+        if self._renderer is not None:
+            self._renderer.close()
+            self._renderer = None

@@ -1,0 +1,348 @@
+"""The Box2D world: the only module that touches Box2D.
+
+Top-down, zero gravity. Box2D runs in *decimetres* (``SCALE`` = 10 Box2D units per
+metre) so that the 43 mm ball is a comfortable size for the solver and Box2D's
+fixed restitution velocity threshold (``b2_velocityThreshold`` = 1 unit/s)
+becomes 0.1 m/s instead of 1 m/s: a ball that hits a wall at 0.5 m/s still
+bounces. Everything outside this module is in metres; conversion happens here
+only.
+
+Model (all parameters in :mod:`ssl_marl.physics.params`):
+
+* Robots are dynamic bodies (a circle of radius 0.09 m cut by a flat front face,
+  built from three convex polygons). Each control step their velocity is moved
+  towards the commanded body-frame (vx, vy, omega), with |dv| limited by the
+  acceleration (or braking) limit times dt, and speeds capped. Contacts then act
+  on the bodies inside Box2D's step.
+* The ball is a bullet (continuous collision) circle with fixed rotation. Rolling
+  resistance is not Box2D damping but the two-phase model: it decelerates at
+  ``slide_decel`` after a kick until its speed falls to ``slide_to_roll_ratio``
+  times the kick speed, then at ``roll_decel``.
+* Dribbler: while on, and while the ball touches the front face within its
+  width, the bar accelerates the ball towards the velocity of the contact point
+  (robot velocity + omega x r) plus a small pull-in and centring, with at most
+  ``dribbler_max_accel``. Spinning at 10 rad/s needs ~10 m/s^2 of centripetal
+  acceleration at the face, more than the bar can give, so the ball is lost;
+  driving forward gently keeps it. Switching the dribbler off releases the ball.
+* Kicker: a kick with strength k in (0, 1] sets the ball velocity to
+  k * ``kick_speed_max`` along the robot heading, only when the ball is on the
+  kicker face and the kicker has recharged (``kick_recharge_s``).
+"""
+
+from __future__ import annotations
+
+import math
+
+import Box2D
+import numpy as np
+
+from .field import FieldGeometry
+from .params import BallParams, RobotParams
+from .state import TeamState, WorldState, make_team_state, wrap_angle
+
+SCALE = 10.0  # Box2D units per metre
+VEL_ITERS = 8
+POS_ITERS = 3
+
+# Each physics sub-step the ball's distance to a face must be at least this far
+# "inside" to count as touching (the polygon skin and solver slop are ~1 mm).
+_FACE_PENETRATION_TOL = 0.01
+
+
+class PhysicsWorld:
+    """Box2D simulation of one SSL field with robots and one ball.
+
+    Robots are indexed 0..n_blue-1 (blue) then n_blue..n_blue+n_yellow-1 (yellow).
+
+    Args:
+        field: field geometry.
+        robot: robot parameters (shared by all robots).
+        ball: ball parameters.
+        n_blue, n_yellow: robots per team.
+        control_dt: control period (s); one call of :meth:`step` advances this much.
+        substeps: Box2D steps per control step.
+    """
+
+    def __init__(self, field: FieldGeometry, robot: RobotParams, ball: BallParams, n_blue: int, n_yellow: int,
+                 control_dt: float = 1.0 / 60.0, substeps: int = 2) -> None:
+        self.field, self.robot, self.ball_params = field, robot, ball
+        self.n_blue, self.n_yellow = n_blue, n_yellow
+        self.n = n_blue + n_yellow
+        self.control_dt = float(control_dt)
+        self.substeps = int(substeps)
+        self.sub_dt = self.control_dt / self.substeps
+        self.world: Box2D.b2World | None = None
+        self.t = 0.0
+        self._robot_bodies: list = []
+        self._ball_body = None
+        # cached state (metres)
+        self.pos = np.zeros((self.n, 2))
+        self.heading = np.zeros(self.n)
+        self.vel = np.zeros((self.n, 2))
+        self.omega = np.zeros(self.n)
+        self.on_dribbler = np.zeros(self.n, bool)
+        self.kick_cooldown = np.zeros(self.n)
+        self.ball_pos = np.zeros(2)
+        self.ball_vel = np.zeros(2)
+        self._slide_until = math.inf  # ball slides while speed > this (m/s)
+        self.kicks_this_step: list[tuple[int, float]] = []  # (robot index, ball speed)
+        self.last_touch: int = -1  # index of the last robot to touch the ball (-1: none)
+
+    # ---------------------------------------------------------------- building
+    def _make_fixture_defs(self) -> None:
+        """Shapes are built once; every reset reuses them (creating SWIG shapes is slow)."""
+        S, rp = SCALE, self.robot
+        r, fd, hw = rp.radius, rp.front_distance, rp.dribbler_half_width
+        a0 = math.acos(fd / r)  # half-angle of the front cut
+        # The robot (a circle cut by a chord: convex) as two 8-vertex polygons, top and
+        # bottom half: max radial error 2 mm, plus Box2D's 1 mm polygon skin.
+        arc = np.linspace(a0, math.pi, 7)
+        top = [(fd * S, 0.0)] + [(r * S * math.cos(a), r * S * math.sin(a)) for a in arc]
+        top[1] = (fd * S, hw * S)
+        polys = [top, [(x, -y) for (x, y) in reversed(top)]]
+        area = 0.0
+        for p in polys:
+            xs, ys = np.array(p).T
+            area += 0.5 * abs(np.dot(xs, np.roll(ys, 1)) - np.dot(ys, np.roll(xs, 1)))
+        self._robot_fixdefs = [Box2D.b2FixtureDef(shape=Box2D.b2PolygonShape(vertices=p), density=rp.mass / area,
+                                                  friction=rp.friction, restitution=rp.restitution_ball)
+                               for p in polys]
+        br = self.ball_params.radius * S
+        self._ball_fixdef = Box2D.b2FixtureDef(shape=Box2D.b2CircleShape(radius=br),
+                                               density=self.ball_params.mass / (math.pi * br * br),
+                                               friction=0.1, restitution=self.ball_params.restitution_wall)
+        f = self.field
+        boxes = []
+        t = 0.5  # outer wall thickness (m), generous so nothing tunnels
+        hx, hy = f.wall_half_length, f.wall_half_width
+        boxes += [(hx + t, t / 2, 0, hy + t / 2), (hx + t, t / 2, 0, -hy - t / 2),
+                  (t / 2, hy + t, hx + t / 2, 0), (t / 2, hy + t, -hx - t / 2, 0)]
+        # goals: back wall and two side walls, behind each goal line
+        gd, gt, ghw, L2 = f.goal_depth, f.goal_wall_thickness, f.goal_width / 2, f.half_length
+        for side in (1, -1):
+            boxes += [(gt / 2, ghw + gt, side * (L2 + gd + gt / 2), 0.0),
+                      (gd / 2, gt / 2, side * (L2 + gd / 2), ghw + gt / 2),
+                      (gd / 2, gt / 2, side * (L2 + gd / 2), -ghw - gt / 2)]
+        self._wall_fixdefs = [Box2D.b2FixtureDef(shape=Box2D.b2PolygonShape(box=(bw * S, bh * S, (cx * S, cy * S), 0.0)),
+                                                 friction=0.1, restitution=self.ball_params.restitution_wall)
+                              for bw, bh, cx, cy in boxes]
+
+    def _build(self, robot_pose: np.ndarray, robot_vel: np.ndarray, ball_pos: np.ndarray, ball_vel: np.ndarray) -> None:
+        """Create a fresh b2World with every body at its initial state (no SetTransform: slow)."""
+        if not hasattr(self, "_robot_fixdefs"):
+            self._make_fixture_defs()
+        S = SCALE
+        w = Box2D.b2World(gravity=(0.0, 0.0), doSleep=False)
+        walls = w.CreateStaticBody(position=(0, 0))
+        for fd in self._wall_fixdefs:
+            walls.CreateFixture(fd)
+        self._robot_bodies = []
+        for (x, y, h), (vx, vy, om) in zip(robot_pose.tolist(), robot_vel.tolist()):
+            b = w.CreateDynamicBody(position=(x * S, y * S), angle=h, linearVelocity=(vx * S, vy * S),
+                                    angularVelocity=om)
+            for fd in self._robot_fixdefs:
+                b.CreateFixture(fd)
+            self._robot_bodies.append(b)
+        ball = w.CreateDynamicBody(position=(float(ball_pos[0]) * S, float(ball_pos[1]) * S), bullet=True,
+                                   fixedRotation=True,
+                                   linearVelocity=(float(ball_vel[0]) * S, float(ball_vel[1]) * S))
+        ball.CreateFixture(self._ball_fixdef)
+        self._ball_body = ball
+        self.world = w
+
+    # ----------------------------------------------------------------- control
+    def reset(self, robot_pose: np.ndarray, ball_pos: np.ndarray, ball_vel: np.ndarray | None = None,
+              robot_vel: np.ndarray | None = None) -> None:
+        """Build a fresh Box2D world (for exact determinism) and place everything.
+
+        Args:
+            robot_pose: (n, 3) x, y (m), heading (rad), field frame.
+            ball_pos: (2,) m.  ball_vel: (2,) m/s; a moving ball starts in the sliding phase.
+            robot_vel: optional (n, 3) vx, vy (m/s, field frame), omega (rad/s).
+        """
+        robot_pose = np.asarray(robot_pose, float).reshape(self.n, 3)
+        rv = np.zeros((self.n, 3)) if robot_vel is None else np.asarray(robot_vel, float).reshape(self.n, 3)
+        bv = np.zeros(2) if ball_vel is None else np.asarray(ball_vel, float)
+        self._build(robot_pose, rv, np.asarray(ball_pos, float), bv)
+        speed = float(np.hypot(*bv))
+        self._slide_until = self.ball_params.slide_to_roll_ratio * speed if speed > 0 else math.inf
+        self.t = 0.0
+        self.kick_cooldown = np.zeros(self.n)
+        self.kicks_this_step = []
+        self.last_touch = -1
+        self._read_state()
+
+    def step(self, v_body: np.ndarray, omega: np.ndarray, dribble: np.ndarray, kick: np.ndarray) -> None:
+        """Advance one control period.
+
+        Args:
+            v_body: (n, 2) commanded velocity in each robot's body frame (m/s, +x forward).
+            omega: (n,) commanded angular velocity (rad/s).
+            dribble: (n,) bool, dribbler on.
+            kick: (n,) kick strength in [0, 1]; 0 = no kick.
+        """
+        rp, S, dt = self.robot, SCALE, self.control_dt
+        # --- robot velocity tracking (vectorised) ------------------------------
+        c, s = np.cos(self.heading), np.sin(self.heading)
+        vdes = np.stack([c * v_body[:, 0] - s * v_body[:, 1], s * v_body[:, 0] + c * v_body[:, 1]], axis=1)
+        sp = np.hypot(vdes[:, 0], vdes[:, 1])
+        over = sp > rp.max_speed
+        if over.any():
+            vdes[over] *= (rp.max_speed / sp[over])[:, None]
+            sp[over] = rp.max_speed
+        dv = vdes - self.vel
+        dvn = np.hypot(dv[:, 0], dv[:, 1])
+        cur = np.hypot(self.vel[:, 0], self.vel[:, 1])
+        lim = np.where(sp < cur, rp.max_brake, rp.max_accel) * dt
+        scale = np.where(dvn > lim, lim / np.maximum(dvn, 1e-12), 1.0)
+        vnew = (self.vel + dv * scale[:, None]) * S
+        wdes = np.clip(omega, -rp.max_omega, rp.max_omega)
+        wnew = self.omega + np.clip(wdes - self.omega, -rp.max_alpha * dt, rp.max_alpha * dt)
+        for b, v, w_ in zip(self._robot_bodies, vnew.tolist(), wnew.tolist()):
+            b.linearVelocity = v
+            b.angularVelocity = w_
+        # --- kicker -------------------------------------------------------------
+        self.kick_cooldown = np.maximum(self.kick_cooldown - dt, 0.0)
+        self.kicks_this_step = []
+        kicked = False
+        for i in np.flatnonzero((kick > 0) & self.on_dribbler & (self.kick_cooldown <= 0)):
+            if kicked:
+                break
+            speed = float(min(kick[i], 1.0)) * rp.kick_speed_max
+            h = self.heading[i]
+            self._ball_body.linearVelocity = (speed * math.cos(h) * S, speed * math.sin(h) * S)
+            self._slide_until = self.ball_params.slide_to_roll_ratio * speed
+            self.kick_cooldown[i] = rp.kick_recharge_s
+            self.kicks_this_step.append((int(i), speed))
+            self.last_touch = int(i)
+            kicked = True
+        # --- sub-steps: dribbler, ball friction, Box2D -------------------------
+        dribblers = [] if kicked else np.flatnonzero(dribble).tolist()
+        for _ in range(self.substeps):
+            if dribblers:
+                self._apply_dribblers(dribblers)
+            self._apply_ball_friction()
+            self.world.Step(self.sub_dt, VEL_ITERS, POS_ITERS)
+        self.t += dt
+        self._read_state()
+        if self.on_dribbler.any() and not kicked:
+            self.last_touch = int(np.flatnonzero(self.on_dribbler)[0])
+
+    # ----------------------------------------------------------------- helpers
+    def _apply_dribblers(self, idx: list[int]) -> None:
+        rp, S, dt = self.robot, SCALE, self.sub_dt
+        ball = self._ball_body
+        bp = ball.position
+        bx, by = bp[0] / S, bp[1] / S
+        bv = ball.linearVelocity
+        vbx, vby = bv[0] / S, bv[1] / S
+        hw = rp.dribbler_half_width
+        for i in idx:
+            b = self._robot_bodies[i]
+            p = b.position
+            rx, ry, h = p[0] / S, p[1] / S, b.angle
+            c, s = math.cos(h), math.sin(h)
+            dx, dy = bx - rx, by - ry
+            lx, ly = c * dx + s * dy, -s * dx + c * dy  # ball in robot frame
+            gap = lx - rp.front_distance - self.ball_params.radius
+            if not (-_FACE_PENETRATION_TOL <= gap <= rp.dribbler_tolerance and abs(ly) <= hw):
+                continue
+            v = b.linearVelocity
+            w = b.angularVelocity
+            # velocity of the face point under the ball + pull-in + centring (robot frame -> field)
+            tx = v[0] / S - w * dy
+            ty = v[1] / S + w * dx
+            pull_l = -rp.dribbler_pull_speed
+            cent_l = -2.0 * ly
+            tx += c * pull_l - s * cent_l
+            ty += s * pull_l + c * cent_l
+            ddx, ddy = tx - vbx, ty - vby
+            dn = math.hypot(ddx, ddy)
+            lim = rp.dribbler_max_accel * dt
+            if dn > lim:
+                ddx, ddy = ddx * lim / dn, ddy * lim / dn
+            vbx, vby = vbx + ddx, vby + ddy
+            ball.linearVelocity = (vbx * S, vby * S)
+            break  # one dribbler holds the ball at a time
+
+    def _apply_ball_friction(self) -> None:
+        bp, S = self.ball_params, SCALE
+        v = self._ball_body.linearVelocity
+        vx, vy = v[0] / S, v[1] / S
+        sp = math.hypot(vx, vy)
+        if sp <= 0.0:
+            return
+        if sp > self._slide_until:
+            dec = bp.slide_decel
+        else:
+            dec = bp.roll_decel
+            self._slide_until = math.inf
+        new = max(sp - dec * self.sub_dt, 0.0)
+        k = new / sp * S
+        self._ball_body.linearVelocity = (vx * k, vy * k)
+
+    def _read_state(self) -> None:
+        S = SCALE
+        n = self.n
+        buf = np.empty((n, 6))
+        for i, b in enumerate(self._robot_bodies):
+            p, v = b.position, b.linearVelocity
+            buf[i] = (p[0], p[1], b.angle, v[0], v[1], b.angularVelocity)
+        if n:
+            self.pos = buf[:, 0:2] / S
+            self.heading = wrap_angle(buf[:, 2])
+            self.vel = buf[:, 3:5] / S
+            self.omega = buf[:, 5].copy()
+        bp, bv = self._ball_body.position, self._ball_body.linearVelocity
+        self.ball_pos = np.array((bp[0] / S, bp[1] / S))
+        self.ball_vel = np.array((bv[0] / S, bv[1] / S))
+        self.on_dribbler = self.ball_on_face(self.pos, self.heading, self.ball_pos)
+
+    def ball_on_face(self, pos: np.ndarray, heading: np.ndarray, ball_pos: np.ndarray) -> np.ndarray:
+        """(n,) bool: ball touching the flat front face within its width (the paper's
+        "ball on the dribbler" contact condition)."""
+        if pos.shape[0] == 0:
+            return np.zeros(0, bool)
+        rp = self.robot
+        d = ball_pos[None, :] - pos
+        c, s = np.cos(heading), np.sin(heading)
+        lx = c * d[:, 0] + s * d[:, 1]
+        ly = -s * d[:, 0] + c * d[:, 1]
+        gap = lx - rp.front_distance - self.ball_params.radius
+        return (gap >= -_FACE_PENETRATION_TOL) & (gap <= rp.dribbler_tolerance) & (np.abs(ly) <= rp.dribbler_half_width)
+
+    def snapshot(self) -> WorldState:
+        """Ground-truth :class:`WorldState` (field frame)."""
+        nb = self.n_blue
+        ready = self.kick_cooldown <= 0
+
+        def team(sl: slice) -> TeamState:
+            return make_team_state(self.pos[sl], self.heading[sl], self.vel[sl], self.omega[sl],
+                                   self.on_dribbler[sl], ready[sl])
+
+        return WorldState(t=self.t, ball_pos=self.ball_pos.copy(), ball_vel=self.ball_vel.copy(),
+                          blue=team(slice(0, nb)), yellow=team(slice(nb, self.n)))
+
+    def set_ball(self, pos: np.ndarray, vel: np.ndarray | None = None) -> None:
+        """Teleport the ball (referee ball placement)."""
+        S = SCALE
+        v = np.zeros(2) if vel is None else np.asarray(vel, float)
+        self._ball_body.position = (float(pos[0]) * S, float(pos[1]) * S)
+        self._ball_body.linearVelocity = (float(v[0]) * S, float(v[1]) * S)
+        sp = float(np.hypot(*v))
+        self._slide_until = self.ball_params.slide_to_roll_ratio * sp if sp > 0 else math.inf
+        self._read_state()
+
+    def set_robots(self, pose: np.ndarray, only: np.ndarray | None = None) -> None:
+        """Teleport robots to pose (n, 3) and stop them (referee formations and
+        placements). With ``only`` (indices), move just those robots."""
+        S = SCALE
+        pose = np.asarray(pose, float).reshape(self.n, 3)
+        idx = range(self.n) if only is None else [int(i) for i in only]
+        for i in idx:
+            b = self._robot_bodies[i]
+            b.position = (pose[i, 0] * S, pose[i, 1] * S)
+            b.angle = float(pose[i, 2])
+            b.linearVelocity = (0.0, 0.0)
+            b.angularVelocity = 0.0
+        self._read_state()
