@@ -67,6 +67,27 @@ _ARC_POINTS = 20  # vertices on the round part of the robot outline
 _COORD_LIMIT = 20000.0  # clip pixel coordinates (far-off / inf positions must not overflow SDL)
 
 
+_RGB24_MASKS = (0x0000FF, 0x00FF00, 0xFF0000, 0)
+
+
+def _new_surface(size: tuple[int, int], rgb24: bool) -> pygame.Surface:
+    if rgb24:
+        return pygame.Surface(size, 0, 24, _RGB24_MASKS)
+    return pygame.Surface(size)
+
+
+def _rgb24_layout_ok() -> bool:
+    """True if a 24-bit surface with R-lowest masks stores bytes as R, G, B (so frames can
+    be copied straight out of the pixel buffer, ~10x faster than image.tobytes)."""
+    try:
+        s = pygame.Surface((2, 1), 0, 24, _RGB24_MASKS)
+        s.fill((1, 2, 3))
+        raw = bytes(s.get_buffer().raw)
+        return raw[:6] == bytes((1, 2, 3, 1, 2, 3))
+    except Exception:
+        return False
+
+
 class FieldRenderer:
     """Render :class:`WorldState` snapshots of one field.
 
@@ -118,14 +139,17 @@ class FieldRenderer:
         self.render_fps = render_fps
 
         self._line_px = max(1, int(round(LINE_WIDTH_M * self.ppm)))
-        self._robot_r_px = robot.radius * self.ppm
+        # robots are drawn at least 3 px in radius so that they stay visible at small scales
+        self._robot_scale = max(1.0, 3.0 / (robot.radius * self.ppm))
+        self._robot_r_px = robot.radius * self.ppm * self._robot_scale
         self._ball_r_px = max(3, int(round(ball.radius * self.ppm)))
         self._robot_shape = self._make_robot_shape()  # (K, 2) px, robot frame, y up
 
         self._font_ok = self._init_fonts()
         self._id_cache: dict[tuple[str, int], pygame.Surface] = {}
+        self._fast_rgb = _rgb24_layout_ok()
         self._background = self._draw_background()
-        self._surface = pygame.Surface((self.width, self.height))
+        self._surface = _new_surface((self.width, self.height), self._fast_rgb)
         self._trails: dict[tuple[str, int], deque] = {}
         self._last_t: float | None = None
 
@@ -171,14 +195,21 @@ class FieldRenderer:
         r, d = self.robot.radius, self.robot.front_distance
         a0 = math.acos(d / r)  # half angle of the removed cap
         ang = np.linspace(a0, 2.0 * math.pi - a0, _ARC_POINTS)
-        return np.stack([np.cos(ang), np.sin(ang)], axis=1) * r * self.ppm
+        return np.stack([np.cos(ang), np.sin(ang)], axis=1) * r * self.ppm * self._robot_scale
 
     def _rect_m(self, x0: float, y0: float, x1: float, y1: float) -> pygame.Rect:
-        """Pixel rect covering the field-frame box [x0, x1] x [y0, y1] (at least 1 px)."""
-        u0, u1 = sorted((self._cx + x0 * self.ppm, self._cx + x1 * self.ppm))
-        v0, v1 = sorted((self._cy - y0 * self.ppm, self._cy - y1 * self.ppm))
-        left, top = int(round(u0)), int(round(v0))
-        return pygame.Rect(left, top, max(1, int(round(u1)) - left), max(1, int(round(v1)) - top))
+        """Pixel rect of the pixels whose centres lie in the field-frame box [x0, x1] x [y0, y1];
+        at least the pixel at the box centre (so thin walls never vanish)."""
+        def span(a: float, b: float) -> tuple[int, int]:
+            a, b = sorted((a, b))
+            lo, hi = math.ceil(a - 1e-9), math.floor(b + 1e-9)
+            if hi < lo:
+                lo = hi = int(round((a + b) / 2.0))
+            return lo, hi - lo + 1
+
+        left, w = span(self._cx + x0 * self.ppm, self._cx + x1 * self.ppm)
+        top, h = span(self._cy - y0 * self.ppm, self._cy - y1 * self.ppm)
+        return pygame.Rect(left, top, w, h)
 
     def _line_m(self, surf: pygame.Surface, x0: float, y0: float, x1: float, y1: float,
                 colour=LINE_WHITE) -> None:
@@ -195,7 +226,7 @@ class FieldRenderer:
 
     def _draw_background(self) -> pygame.Surface:
         f = self.field
-        bg = pygame.Surface((self.width, self.height))
+        bg = _new_surface((self.width, self.height), self._fast_rgb)
         bg.fill(WALL_DARK)  # outer boundary wall
         # carpet: playing area + boundary_width run-off on every side
         bg.fill(CARPET, self._rect_m(-f.wall_half_length, -f.wall_half_width, f.wall_half_length,
@@ -274,7 +305,7 @@ class FieldRenderer:
                 dq = self._trails.get(key)
                 if dq is None:
                     dq = self._trails[key] = deque(maxlen=self.trail_length)
-                dq.append((float(px[i, 0]), float(px[i, 1])))
+                dq.append((int(round(px[i, 0])), int(round(px[i, 1]))))
         bp = np.asarray(world.ball_pos, float)
         if np.isfinite(bp).all():
             key = ("ball", 0)
@@ -283,7 +314,7 @@ class FieldRenderer:
             if dq is None:
                 dq = self._trails[key] = deque(maxlen=self.trail_length)
             u, v = self._to_px(bp)
-            dq.append((float(u), float(v)))
+            dq.append((int(round(u)), int(round(v))))
         for key in [k for k in self._trails if k not in seen]:  # robots that left the field
             del self._trails[key]
 
@@ -307,27 +338,40 @@ class FieldRenderer:
         pos = np.asarray(ts.pos, float)
         head = np.asarray(ts.heading, float)
         ok = np.isfinite(pos).all(axis=1) & np.isfinite(head)
+        head = np.where(ok, head, 0.0)
+        centre_ok = np.where(ok[:, None], pos, 0.0)
         c, s = np.cos(head), np.sin(head)
         shp = self._robot_shape  # (K, 2), screen y flips below
-        centre = self._to_px(pos)  # (n, 2)
+        centre = self._to_px(centre_ok)  # (n, 2)
         # rotate in the field frame, then flip y for the screen
         xs = c[:, None] * shp[None, :, 0] - s[:, None] * shp[None, :, 1]
         ys = s[:, None] * shp[None, :, 0] + c[:, None] * shp[None, :, 1]
         poly = np.stack([centre[:, None, 0] + xs, centre[:, None, 1] - ys], axis=2)
-        fd = self.robot.front_distance * self.ppm
-        front = np.stack([centre[:, 0] + c * fd, centre[:, 1] - s * fd], axis=1)
+        # heading marker: the dribbler bar along the flat front chord (keeps the centre free for the id)
+        fd = self.robot.front_distance * self.ppm * self._robot_scale
+        hw = self.robot.dribbler_half_width * self.ppm * self._robot_scale
+        fx, fy = centre[:, 0] + c * fd, centre[:, 1] - s * fd  # front-face midpoint (screen)
+        bar_a = np.stack([fx - s * hw, fy - c * hw], axis=1)  # left end (+y side of the robot)
+        bar_b = np.stack([fx + s * hw, fy + c * hw], axis=1)
+        # pygame truncates float coordinates: round them so drawing agrees with world_to_px
+        poly_i = np.rint(np.clip(poly, -_COORD_LIMIT, _COORD_LIMIT)).astype(np.int64)
+        bar_a_i = np.rint(np.clip(bar_a, -_COORD_LIMIT, _COORD_LIMIT)).astype(np.int64)
+        bar_b_i = np.rint(np.clip(bar_b, -_COORD_LIMIT, _COORD_LIMIT)).astype(np.int64)
         colour, outline, mark = TEAM_COLOURS[team], TEAM_OUTLINE[team], TEAM_MARK[team]
-        mark_w = max(1, int(round(self._robot_r_px / 4.0)))
+        mark_w = max(2, int(round(self._robot_r_px / 5.0)))
         draw_outline = self._robot_r_px >= 5.0
+        draw_bar = self._robot_r_px >= 4.0  # below that the bar would cover the whole body
+        draw_ids = self.show_ids and self._font_ok and self._robot_r_px >= 4.0
         for i in range(ts.n):
             if not ok[i]:
                 continue
-            pts = poly[i].tolist()
+            pts = poly_i[i].tolist()
             pygame.draw.polygon(surf, colour, pts)
             if draw_outline:
                 pygame.draw.polygon(surf, outline, pts, 1)
-            pygame.draw.line(surf, mark, centre[i].tolist(), front[i].tolist(), mark_w)
-            if self.show_ids and self._font_ok:
+            if draw_bar:
+                pygame.draw.line(surf, mark, bar_a_i[i].tolist(), bar_b_i[i].tolist(), mark_w)
+            if draw_ids:
                 lab = self._id_label(team, i)
                 surf.blit(lab, lab.get_rect(center=(int(round(centre[i, 0])), int(round(centre[i, 1])))))
 
@@ -374,9 +418,14 @@ class FieldRenderer:
             self._draw_info(surf, info_text)
         return self._surface_to_array(surf)
 
-    @staticmethod
-    def _surface_to_array(surf: pygame.Surface) -> np.ndarray:
+    def _surface_to_array(self, surf: pygame.Surface) -> np.ndarray:
         w, h = surf.get_size()
+        if self._fast_rgb:
+            # 24-bit surface whose bytes are R, G, B: one strided copy of the pixel rows
+            raw = np.frombuffer(surf.get_buffer(), dtype=np.uint8).reshape(h, surf.get_pitch())
+            out = raw[:, :3 * w].reshape(h, w, 3).copy()
+            del raw  # releases the surface lock held by the buffer
+            return out
         buf = bytearray(pygame.image.tobytes(surf, "RGB"))  # writable, row-major (H, W, 3)
         return np.frombuffer(buf, dtype=np.uint8).reshape(h, w, 3)
 

@@ -320,7 +320,10 @@ class PhysicsWorld:
             return make_team_state(self.pos[sl], self.heading[sl], self.vel[sl], self.omega[sl],
                                    self.on_dribbler[sl], ready[sl])
 
-        return WorldState(t=self.t, ball_pos=self.ball_pos.copy(), ball_vel=self.ball_vel.copy(),
+        bp, bv = self.ball_pos.copy(), self.ball_vel.copy()
+        bp.setflags(write=False)
+        bv.setflags(write=False)
+        return WorldState(t=self.t, ball_pos=bp, ball_vel=bv,
                           blue=team(slice(0, nb)), yellow=team(slice(nb, self.n)))
 
     def set_ball(self, pos: np.ndarray, vel: np.ndarray | None = None) -> None:
