@@ -87,8 +87,11 @@ class EnvConfig:
         realism: noise / latency settings, or a preset name ("none", "realistic").
         realtime: advance with the wall clock; a command that arrives after the
             control deadline misses its step (the paper's evaluation mode).
-        obs_max_teammates, obs_max_opponents: observation slots (padded with a mask).
+        obs_max_teammates, obs_max_opponents: observation slots (padded with a mask);
+            with fewer slots than robots, each agent sees the nearest ones.
         randomize_reset: True: robots and ball at random on reset; False: kickoff formation.
+        referee: False switches goal / out-of-play handling off (single-robot skill
+            tasks judge their own episodes; the walls still hold everything in).
         render_mode: None, "rgb_array" or "human".
         render_trails: draw trajectories (the paper's Fig. 7).
         render_width_px: frame width in pixels.
@@ -110,6 +113,7 @@ class EnvConfig:
     obs_max_teammates: int = 10
     obs_max_opponents: int = 11
     randomize_reset: bool = False
+    referee: bool = True
     enforce_division_limit: bool = False
     render_mode: str | None = None
     render_trails: bool = False
@@ -153,10 +157,6 @@ class EnvConfig:
             v = getattr(self, name)
             if not isinstance(v, int) or v < 0:
                 raise ValueError(f"{name} must be a non-negative integer, got {v!r}")
-        if self.obs_max_teammates < max(self.n_blue, self.n_yellow) - 1:
-            raise ValueError(f"obs_max_teammates={self.obs_max_teammates} is smaller than the largest team - 1")
-        if self.obs_max_opponents < max(self.n_blue, self.n_yellow):
-            raise ValueError(f"obs_max_opponents={self.obs_max_opponents} is smaller than the largest team")
         if self.render_mode not in (None, "rgb_array", "human"):
             raise ValueError(f"render_mode must be None, 'rgb_array' or 'human', got {self.render_mode!r}")
         if not isinstance(self.render_width_px, int) or self.render_width_px < 64:

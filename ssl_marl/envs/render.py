@@ -391,15 +391,15 @@ class FieldRenderer:
             return
         lines = [self._info_font.render(line, True, LINE_WHITE) for line in str(text).splitlines() or [""]]
         pad = 4
-        w = max(l.get_width() for l in lines) + 2 * pad
-        h = sum(l.get_height() for l in lines) + 2 * pad
+        w = max(ln.get_width() for ln in lines) + 2 * pad
+        h = sum(ln.get_height() for ln in lines) + 2 * pad
         box = pygame.Surface((w, h), pygame.SRCALPHA)
         box.fill((0, 0, 0, 150))
         surf.blit(box, (2, 2))
         y = 2 + pad
-        for l in lines:
-            surf.blit(l, (2 + pad, y))
-            y += l.get_height()
+        for ln in lines:
+            surf.blit(ln, (2 + pad, y))
+            y += ln.get_height()
 
     def draw(self, world: WorldState, *, info_text: str | None = None) -> np.ndarray:
         """Render ``world`` and return the frame as an ``(H, W, 3)`` ``uint8`` RGB array."""

@@ -249,6 +249,8 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         for i, speed in self.physics.kicks_this_step:
             events.append({"type": "kick", "agent": self.possible_agents[i], "speed": speed})
         self._truth = self.physics.snapshot()
+        if not self.config.referee:
+            return None
         call = judge(self._truth, self.field, self.config.ball.radius)
         if call.goal_for is not None:
             self.score[call.goal_for] += 1

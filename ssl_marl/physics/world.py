@@ -80,7 +80,8 @@ class PhysicsWorld:
         self.heading = np.zeros(self.n)
         self.vel = np.zeros((self.n, 2))
         self.omega = np.zeros(self.n)
-        self.on_dribbler = np.zeros(self.n, bool)
+        self.on_dribbler = np.zeros(self.n, bool)  # ball touched the face during the last step
+        self._on_face_now = np.zeros(self.n, bool)  # ball touching the face now
         self.kick_cooldown = np.zeros(self.n)
         self.ball_pos = np.zeros(2)
         self.ball_vel = np.zeros(2)
@@ -108,9 +109,11 @@ class PhysicsWorld:
                                                   friction=rp.friction, restitution=rp.restitution_ball)
                                for p in polys]
         br = self.ball_params.radius * S
+        # Box2D mixes restitution as max(a, b): the ball's own coefficient is 0 so that
+        # ball-robot contacts use the robot's and ball-wall contacts the wall's.
         self._ball_fixdef = Box2D.b2FixtureDef(shape=Box2D.b2CircleShape(radius=br),
                                                density=self.ball_params.mass / (math.pi * br * br),
-                                               friction=0.1, restitution=self.ball_params.restitution_wall)
+                                               friction=0.1, restitution=0.0)
         f = self.field
         boxes = []
         t = 0.5  # outer wall thickness (m), generous so nothing tunnels
@@ -205,7 +208,7 @@ class PhysicsWorld:
         self.kick_cooldown = np.maximum(self.kick_cooldown - dt, 0.0)
         self.kicks_this_step = []
         kicked = False
-        for i in np.flatnonzero((kick > 0) & self.on_dribbler & (self.kick_cooldown <= 0)):
+        for i in np.flatnonzero((kick > 0) & self._on_face_now & (self.kick_cooldown <= 0)):
             if kicked:
                 break
             speed = float(min(kick[i], 1.0)) * rp.kick_speed_max
@@ -218,13 +221,23 @@ class PhysicsWorld:
             kicked = True
         # --- sub-steps: dribbler, ball friction, Box2D -------------------------
         dribblers = [] if kicked else np.flatnonzero(dribble).tolist()
-        for _ in range(self.substeps):
+        # robots that could touch the ball during this step: checked after every sub-step,
+        # so a fast robot whose face hits the ball is seen even if the ball bounces away
+        reach = rp.front_distance + self.ball_params.radius + 0.05
+        rel = np.hypot(*(self.pos - self.ball_pos[None, :]).T) if self.n else np.zeros(0)
+        closing = (np.hypot(*self.vel.T) + float(np.hypot(*self.ball_vel)) + 2 * rp.max_accel * dt) * dt
+        near = np.flatnonzero(rel < rp.radius + reach + closing).tolist()
+        touched = np.zeros(self.n, bool)
+        for k in range(self.substeps):
             if dribblers:
                 self._apply_dribblers(dribblers)
             self._apply_ball_friction()
             self.world.Step(self.sub_dt, VEL_ITERS, POS_ITERS)
+            if near and k < self.substeps - 1:
+                self._mark_touches(near, touched)
         self.t += dt
         self._read_state()
+        self.on_dribbler = self._on_face_now | touched
         if self.on_dribbler.any() and not kicked:
             self.last_touch = int(np.flatnonzero(self.on_dribbler)[0])
 
@@ -265,6 +278,14 @@ class PhysicsWorld:
             ball.linearVelocity = (vbx * S, vby * S)
             break  # one dribbler holds the ball at a time
 
+    def _mark_touches(self, idx: list[int], touched: np.ndarray) -> None:
+        S = SCALE
+        bp = self._ball_body.position
+        ball = np.array((bp[0] / S, bp[1] / S))
+        pos = np.array([(b.position[0] / S, b.position[1] / S) for b in (self._robot_bodies[i] for i in idx)])
+        hd = np.array([self._robot_bodies[i].angle for i in idx])
+        touched[idx] |= self.ball_on_face(pos, hd, ball)
+
     def _apply_ball_friction(self) -> None:
         bp, S = self.ball_params, SCALE
         v = self._ball_body.linearVelocity
@@ -296,7 +317,8 @@ class PhysicsWorld:
         bp, bv = self._ball_body.position, self._ball_body.linearVelocity
         self.ball_pos = np.array((bp[0] / S, bp[1] / S))
         self.ball_vel = np.array((bv[0] / S, bv[1] / S))
-        self.on_dribbler = self.ball_on_face(self.pos, self.heading, self.ball_pos)
+        self._on_face_now = self.ball_on_face(self.pos, self.heading, self.ball_pos)
+        self.on_dribbler = self._on_face_now
 
     def ball_on_face(self, pos: np.ndarray, heading: np.ndarray, ball_pos: np.ndarray) -> np.ndarray:
         """(n,) bool: ball touching the flat front face within its width (the paper's

@@ -1,0 +1,185 @@
+"""Hand-coded skills: the paper's baselines and the fixed skills tactics need.
+
+All implement :class:`ssl_marl.skills.base.Skill`: ``act(world, robot)`` with a
+team-frame snapshot, returning a normalised (5,) action, and a ``status``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..physics.field import FieldGeometry
+from ..physics.params import BallParams, RobotParams
+from ..physics.state import WorldState, wrap_angle
+from .base import SkillStatus, make_action
+from .features import dribbler_ball_distance, goal_post_angles, rotate_to_robot
+
+
+def _pose(world: WorldState, robot: int) -> tuple[np.ndarray, float, np.ndarray]:
+    ts = world.team(world.frame)
+    return ts.pos[robot], float(ts.heading[robot]), ts.vel[robot]
+
+
+def velocity_command(world: WorldState, robot: int, v_field: np.ndarray, omega: float, rp: RobotParams,
+                     dribble: bool = False, kick: float = 0.0) -> np.ndarray:
+    """Normalised action for a desired team-frame velocity (m/s) and omega (rad/s)."""
+    _, h, _ = _pose(world, robot)
+    vb = rotate_to_robot(np.asarray(v_field, float), h) / rp.max_speed
+    return make_action(vb[0], vb[1], omega / rp.max_omega, dribble=dribble, kick=kick)
+
+
+def approach_speed(distance: float, rp: RobotParams, decel: float | None = None, v_end: float = 0.0) -> float:
+    """Speed (m/s) from which the robot can still stop (down to v_end) within distance."""
+    a = decel if decel is not None else 0.8 * rp.max_brake
+    return min(rp.max_speed, math.sqrt(max(v_end * v_end + 2.0 * a * max(distance, 0.0), 0.0)))
+
+
+class _SkillBase:
+    name = "skill"
+
+    def __init__(self, field: FieldGeometry, robot: RobotParams | None = None, ball: BallParams | None = None):
+        self.field = field
+        self.rp = robot or RobotParams()
+        self.bp = ball or BallParams()
+        self.status = SkillStatus.RUNNING
+
+    def reset(self) -> None:
+        self.status = SkillStatus.RUNNING
+
+
+class GoToBallBaseline(_SkillBase):
+    """The paper's existing go-to-ball: move in a straight line to the ball while
+    turning to face it; slow down to touch it with the dribbler.
+
+    The robot drives straight at the contact point in front of the (slightly led)
+    ball, turns towards the ball with a proportional controller, and, if it is not yet
+    facing the ball when it gets close, holds a 0.15 m stand-off until it is.
+    Succeeds when the ball is on the dribbler.
+    """
+
+    name = "go_to_ball"
+
+    def __init__(self, field, robot=None, ball=None, turn_gain: float = 6.0, touch_speed: float = 0.6):
+        super().__init__(field, robot, ball)
+        self.turn_gain, self.touch_speed = turn_gain, touch_speed
+
+    def act(self, world: WorldState, robot: int) -> np.ndarray:
+        pos, h, _ = _pose(world, robot)
+        if bool(world.team(world.frame).ball_on_dribbler[robot]):
+            self.status = SkillStatus.SUCCEEDED
+            return make_action(dribble=True)
+        self.status = SkillStatus.RUNNING
+        rp = self.rp
+        reach = rp.front_distance + self.bp.radius
+        d_ball = world.ball_pos - pos
+        dist = float(np.hypot(*d_ball))
+        lead = min(dist / rp.max_speed, 0.5)
+        target_ball = world.ball_pos + world.ball_vel * lead
+        to_ball = target_ball - pos
+        dist_t = float(np.hypot(*to_ball))
+        u = to_ball / max(dist_t, 1e-9)
+        ang = math.atan2(to_ball[1], to_ball[0])
+        err = float(wrap_angle(ang - h))
+        standoff = 0.0 if abs(err) < 0.25 else 0.15
+        gap = dist_t - reach - standoff
+        speed = approach_speed(gap, rp, v_end=self.touch_speed if standoff == 0.0 else 0.0)
+        if gap <= 0.0 and standoff > 0.0:
+            speed = 0.0
+        v = u * speed + (world.ball_vel if dist < 0.5 else 0.0)
+        omega = float(np.clip(self.turn_gain * err, -rp.max_omega, rp.max_omega))
+        return velocity_command(world, robot, v, omega, rp, dribble=True)
+
+
+class AimToShootBaseline(_SkillBase):
+    """The paper's existing aim-to-shoot: turn towards the goal with the dribbler on
+    and shoot at full strength at the first opportunity, i.e. as soon as the heading
+    lies between the posts. Turns at most ``max_turn_rate`` (rad/s), slow enough to
+    keep the ball. Succeeds on the kick (the tactic then watches the ball); fails if
+    the ball leaves the dribbler before the kick."""
+
+    name = "aim_to_shoot"
+
+    def __init__(self, field, robot=None, ball=None, max_turn_rate: float = 5.0, turn_gain: float = 8.0,
+                 post_margin: float = 0.0):
+        super().__init__(field, robot, ball)
+        self.max_turn_rate, self.turn_gain, self.post_margin = max_turn_rate, turn_gain, post_margin
+        self._kicked = False
+
+    def reset(self) -> None:
+        super().reset()
+        self._kicked = False
+
+    def act(self, world: WorldState, robot: int) -> np.ndarray:
+        if self._kicked:
+            self.status = SkillStatus.SUCCEEDED
+            return make_action()
+        if dribbler_ball_distance(world, robot, self.rp, self.bp) > 0.05:
+            self.status = SkillStatus.FAILED
+            return make_action()
+        al, ar = goal_post_angles(world, robot, self.field)
+        if al - self.post_margin > 0.0 > ar + self.post_margin and bool(world.team(world.frame).kick_ready[robot]):
+            self._kicked = True
+            self.status = SkillStatus.SUCCEEDED
+            return make_action(dribble=True, kick=1.0)
+        err = float(wrap_angle((al + ar) / 2.0)) if abs(al - ar) < math.pi else al
+        omega = float(np.clip(self.turn_gain * err, -self.max_turn_rate, self.max_turn_rate))
+        self.status = SkillStatus.RUNNING
+        return make_action(omega=omega / self.rp.max_omega, dribble=True)
+
+
+class DriveForward(_SkillBase):
+    """The paper's fixed skill: dribbler on, drive forward for ``duration_s`` (1 s) at
+    ``speed`` (m/s). Succeeds when the time is up."""
+
+    name = "drive_forward"
+
+    def __init__(self, field, robot=None, ball=None, duration_s: float = 1.0, speed: float = 0.5,
+                 dt: float = 1.0 / 60.0):
+        super().__init__(field, robot, ball)
+        self.duration_s, self.speed, self.dt = duration_s, speed, dt
+        self.elapsed = 0.0
+
+    def reset(self) -> None:
+        super().reset()
+        self.elapsed = 0.0
+
+    def act(self, world: WorldState, robot: int) -> np.ndarray:
+        self.elapsed += self.dt
+        if self.elapsed >= self.duration_s - 1e-9:
+            self.status = SkillStatus.SUCCEEDED
+        return make_action(vx=self.speed / self.rp.max_speed, dribble=True)
+
+
+class MoveToPoint(_SkillBase):
+    """Move to ``target`` (team frame, m) and face ``facing`` (rad, or None to keep the
+    heading): straight line with a stopping-distance speed profile and a proportional
+    heading controller. Succeeds within ``tolerance`` m and 0.05 rad, nearly stopped.
+    Tactics set ``target``/``facing`` every tick; ``dribble`` keeps the dribbler on."""
+
+    name = "move_to_point"
+
+    def __init__(self, field, robot=None, ball=None, target=(0.0, 0.0), facing: float | None = None,
+                 tolerance: float = 0.03, turn_gain: float = 6.0, max_speed: float | None = None,
+                 dribble: bool = False):
+        super().__init__(field, robot, ball)
+        self.target = np.asarray(target, float)
+        self.facing = facing
+        self.tolerance, self.turn_gain = tolerance, turn_gain
+        self.max_speed = max_speed
+        self.dribble = dribble
+
+    def act(self, world: WorldState, robot: int) -> np.ndarray:
+        pos, h, vel = _pose(world, robot)
+        rp = self.rp
+        d = np.asarray(self.target, float) - pos
+        dist = float(np.hypot(*d))
+        vmax = rp.max_speed if self.max_speed is None else min(self.max_speed, rp.max_speed)
+        speed = min(approach_speed(dist, rp, decel=0.6 * rp.max_brake), vmax)
+        v = d / max(dist, 1e-9) * speed if dist > 1e-3 else np.zeros(2)
+        face_err = 0.0 if self.facing is None else float(wrap_angle(self.facing - h))
+        omega = float(np.clip(self.turn_gain * face_err, -rp.max_omega, rp.max_omega))
+        done = dist <= self.tolerance and abs(face_err) <= 0.05 and float(np.hypot(*vel)) < 0.2
+        self.status = SkillStatus.SUCCEEDED if done else SkillStatus.RUNNING
+        return velocity_command(world, robot, v, omega, rp, dribble=self.dribble)

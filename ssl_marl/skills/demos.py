@@ -1,0 +1,66 @@
+"""Demonstration generators for replay burn-in (paper, section 5.1).
+
+* go-to-ball: the robot spawns at a random position *facing the ball* and drives
+  straight forward at full speed until it touches it.
+* aim-to-shoot: the robot spawns near the opponent goal (1-2.5 m in front of it),
+  facing a point between the posts, and kicks at full strength at once.
+
+Both yield :class:`Transition` tuples in the task wrapper's exact spaces, episode
+after episode, until ``n_steps`` transitions have been produced.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Iterator, NamedTuple
+
+import numpy as np
+
+from .wrappers import AimToShootEnv, GoToBallEnv
+
+
+class Transition(NamedTuple):
+    obs: np.ndarray
+    action: np.ndarray
+    reward: float
+    next_obs: np.ndarray
+    terminated: bool
+    truncated: bool
+    info: dict
+
+
+def _run(env, n_steps: int, seed: int, reset_options, policy) -> Iterator[Transition]:
+    rng = np.random.default_rng(seed)
+    produced, episode = 0, 0
+    while produced < n_steps:
+        obs, _ = env.reset(seed=int(rng.integers(2 ** 31)), options=reset_options(env, rng))
+        done = False
+        while not done and produced < n_steps:
+            action = policy(obs)
+            next_obs, reward, terminated, truncated, info = env.step(action)
+            yield Transition(obs, action, float(reward), next_obs, bool(terminated), bool(truncated), info)
+            produced += 1
+            obs, done = next_obs, terminated or truncated
+        episode += 1
+
+
+def go_to_ball_demos(n_steps: int, seed: int = 0, **env_kwargs: Any) -> Iterator[Transition]:
+    """``n_steps`` go-to-ball demonstration transitions (obs (14,), action (3,))."""
+    env = GoToBallEnv(**env_kwargs)
+    forward = np.array([1.0, 0.0, 0.0], dtype=np.float32)
+    return _run(env, n_steps, seed, lambda e, rng: {"face_ball": True}, lambda obs: forward)
+
+
+def aim_to_shoot_demos(n_steps: int, seed: int = 0, **env_kwargs: Any) -> Iterator[Transition]:
+    """``n_steps`` aim-to-shoot demonstration transitions (obs (10,), action (3,))."""
+    env = AimToShootEnv(**env_kwargs)
+    f = env.field
+    kick = np.array([0.0, 1.0, 1.0], dtype=np.float32)
+
+    def options(e, rng):
+        x = rng.uniform(f.half_length - 2.5, f.half_length - 1.0)
+        y = rng.uniform(-f.goal_width, f.goal_width)
+        aim_y = rng.uniform(-0.3, 0.3) * f.goal_width
+        return {"robot_pose": (x, y, math.atan2(aim_y - y, f.half_length - x))}
+
+    return _run(env, n_steps, seed, options, lambda obs: kick)

@@ -1,0 +1,305 @@
+"""Single-robot Gymnasium tasks for the paper's skills, over the full-field env.
+
+Both wrap :class:`ssl_marl.envs.ssl_env.SSLParallelEnv` with one controlled robot
+(``blue_0``, whose team frame is the field frame) and, by default, no other robot.
+Other robots can be added as yellow opponents, ``static`` or driven by the
+baseline go-to-ball skill (``chase``). The full-field referee is off: the task
+judges its own episodes. Noise / latency options of the simulator pass through
+(``realism=...``): features are computed from what the robot *sees*
+(``env.vision_state``), rewards and outcomes from the ground truth.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import gymnasium
+import numpy as np
+from gymnasium.utils import EzPickle
+
+from ..envs.ssl_env import SSLParallelEnv
+from ..physics.field import FieldGeometry
+from ..physics.state import WorldState, to_team_frame
+from .base import make_action
+from .features import (AIM_TO_SHOOT_SPEC, GO_TO_BALL_SPEC, ORIENTATION_FORMS, aim_to_shoot_features,
+                       aim_to_shoot_reward, go_to_ball_features, go_to_ball_reward)
+
+AGENT = "blue_0"
+
+
+class _SkillEnv(gymnasium.Env, EzPickle):
+    """Shared plumbing: the inner parallel env, other robots, info bookkeeping."""
+
+    metadata = {"render_modes": ["rgb_array", "human"], "render_fps": 60}
+    spec_version = ""
+
+    def __init__(self, field: str = "div_b", n_opponents: int = 0, opponent_policy: str = "static",
+                 realism: Any = "none", realtime: bool = False, render_mode: str | None = None,
+                 **env_kwargs: Any) -> None:
+        EzPickle.__init__(self, field=field, n_opponents=n_opponents, opponent_policy=opponent_policy,
+                          realism=realism, realtime=realtime, render_mode=render_mode, **env_kwargs)
+        if opponent_policy not in ("static", "chase"):
+            raise ValueError(f"opponent_policy must be 'static' or 'chase', got {opponent_policy!r}")
+        self.render_mode = render_mode
+        self.env = SSLParallelEnv(n_blue=1, n_yellow=n_opponents, field=field, realism=realism, realtime=realtime,
+                                  referee=False, max_time_s=1e9, render_mode=render_mode,
+                                  obs_max_teammates=0, obs_max_opponents=max(n_opponents, 0), **env_kwargs)
+        self.field: FieldGeometry = self.env.field
+        self.robot_params = self.env.config.robot
+        self.ball_params = self.env.config.ball
+        self.dt = self.env.config.dt
+        self.n_opponents = n_opponents
+        self.opponent_policy = opponent_policy
+        self._opponent_skills: list = []
+        self.t = 0.0
+
+    # --- helpers --------------------------------------------------------------
+    def seen(self) -> WorldState:
+        """What the controlled robot sees, in its team frame."""
+        return self.env.vision_state("blue")
+
+    def truth(self) -> WorldState:
+        return to_team_frame(self.env.world_state(), "blue")
+
+    def _opponent_actions(self) -> dict[str, np.ndarray]:
+        if self.n_opponents == 0 or self.opponent_policy == "static":
+            return {}
+        ws = self.env.vision_state("yellow")
+        return {f"yellow_{k}": sk.act(ws, k) for k, sk in enumerate(self._opponent_skills)}
+
+    def _reset_inner(self, seed: int | None, robot_pose: np.ndarray, ball_pos: np.ndarray,
+                     ball_vel: np.ndarray | None = None) -> None:
+        robots = {AGENT: tuple(robot_pose)}
+        taken = [np.asarray(robot_pose[:2]), np.asarray(ball_pos)]
+        for k in range(self.n_opponents):
+            p = self._free_spot(taken, 0.3)
+            taken.append(p)
+            robots[f"yellow_{k}"] = (p[0], p[1], self.np_random.uniform(-math.pi, math.pi))
+        opts = {"robots": robots, "ball": {"pos": tuple(ball_pos),
+                                           "vel": tuple(np.zeros(2) if ball_vel is None else ball_vel)}}
+        self.env.reset(seed=None if seed is None else int(self.np_random.integers(2 ** 31)), options=opts)
+        if self.n_opponents and self.opponent_policy == "chase":
+            from .baseline import GoToBallBaseline
+
+            self._opponent_skills = [GoToBallBaseline(self.field, self.robot_params, self.ball_params)
+                                     for _ in range(self.n_opponents)]
+        self.t = 0.0
+
+    def _free_spot(self, taken: list[np.ndarray], min_dist: float, margin: float = 0.2) -> np.ndarray:
+        f = self.field
+        for _ in range(1000):
+            p = self.np_random.uniform([-f.half_length + margin, -f.half_width + margin],
+                                       [f.half_length - margin, f.half_width - margin])
+            if all(np.hypot(*(p - q)) >= min_dist for q in taken):
+                return p
+        raise RuntimeError("no free spot for an opponent robot")
+
+    def _step_inner(self, action5: np.ndarray) -> dict:
+        acts = {AGENT: action5}
+        acts.update(self._opponent_actions())
+        _, _, _, _, infos = self.env.step(acts)
+        self.t += self.dt
+        return infos[AGENT]
+
+    @staticmethod
+    def _check_action(action: Any, dim: int) -> np.ndarray:
+        a = np.asarray(action, dtype=np.float64)
+        if a.shape != (dim,):
+            raise ValueError(f"action must have shape ({dim},), got {a.shape}")
+        if not np.isfinite(a).all():
+            raise ValueError(f"action contains NaN or inf: {a.tolist()}")
+        return np.clip(a, -1.0, 1.0)
+
+    def render(self):
+        return self.env.render()
+
+    def close(self) -> None:
+        self.env.close()
+
+
+class GoToBallEnv(_SkillEnv):
+    """go-to-ball: drive to the ball and get it on the dribbler (paper, section 4.3).
+
+    Observation
+        ``Box(-inf, inf, (14,), float32)``: the paper's state, see
+        :func:`ssl_marl.skills.features.go_to_ball_features` (robot frame, m, m/s, rad/s).
+    Action
+        ``Box(-1, 1, (3,), float32)``: (vx, vy, omega) in the robot frame as fractions of
+        the robot's max speed and max angular speed. The dribbler is on.
+    Reward
+        r_contact + r_distance + r_orientation
+        (:func:`ssl_marl.skills.features.go_to_ball_reward`; per-term values in
+        ``info["reward_terms"]``; ``orientation_form`` "gaussian" (default) or "printed").
+    Termination
+        Success (terminated, ``info["is_success"] = True``) when the ball is on the
+        dribbler. Failure (truncated, ``failure_reason = "timeout"``) at ``max_time_s``
+        (10 s). Spawn: ball uniformly on the field (0.1 m inside the lines), robot at a
+        uniformly random position and heading at least 0.3 m from the ball.
+    """
+
+    spec_version = GO_TO_BALL_SPEC
+
+    def __init__(self, max_time_s: float = 10.0, orientation_form: str = "gaussian", **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        EzPickle.__init__(self, max_time_s=max_time_s, orientation_form=orientation_form, **kwargs)
+        if orientation_form not in ORIENTATION_FORMS:
+            raise ValueError(f"orientation_form must be one of {ORIENTATION_FORMS}, got {orientation_form!r}")
+        if not (math.isfinite(max_time_s) and max_time_s > 0):
+            raise ValueError(f"max_time_s must be positive, got {max_time_s!r}")
+        self.max_time_s = max_time_s
+        self.orientation_form = orientation_form
+        self.observation_space = gymnasium.spaces.Box(-np.inf, np.inf, (14,), np.float32)
+        self.action_space = gymnasium.spaces.Box(-1.0, 1.0, (3,), np.float32)
+
+    def reset(self, *, seed: int | None = None, options: dict | None = None):
+        super().reset(seed=seed)
+        options = options or {}
+        f = self.field
+        ball = options.get("ball_pos")
+        if ball is None:
+            ball = self.np_random.uniform([-f.half_length + 0.1, -f.half_width + 0.1],
+                                          [f.half_length - 0.1, f.half_width - 0.1])
+        pose = options.get("robot_pose")
+        if pose is None:
+            xy = self._free_spot([np.asarray(ball)], 0.3, margin=0.1)
+            heading = self.np_random.uniform(-math.pi, math.pi)
+            if options.get("face_ball"):
+                heading = math.atan2(ball[1] - xy[1], ball[0] - xy[0])
+            pose = (xy[0], xy[1], heading)
+        self._reset_inner(seed, np.asarray(pose, float), np.asarray(ball, float))
+        return go_to_ball_features(self.seen(), 0, f), {"reward_terms": {}}
+
+    def step(self, action):
+        a = self._check_action(action, 3)
+        self._step_inner(make_action(a[0], a[1], a[2], dribble=True))
+        truth = self.truth()
+        terms = go_to_ball_reward(truth, 0, self.orientation_form)
+        success = bool(truth.blue.ball_on_dribbler[0])
+        timeout = (not success) and self.t >= self.max_time_s - 1e-9
+        info: dict[str, Any] = {"reward_terms": terms, "t": self.t}
+        if success or timeout:
+            info["is_success"] = success
+            info["failure_reason"] = None if success else "timeout"
+            info["time_s"] = self.t
+        obs = go_to_ball_features(self.seen(), 0, self.field)
+        return obs, float(sum(terms.values())), success, timeout, info
+
+
+class AimToShootEnv(_SkillEnv):
+    """aim-to-shoot: with the ball on the dribbler, turn towards the goal and score
+    (paper, section 4.3).
+
+    Observation
+        ``Box(-inf, inf, (10,), float32)``: the paper's state, see
+        :func:`ssl_marl.skills.features.aim_to_shoot_features`.
+    Action
+        ``Box(-1, 1, (3,), float32)``: (omega, dribble, kick): angular velocity as a
+        fraction of max_omega; dribbler on when > 0; kick with strength = value when > 0.
+        The robot does not translate.
+    Reward
+        0.05 (alpha - beta) |V_B| if alpha > beta else (alpha - beta) |V_B|, every step
+        (:func:`ssl_marl.skills.features.aim_to_shoot_reward`).
+    Termination
+        Spawn: robot uniformly in the attacking half (x in [0.5, L/2 - 0.5] m, |y| <=
+        W/2 - 0.3 m) with a uniformly random heading, the ball resting on its dribbler.
+        Before the kick: failure "ball_lost" (terminated) if the ball leaves the
+        dribbler (more than ``lost_distance`` = 0.05 m from the face), failure
+        "timeout" (truncated) if no kick within ``max_time_s`` (1.6 s).
+        After the kick the robot's actions no longer matter and the episode resolves
+        with the ball: success (terminated, ``is_success``) when it has fully crossed
+        the goal line inside the goal; failure "missed" (terminated) when it leaves
+        the field elsewhere, stops or moves away from the goal line, or after
+        ``post_kick_time_s`` (2 s). Time to score = time of the goal.
+    """
+
+    spec_version = AIM_TO_SHOOT_SPEC
+
+    def __init__(self, max_time_s: float = 1.6, post_kick_time_s: float = 2.0, lost_distance: float = 0.05,
+                 spawn_x: tuple[float, float] | None = None, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        EzPickle.__init__(self, max_time_s=max_time_s, post_kick_time_s=post_kick_time_s,
+                          lost_distance=lost_distance, spawn_x=spawn_x, **kwargs)
+        self.max_time_s, self.post_kick_time_s, self.lost_distance = max_time_s, post_kick_time_s, lost_distance
+        f = self.field
+        self.spawn_x = spawn_x or (0.5, f.half_length - 0.5)
+        self.observation_space = gymnasium.spaces.Box(-np.inf, np.inf, (10,), np.float32)
+        self.action_space = gymnasium.spaces.Box(-1.0, 1.0, (3,), np.float32)
+        self._kick_t: float | None = None
+
+    def reset(self, *, seed: int | None = None, options: dict | None = None):
+        super().reset(seed=seed)
+        options = options or {}
+        f = self.field
+        pose = options.get("robot_pose")
+        if pose is None:
+            x = self.np_random.uniform(*self.spawn_x)
+            y = self.np_random.uniform(-f.half_width + 0.3, f.half_width - 0.3)
+            pose = (x, y, self.np_random.uniform(-math.pi, math.pi))
+        pose = np.asarray(pose, float)
+        reach = self.robot_params.front_distance + self.ball_params.radius
+        ball = pose[:2] + reach * np.array([math.cos(pose[2]), math.sin(pose[2])])
+        self._reset_inner(seed, pose, ball)
+        self._kick_t = None
+        return aim_to_shoot_features(self.seen(), 0, f), {"reward_terms": {}}
+
+    def step(self, action):
+        a = self._check_action(action, 3)
+        if self._kick_t is None:
+            act = make_action(0.0, 0.0, a[0], dribble=a[1] > 0, kick=float(a[2]))
+        else:
+            act = make_action()
+        info = self._step_inner(act)
+        truth = self.truth()
+        if self._kick_t is None and any(ev["type"] == "kick" and ev["agent"] == AGENT for ev in info["events"]):
+            self._kick_t = self.t
+        terms = aim_to_shoot_reward(truth, 0, self.field)
+        terminated, truncated, success, reason = self._outcome(truth)
+        out: dict[str, Any] = {"reward_terms": terms, "t": self.t, "kicked": self._kick_t is not None}
+        if terminated or truncated:
+            out.update(is_success=success, failure_reason=reason, time_s=self.t)
+        obs = aim_to_shoot_features(self.seen(), 0, self.field)
+        return obs, float(sum(terms.values())), terminated, truncated, out
+
+    def _outcome(self, truth: WorldState) -> tuple[bool, bool, bool, str | None]:
+        f, br = self.field, self.ball_params.radius
+        if self._kick_t is None:
+            from .features import dribbler_ball_distance
+
+            if dribbler_ball_distance(truth, 0, self.robot_params, self.ball_params) > self.lost_distance:
+                return True, False, False, "ball_lost"
+            if self.t >= self.max_time_s - 1e-9:
+                return False, True, False, "timeout"
+            return False, False, False, None
+        side = f.in_goal(truth.ball_pos, br)
+        if side == 1:
+            return True, False, True, None
+        bx, by = truth.ball_pos
+        vx = truth.ball_vel[0]
+        out = abs(by) >= f.half_width + br or (abs(bx) >= f.half_length + br and side == 0)
+        stopped = float(np.hypot(*truth.ball_vel)) < 0.05
+        if out or side == -1 or stopped or vx <= 0 or self.t - self._kick_t >= self.post_kick_time_s:
+            return True, False, False, "missed"
+        return False, False, False, None
+
+
+def task_action(task: str, action5: np.ndarray) -> np.ndarray:
+    """Project a skill's full (5,) action onto a task's (3,) action space:
+    go-to-ball keeps (vx, vy, omega); aim-to-shoot keeps (omega, dribble, kick)."""
+    a = np.asarray(action5, dtype=np.float32)
+    if task == "go-to-ball":
+        return a[[0, 1, 2]]
+    if task == "aim-to-shoot":
+        return a[[2, 3, 4]]
+    raise ValueError(f"unknown skill task {task!r}; expected 'go-to-ball' or 'aim-to-shoot'")
+
+
+def expand_task_action(task: str, action3: np.ndarray) -> np.ndarray:
+    """Inverse of :func:`task_action` as the wrappers apply it: a task's (3,) action
+    as a full (5,) env action (go-to-ball: dribbler on; aim-to-shoot: no translation)."""
+    a = np.clip(np.asarray(action3, dtype=np.float64), -1.0, 1.0)
+    if task == "go-to-ball":
+        return make_action(a[0], a[1], a[2], dribble=True)
+    if task == "aim-to-shoot":
+        return make_action(0.0, 0.0, a[0], dribble=a[1] > 0, kick=float(a[2]))
+    raise ValueError(f"unknown skill task {task!r}; expected 'go-to-ball' or 'aim-to-shoot'")
