@@ -1,0 +1,128 @@
+"""Learned skills: a trained DDPG actor run through the same skill protocol and the
+same feature functions as the baselines (a tactic cannot tell them apart).
+
+The actor's forward pass is re-implemented in numpy (Linear -> LayerNorm -> ReLU,
+tanh head), which is several times faster than calling torch for one observation
+(measured in ``docs/BENCHMARKS.md``) and gives the same numbers to float32 precision.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..physics.field import FieldGeometry
+from ..physics.params import BallParams, RobotParams
+from ..physics.state import WorldState
+from .base import SkillStatus, make_action
+from .features import (AIM_TO_SHOOT_SPEC, GO_TO_BALL_SPEC, aim_to_shoot_features, dribbler_ball_distance,
+                       go_to_ball_features)
+from .wrappers import expand_task_action
+
+PRETRAINED_DIR = Path(__file__).resolve().parent / "pretrained"
+PRETRAINED = {"go_to_ball": PRETRAINED_DIR / "go_to_ball.pt", "aim_to_shoot": PRETRAINED_DIR / "aim_to_shoot.pt"}
+
+
+class NumpyActor:
+    """Inference-only copy of :class:`ssl_marl.skills.networks.Actor` in numpy."""
+
+    def __init__(self, actor) -> None:
+        sd = {k: v.detach().cpu().numpy().astype(np.float64) for k, v in actor.state_dict().items()}
+        self.layers: list[tuple[np.ndarray, np.ndarray, np.ndarray | None, np.ndarray | None]] = []
+        mods = list(actor.trunk)
+        i = 0
+        while i < len(mods):
+            lin = f"trunk.{i}"
+            w, b = sd[f"{lin}.weight"].T.copy(), sd[f"{lin}.bias"]
+            g = beta = None
+            i += 1
+            if i < len(mods) and type(mods[i]).__name__ == "LayerNorm":
+                g, beta = sd[f"trunk.{i}.weight"], sd[f"trunk.{i}.bias"]
+                self.eps = float(mods[i].eps)
+                i += 1
+            i += 1  # ReLU
+            self.layers.append((w, b, g, beta))
+        self.head_w, self.head_b = sd["head.weight"].T.copy(), sd["head.bias"]
+
+    def __call__(self, obs: np.ndarray) -> np.ndarray:
+        x = np.asarray(obs, dtype=np.float64)
+        for w, b, g, beta in self.layers:
+            x = x @ w + b
+            if g is not None:
+                mu = x.mean(-1, keepdims=True)
+                var = x.var(-1, keepdims=True)
+                x = (x - mu) / np.sqrt(var + self.eps) * g + beta
+            np.maximum(x, 0.0, out=x)
+        return np.tanh(x @ self.head_w + self.head_b).astype(np.float32)
+
+
+def load_policy(skill: str, checkpoint: str | Path | None = None) -> tuple[NumpyActor, dict]:
+    """Load a checkpoint (default: the shipped actor) for ``skill`` ("go_to_ball" or
+    "aim_to_shoot"), checking its skill name and observation spec."""
+    from .checkpoint import load_actor
+
+    if skill not in PRETRAINED:
+        raise ValueError(f"unknown learned skill {skill!r}; expected one of {sorted(PRETRAINED)}")
+    path = Path(checkpoint) if checkpoint is not None else PRETRAINED[skill]
+    spec = GO_TO_BALL_SPEC if skill == "go_to_ball" else AIM_TO_SHOOT_SPEC
+    actor, meta = load_actor(path, expected_skill=skill, expected_spec=spec)
+    return NumpyActor(actor), meta
+
+
+class LearnedGoToBall:
+    """Learned go-to-ball (paper's DDPG skill). Succeeds when the ball is on the dribbler."""
+
+    name = "go_to_ball"
+
+    def __init__(self, field: FieldGeometry, robot: RobotParams | None = None, ball: BallParams | None = None,
+                 checkpoint: str | Path | None = None, policy: NumpyActor | None = None) -> None:
+        self.field = field
+        self.rp, self.bp = robot or RobotParams(), ball or BallParams()
+        self.policy = policy if policy is not None else load_policy("go_to_ball", checkpoint)[0]
+        self.status = SkillStatus.RUNNING
+
+    def reset(self) -> None:
+        self.status = SkillStatus.RUNNING
+
+    def act(self, world: WorldState, robot: int) -> np.ndarray:
+        if bool(world.team(world.frame).ball_on_dribbler[robot]):
+            self.status = SkillStatus.SUCCEEDED
+            return make_action(dribble=True)
+        self.status = SkillStatus.RUNNING
+        return expand_task_action("go-to-ball", self.policy(go_to_ball_features(world, robot, self.field)))
+
+
+class LearnedAimToShoot:
+    """Learned aim-to-shoot (paper's DDPG skill). Succeeds when it kicks; fails if the
+    ball leaves the dribbler (> 0.05 m) before the kick."""
+
+    name = "aim_to_shoot"
+
+    def __init__(self, field: FieldGeometry, robot: RobotParams | None = None, ball: BallParams | None = None,
+                 checkpoint: str | Path | None = None, policy: NumpyActor | None = None) -> None:
+        self.field = field
+        self.rp, self.bp = robot or RobotParams(), ball or BallParams()
+        self.policy = policy if policy is not None else load_policy("aim_to_shoot", checkpoint)[0]
+        self.status = SkillStatus.RUNNING
+        self._kicked = False
+
+    def reset(self) -> None:
+        self.status = SkillStatus.RUNNING
+        self._kicked = False
+
+    def act(self, world: WorldState, robot: int) -> np.ndarray:
+        if self._kicked:
+            self.status = SkillStatus.SUCCEEDED
+            return make_action()
+        if dribbler_ball_distance(world, robot, self.rp, self.bp) > 0.05:
+            self.status = SkillStatus.FAILED
+            return make_action()
+        a = expand_task_action("aim-to-shoot", self.policy(aim_to_shoot_features(world, robot, self.field)))
+        team = world.team(world.frame)
+        if a[4] > 0 and bool(team.kick_ready[robot]) and bool(team.ball_on_dribbler[robot]):
+            self._kicked = True
+            self.status = SkillStatus.SUCCEEDED
+        else:
+            self.status = SkillStatus.RUNNING
+        return a
