@@ -52,9 +52,12 @@ class RealismConfig:
             if getattr(self, name) > 1:
                 raise ValueError(f"realism.{name} is a probability and must be <= 1, got {getattr(self, name)!r}")
 
+        object.__setattr__(self, "_enabled", any(getattr(self, f.name) for f in fields(self)))
+
     @property
     def enabled(self) -> bool:
-        return any(getattr(self, f.name) for f in fields(self))
+        """True if any realism effect is switched on (cached: read every step)."""
+        return self._enabled  # type: ignore[attr-defined]
 
     @staticmethod
     def preset(name: str) -> "RealismConfig":

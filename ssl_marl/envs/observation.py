@@ -122,6 +122,79 @@ def team_observations(ws: WorldState, team: str, field: FieldGeometry, max_teamm
     return out.astype(np.float32)
 
 
+_OFFSETS: dict[tuple[int, int], np.ndarray] = {}
+
+
+def _category_offset(nb: int, ny: int) -> np.ndarray:
+    """(n, n) sort-key offsets: 0 for teammates, 1e9 for opponents, 2e9 for self."""
+    key = (nb, ny)
+    if key not in _OFFSETS:
+        team = np.concatenate([np.zeros(nb), np.ones(ny)])
+        off = np.where(team[:, None] == team[None, :], 0.0, 1e9)
+        np.fill_diagonal(off, 2e9)
+        _OFFSETS[key] = off
+    return _OFFSETS[key]
+
+
+def all_observations(ws: WorldState, field: FieldGeometry, max_teammates: int, max_opponents: int) -> np.ndarray:
+    """(n_blue + n_yellow, obs_dim) float32 observations of every robot (blue first),
+    in one vectorised pass; row for row equal to :func:`team_observations`."""
+    nb, ny = ws.blue.n, ws.yellow.n
+    n = nb + ny
+    d = obs_dim(max_teammates, max_opponents)
+    out = np.zeros((n, d), dtype=np.float64)
+    if n == 0:
+        return out.astype(np.float32)
+    sgn = np.concatenate([np.ones(nb), -np.ones(ny)])
+    team = np.concatenate([np.zeros(nb, np.int8), np.ones(ny, np.int8)])
+    P = np.concatenate([ws.blue.pos, ws.yellow.pos])
+    V = np.concatenate([ws.blue.vel, ws.yellow.vel])
+    H = np.concatenate([ws.blue.heading, ws.yellow.heading])
+    s2 = sgn[:, None]
+    pos = P * s2
+    hcos, hsin = np.cos(H) * sgn, np.sin(H) * sgn  # heading + pi for yellow
+    out[:, 0:2] = pos
+    out[:, 2] = hcos
+    out[:, 3] = hsin
+    out[:, 4:6] = V * s2
+    out[:, 6] = np.concatenate([ws.blue.omega, ws.yellow.omega])
+    out[:, 7:9] = ws.ball_pos[None, :] * s2 - pos
+    out[:, 9:11] = ws.ball_vel[None, :] * s2
+    out[:, 11] = np.concatenate([ws.blue.ball_on_dribbler, ws.yellow.ball_on_dribbler])
+    out[:, 12] = np.concatenate([ws.blue.kick_ready, ws.yellow.kick_ready])
+    out[:, 13] = 1.0 if ws.ball_visible else 0.0
+    out[:, 14] = field.half_length - pos[:, 0]
+    out[:, 15] = -pos[:, 1]
+    out[:, 16] = -field.half_length - pos[:, 0]
+    out[:, 17] = -pos[:, 1]
+    out[:, 18] = field.half_length
+    out[:, 19] = field.half_width
+    out[:, 20] = field.goal_width / 2
+    if n > 1 and (max_teammates or max_opponents):
+        # One argsort per step: key = distance^2 + category offset (teammates, then
+        # opponents, then self), so each row lists teammates by distance, then opponents.
+        rel = (P[None, :, :] - P[:, None, :]) * s2[:, :, None]  # (i, j): robot j seen from i, i's frame
+        d2 = np.einsum("ijk,ijk->ij", rel, rel)
+        key = d2 + _category_offset(nb, ny)
+        order = np.argsort(key, axis=1, kind="stable")
+        feat = np.empty((n, n, SLOT_DIM))
+        feat[:, :, 0] = 1.0
+        feat[:, :, 1:3] = rel
+        feat[:, :, 3:5] = V[None, :, :] * s2[:, :, None]
+        feat[:, :, 5] = np.cos(H)[None, :] * s2  # heading + pi in yellow's frame
+        feat[:, :, 6] = np.sin(H)[None, :] * s2
+        g = np.take_along_axis(feat, order[:, :, None], axis=1)  # (n, n, 7) sorted
+        t_start, o_start = SELF_DIM, SELF_DIM + SLOT_DIM * max_teammates
+        for rows, n_mates, n_opp in ((slice(0, nb), nb - 1, ny), (slice(nb, n), ny - 1, nb)):
+            km, ko = min(max(n_mates, 0), max_teammates), min(n_opp, max_opponents)
+            if km > 0:
+                out[rows, t_start:t_start + SLOT_DIM * km] = g[rows, :km].reshape(-1, SLOT_DIM * km)
+            if ko > 0:
+                om = max(n_mates, 0)
+                out[rows, o_start:o_start + SLOT_DIM * ko] = g[rows, om:om + ko].reshape(-1, SLOT_DIM * ko)
+    return out.astype(np.float32)
+
+
 def state_vector(ws: WorldState) -> np.ndarray:
     """Whole world in the field frame (for centralised critics): ball x, y, vx, vy,
     then per robot (blue 0.., yellow 0..): x, y, cos, sin, vx, vy, omega, on_dribbler."""

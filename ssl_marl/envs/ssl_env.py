@@ -50,7 +50,7 @@ from ..physics.state import WorldState, to_team_frame
 from ..physics.world import PhysicsWorld
 from .actions import ACTION_DIM, scale_actions, validate_actions
 from .config import EnvConfig, make_config
-from .observation import obs_dim, state_dim, state_vector, team_observations
+from .observation import all_observations, obs_dim, state_dim, state_vector
 from .realism import Radio, Vision
 from .referee import clear_robots_from, judge, kickoff_formation
 
@@ -313,14 +313,8 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
     # ------------------------------------------------------------ observations
     def _observations(self) -> dict[str, np.ndarray]:
         cfg = self.config
-        out: dict[str, np.ndarray] = {}
-        for team, count, off in (("blue", cfg.n_blue, 0), ("yellow", cfg.n_yellow, cfg.n_blue)):
-            if count == 0:
-                continue
-            ob = team_observations(self._seen, team, self.field, cfg.obs_max_teammates, cfg.obs_max_opponents)
-            for k in range(count):
-                out[self.possible_agents[off + k]] = ob[k]
-        return out
+        ob = all_observations(self._seen, self.field, cfg.obs_max_teammates, cfg.obs_max_opponents)
+        return dict(zip(self.possible_agents, ob))
 
     def world_state(self) -> WorldState:
         """Ground-truth snapshot in the field frame (what the referee and rewards read)."""

@@ -1,0 +1,156 @@
+"""Save and load learned-skill actors without ever executing code from the file.
+
+A checkpoint is a ``torch.save``-d plain dict::
+
+    {"format": "ssl_marl.actor", "version": 1,
+     "state_dict": {...tensors...}, "metadata": {...str/int/float/bool/list/dict...}}
+
+and is read back with ``torch.load(..., weights_only=True)``, which refuses
+anything but tensors and plain containers. Metadata records what is needed to
+rebuild and trust the network: ``skill``, ``obs_spec`` (the env's observation
+version string, e.g. ``"go_to_ball/v1"``), ``obs_dim``, ``act_dim``, ``hidden``,
+``layer_norm``, plus provenance (``hyperparameters``, ``seed``, ``samples``,
+``git_commit``, ``created``) filled in by :func:`save_actor` when absent.
+Files are written atomically (temp file in the same directory, then
+``os.replace``), so a crash never leaves a half-written checkpoint.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import os
+import subprocess
+import tempfile
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import torch
+
+from .networks import Actor
+
+FORMAT = "ssl_marl.actor"
+VERSION = 1
+_PLAIN = (str, int, float, bool, type(None))
+
+
+def git_commit(cwd: str | os.PathLike[str] | None = None) -> str:
+    """Best-effort ``git rev-parse HEAD`` of ``cwd`` (default: this package's checkout); "unknown" on failure."""
+    where = Path(cwd) if cwd is not None else Path(__file__).resolve().parent
+    try:
+        out = subprocess.run(["git", "rev-parse", "HEAD"], cwd=where, capture_output=True, text=True,
+                             timeout=5, check=True)
+        return out.stdout.strip() or "unknown"
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+
+
+def to_plain(value: Any, where: str = "metadata") -> Any:
+    """Return ``value`` as nested str/int/float/bool/None/list/dict (tuples become lists).
+
+    Raises TypeError on anything else, so metadata stays loadable with ``weights_only=True``.
+    """
+    if isinstance(value, _PLAIN):
+        return value
+    if isinstance(value, Mapping):
+        out: dict[str, Any] = {}
+        for k, v in value.items():
+            if not isinstance(k, str):
+                raise TypeError(f"{where}: dict keys must be str, got {k!r}")
+            out[k] = to_plain(v, f"{where}.{k}")
+        return out
+    if isinstance(value, (list, tuple)):
+        return [to_plain(v, f"{where}[{i}]") for i, v in enumerate(value)]
+    if hasattr(value, "item") and getattr(value, "shape", None) == ():  # numpy / torch scalar
+        return to_plain(value.item(), where)
+    raise TypeError(f"{where}: {type(value).__name__} is not allowed in checkpoint metadata "
+                    "(use str/int/float/bool/None/list/dict)")
+
+
+def atomic_torch_save(obj: Any, path: str | os.PathLike[str]) -> Path:
+    """``torch.save(obj)`` to ``path`` atomically (temp file in the same dir + ``os.replace``)."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "wb") as f:
+            torch.save(obj, f)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except FileNotFoundError:
+            pass
+        raise
+    return path
+
+
+def safe_torch_load(path: str | os.PathLike[str], what: str = "ssl_marl checkpoint") -> Any:
+    """``torch.load(weights_only=True)`` with clear errors.
+
+    Raises FileNotFoundError naming ``path`` if it is missing, ValueError
+    "... is not a valid <what> ..." if it cannot be unpickled safely.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"checkpoint not found: {path}")
+    try:
+        return torch.load(path, map_location="cpu", weights_only=True)
+    except Exception as exc:  # UnpicklingError, RuntimeError (zip), EOFError, ...
+        raise ValueError(f"{path} is not a valid {what} (could not be read safely: "
+                         f"{type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''})") from exc
+
+
+def save_actor(path: str | os.PathLike[str], actor: Actor, metadata: Mapping[str, Any]) -> Path:
+    """Write ``actor`` and ``metadata`` to ``path`` atomically; return the path.
+
+    ``metadata`` should hold at least ``skill`` and ``obs_spec``; network shape
+    (``obs_dim``, ``act_dim``, ``hidden``, ``layer_norm``) is taken from the actor,
+    and ``git_commit`` / ``created`` (UTC ISO-8601) are added when absent.
+    """
+    if not isinstance(actor, Actor):
+        raise TypeError(f"save_actor expects an Actor, got {type(actor).__name__}")
+    meta = to_plain(dict(metadata))
+    meta.update(obs_dim=actor.obs_dim, act_dim=actor.act_dim, hidden=list(actor.hidden),
+                layer_norm=actor.layer_norm)
+    meta.setdefault("git_commit", git_commit())
+    meta.setdefault("created", _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"))
+    state = {k: v.detach().cpu().clone() for k, v in actor.state_dict().items()}
+    return atomic_torch_save({"format": FORMAT, "version": VERSION, "state_dict": state,
+                              "metadata": meta}, path)
+
+
+def load_actor(path: str | os.PathLike[str], expected_skill: str | None = None,
+               expected_spec: str | None = None) -> tuple[Actor, dict[str, Any]]:
+    """Load an actor saved by :func:`save_actor`; return ``(actor in eval mode, metadata)``.
+
+    Raises FileNotFoundError if ``path`` is missing; ValueError if the file is not
+    a valid ssl_marl checkpoint, or its ``skill`` / ``obs_spec`` differ from the
+    expected ones (when given).
+    """
+    blob = safe_torch_load(path)
+    bad = f"{path} is not a valid ssl_marl checkpoint"
+    if not isinstance(blob, dict) or blob.get("format") != FORMAT:
+        raise ValueError(f"{bad} (missing format tag {FORMAT!r})")
+    if blob.get("version") != VERSION:
+        raise ValueError(f"{bad} (unsupported version {blob.get('version')!r}, expected {VERSION})")
+    meta, state = blob.get("metadata"), blob.get("state_dict")
+    if not isinstance(meta, dict) or not isinstance(state, dict):
+        raise ValueError(f"{bad} (metadata or state_dict missing)")
+    if expected_skill is not None and meta.get("skill") != expected_skill:
+        raise ValueError(f"{path}: skill mismatch: expected {expected_skill!r}, found {meta.get('skill')!r}")
+    if expected_spec is not None and meta.get("obs_spec") != expected_spec:
+        raise ValueError(f"{path}: observation spec mismatch: expected {expected_spec!r}, "
+                         f"found {meta.get('obs_spec')!r}")
+    try:
+        actor = Actor(int(meta["obs_dim"]), int(meta["act_dim"]), tuple(int(h) for h in meta["hidden"]),
+                      bool(meta["layer_norm"]))
+        actor.load_state_dict(state, strict=True)
+    except (KeyError, TypeError, ValueError, RuntimeError) as exc:
+        raise ValueError(f"{bad} (network does not match its metadata: {exc})") from exc
+    actor.eval()
+    for p in actor.parameters():
+        p.requires_grad_(False)
+    return actor, meta
