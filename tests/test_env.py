@@ -261,3 +261,31 @@ def test_rgb_render_both_divisions():
         frame = e.render()
         assert frame.ndim == 3 and frame.shape[2] == 3 and frame.dtype == np.uint8
         e.close()
+
+
+@pytest.mark.parametrize("nb,ny,k,m", [(6, 6, 10, 11), (1, 0, 10, 11), (0, 3, 2, 2), (3, 5, 1, 2), (4, 4, 0, 0)])
+def test_vectorised_observations_match_per_team_reference(nb, ny, k, m):
+    from ssl_marl.envs.observation import all_observations, team_observations
+
+    e = parallel_env(n_blue=nb, n_yellow=ny, randomize_reset=True, obs_max_teammates=k, obs_max_opponents=m)
+    e.reset(seed=1)
+    rng = np.random.default_rng(0)
+    for _ in range(10):
+        e.step({a: rng.uniform(-1, 1, 5) for a in e.agents})
+    ws = e.world_state()
+    ref = np.concatenate([team_observations(ws, "blue", e.field, k, m), team_observations(ws, "yellow", e.field, k, m)])
+    np.testing.assert_array_equal(all_observations(ws, e.field, k, m), ref)
+
+
+def test_observation_slots_sorted_and_masked():
+    e = parallel_env(n_blue=3, n_yellow=1)
+    obs, _ = e.reset(options={"robots": {"blue_0": (0.0, 0.0, 0.0), "blue_1": (2.0, 0.0, 0.0),
+                                         "blue_2": (1.0, 0.0, 0.0), "yellow_0": (-1.0, 1.0, 0.0)},
+                              "ball": {"pos": (0.0, 2.0)}})
+    o = obs["blue_0"]
+    mates = o[21:21 + 7 * 10].reshape(10, 7)
+    assert mates[0, 0] == 1 and mates[0, 1] == pytest.approx(1.0)  # nearest first
+    assert mates[1, 0] == 1 and mates[1, 1] == pytest.approx(2.0)
+    assert np.all(mates[2:] == 0)
+    opps = o[21 + 70:].reshape(11, 7)
+    assert opps[0, 0] == 1 and opps[0, 1:3] == pytest.approx([-1.0, 1.0]) and np.all(opps[1:] == 0)

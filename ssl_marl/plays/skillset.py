@@ -1,0 +1,69 @@
+"""Which skill implementation a tactic uses: the one switch between learned and baseline.
+
+Tactics never import a skill class directly. They ask :func:`make_tactic_skill` for
+``"go_to_ball"`` or ``"aim_to_shoot"`` and get an object with the
+:class:`ssl_marl.skills.base.Skill` protocol. ``skills`` selects the kind:
+
+* ``"baseline"`` or ``"learned"`` for every skill, or
+* a mapping ``{"go_to_ball": "learned", "aim_to_shoot": "baseline"}`` to mix kinds
+  (skills not named default to ``"baseline"``).
+
+Construction goes through the skills package factory
+``ssl_marl.skills.make_skill(name, kind, field, robot, ball)``, imported lazily so
+that this module (and the baseline path) keeps working if the learned runtime is
+missing or broken. For ``"baseline"`` the hand-coded classes are used directly when
+the factory cannot be imported.
+"""
+
+from __future__ import annotations
+
+from typing import Mapping, Union
+
+from ..physics.field import FieldGeometry
+from ..physics.params import BallParams, RobotParams
+
+SkillsSpec = Union[str, Mapping[str, str]]
+SKILL_KINDS = ("baseline", "learned")
+SWAPPABLE = ("go_to_ball", "aim_to_shoot")
+
+
+def validate_skills(skills: SkillsSpec) -> None:
+    """Raise ValueError if ``skills`` is not a kind name or a {skill: kind} mapping."""
+    if isinstance(skills, str):
+        if skills not in SKILL_KINDS:
+            raise ValueError(f"skills must be one of {SKILL_KINDS} or a mapping, got {skills!r}")
+        return
+    if not isinstance(skills, Mapping):
+        raise ValueError(f"skills must be one of {SKILL_KINDS} or a mapping, got {skills!r}")
+    for name, kind in skills.items():
+        if name not in SWAPPABLE:
+            raise ValueError(f"skills: unknown skill {name!r}; expected some of {SWAPPABLE}")
+        if kind not in SKILL_KINDS:
+            raise ValueError(f"skills[{name!r}] must be one of {SKILL_KINDS}, got {kind!r}")
+
+
+def skill_kind(skills: SkillsSpec, name: str) -> str:
+    """The kind ("baseline"/"learned") that ``skills`` selects for skill ``name``."""
+    validate_skills(skills)
+    if isinstance(skills, str):
+        return skills
+    return skills.get(name, "baseline")
+
+
+def make_tactic_skill(name: str, skills: SkillsSpec, field: FieldGeometry, robot: RobotParams | None = None,
+                      ball: BallParams | None = None):
+    """Build skill ``name`` ("go_to_ball" or "aim_to_shoot") of the kind ``skills`` selects."""
+    if name not in SWAPPABLE:
+        raise ValueError(f"make_tactic_skill: unknown skill {name!r}; expected one of {SWAPPABLE}")
+    kind = skill_kind(skills, name)
+    try:
+        from ..skills import make_skill  # lazy: the learned runtime may pull in torch
+    except ImportError as exc:  # pragma: no cover - only without the factory
+        if kind != "baseline":
+            raise RuntimeError("learned skills need ssl_marl.skills.make_skill, which could not be "
+                               f"imported ({exc}); use skills='baseline'") from exc
+        from ..skills.baseline import AimToShootBaseline, GoToBallBaseline
+
+        cls = GoToBallBaseline if name == "go_to_ball" else AimToShootBaseline
+        return cls(field, robot, ball)
+    return make_skill(name, kind, field, robot, ball)
