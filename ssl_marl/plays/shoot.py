@@ -1,0 +1,170 @@
+"""Go-to-ball-and-shoot: the paper's tactic (section 4.4, Fig. 2), and the Attacker.
+
+State machine (d_{d-b}: dribbler-ball distance, :func:`~ssl_marl.skills.features.dribbler_ball_distance`)::
+
+    GO_TO_BALL ----(d_db <= 35 mm)----> DRIVE_FORWARD (dribbler on, forward, 1 s)
+    DRIVE_FORWARD --(1 s done, d_db <= 35 mm)--> AIM_TO_SHOOT
+    DRIVE_FORWARD --(1 s done, d_db >  35 mm)--> GO_TO_BALL
+    AIM_TO_SHOOT --(kick commanded / skill SUCCEEDED)--> GO_TO_BALL   (status.kicks += 1)
+    AIM_TO_SHOOT --(skill FAILED or d_db > 35 mm before the kick)--> GO_TO_BALL
+
+The go-to-ball and aim-to-shoot skills are learned or baseline (``skills=``); drive
+forward is the paper's fixed skill. The tactic does not know about goals: the env's
+referee counts them and the runner reads them.
+
+:class:`Attacker` is the same machine with one guard for team play
+(``keep_out_of_own_defense_area=True``): while the ball lies inside the own defense
+area (the goalie's), it waits just outside the area, facing the ball
+(state ``WAIT_OUTSIDE_DEFENSE_AREA``); with the default False the machine is exactly
+the paper's.
+"""
+
+from __future__ import annotations
+
+import enum
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..physics.state import WorldState
+from ..skills.base import SkillStatus
+from ..skills.baseline import DriveForward
+from ..skills.features import dribbler_ball_distance
+from .navigation import NavigateToPoint, NavParams, defense_rect, facing_towards, push_out_of_rect
+from .tactic_base import NEAR_BALL_M, Tactic, skill_status
+
+
+class ShootState(enum.Enum):
+    GO_TO_BALL = "go_to_ball"
+    DRIVE_FORWARD = "drive_forward"
+    AIM_TO_SHOOT = "aim_to_shoot"
+    WAIT_OUTSIDE_DEFENSE_AREA = "wait_outside_defense_area"
+
+
+@dataclass(frozen=True)
+class ShootParams:
+    """Attributes:
+        near_ball_m: "ball near the dribbler" threshold on d_{d-b} (m); paper: 0.035.
+        drive_forward_s: duration of the drive-forward skill (s); paper: 1.0.
+        drive_forward_speed: its forward speed (m/s).
+        keep_out_of_own_defense_area: wait outside the own defense area while the ball
+            is in it (team play); False = the paper's machine.
+        wait_margin: how far outside the defense area to wait (m, robot centre).
+    """
+
+    near_ball_m: float = NEAR_BALL_M
+    drive_forward_s: float = 1.0
+    drive_forward_speed: float = 0.5
+    keep_out_of_own_defense_area: bool = False
+    wait_margin: float = 0.2
+
+
+@dataclass(frozen=True)
+class ShootInputs:
+    """Attributes:
+        d_db: dribbler-ball distance (m).
+        skill_status: status of the current state's skill after its last tick.
+        kicked: a kick was commanded on the previous tick.
+        ball_in_own_defense: ball inside the own defense area.
+        ball_near_own_defense: ball inside the own defense area grown by 0.1 m
+            (hysteresis for leaving the wait state).
+    """
+
+    d_db: float
+    skill_status: SkillStatus = SkillStatus.RUNNING
+    kicked: bool = False
+    ball_in_own_defense: bool = False
+    ball_near_own_defense: bool = False
+
+
+class GoToBallAndShoot(Tactic):
+    """The paper's go-to-ball-and-shoot tactic (see the module docstring)."""
+
+    name = "go_to_ball_and_shoot"
+    State = ShootState
+    Params = ShootParams
+    Inputs = ShootInputs
+    initial_state = ShootState.GO_TO_BALL
+
+    def __init__(self, field, robot=None, ball=None, skills="baseline", dt: float = 1.0 / 60.0, **params) -> None:
+        self.go_to_ball = None
+        super().__init__(field, robot, ball, skills, dt, **params)
+        self.go_to_ball = self._skill("go_to_ball")
+        self.aim_to_shoot = self._skill("aim_to_shoot")
+        self.drive_forward = DriveForward(field, self.rp, self.bp, duration_s=self.params.drive_forward_s,
+                                          speed=self.params.drive_forward_speed, dt=self.dt)
+        self.nav = NavigateToPoint(field, self.rp, self.bp, NavParams(avoid_opp_defense=False))
+        self.on_enter(self.state)
+
+    def _current_skill(self):
+        return {ShootState.GO_TO_BALL: self.go_to_ball, ShootState.DRIVE_FORWARD: self.drive_forward,
+                ShootState.AIM_TO_SHOOT: self.aim_to_shoot,
+                ShootState.WAIT_OUTSIDE_DEFENSE_AREA: self.nav}[self.state]
+
+    def observe(self, world: WorldState, robot: int) -> ShootInputs:
+        ball = world.ball_pos
+        return ShootInputs(d_db=dribbler_ball_distance(world, robot, self.rp, self.bp),
+                           skill_status=skill_status(self._current_skill()), kicked=self._kicked,
+                           ball_in_own_defense=bool(self.field.in_defense_area(ball, -1)),
+                           ball_near_own_defense=bool(self.field.in_defense_area(ball, -1, margin=0.1)))
+
+    @staticmethod
+    def transition(state: ShootState, inputs: ShootInputs, params: ShootParams) -> ShootState:
+        """Fig. 2 of the paper (plus the optional defense-area wait)."""
+        S = ShootState
+        near = inputs.d_db <= params.near_ball_m
+        if params.keep_out_of_own_defense_area:
+            if inputs.ball_in_own_defense and state is not S.WAIT_OUTSIDE_DEFENSE_AREA:
+                return S.WAIT_OUTSIDE_DEFENSE_AREA
+            if state is S.WAIT_OUTSIDE_DEFENSE_AREA:
+                return S.WAIT_OUTSIDE_DEFENSE_AREA if inputs.ball_near_own_defense else S.GO_TO_BALL
+        elif state is S.WAIT_OUTSIDE_DEFENSE_AREA:
+            return S.GO_TO_BALL
+        if state is S.GO_TO_BALL:
+            return S.DRIVE_FORWARD if near else S.GO_TO_BALL
+        if state is S.DRIVE_FORWARD:
+            if inputs.skill_status is SkillStatus.SUCCEEDED:
+                return S.AIM_TO_SHOOT if near else S.GO_TO_BALL
+            return S.DRIVE_FORWARD
+        if state is S.AIM_TO_SHOOT:
+            if inputs.kicked or inputs.skill_status is not SkillStatus.RUNNING or not near:
+                return S.GO_TO_BALL
+            return S.AIM_TO_SHOOT
+        raise ValueError(f"unknown state {state!r}")
+
+    def on_enter(self, state: ShootState) -> None:
+        if self.go_to_ball is None:  # called from the base constructor before the skills exist
+            return
+        if state is ShootState.DRIVE_FORWARD:
+            self.drive_forward.duration_s = self.params.drive_forward_s
+            self.drive_forward.speed = self.params.drive_forward_speed
+        self._current_skill().reset()
+
+    def execute(self, world: WorldState, robot: int, inputs: ShootInputs) -> np.ndarray:
+        if self.state is ShootState.WAIT_OUTSIDE_DEFENSE_AREA:
+            pos = world.team(world.frame).pos[robot]
+            rect = defense_rect(self.field, -1, self.nav.params.defense_margin + self.params.wait_margin)
+            self.nav.target = push_out_of_rect(world.ball_pos, rect)
+            self.nav.facing = facing_towards(pos, world.ball_pos)
+        return self._current_skill().act(world, robot)
+
+
+class Attacker(GoToBallAndShoot):
+    """Attacker role: :class:`GoToBallAndShoot` that waits outside the own defense area
+    while the ball is in it (the goalie clears it)."""
+
+    name = "attacker"
+
+    def __init__(self, field, robot=None, ball=None, skills="baseline", dt: float = 1.0 / 60.0, **params) -> None:
+        params.setdefault("keep_out_of_own_defense_area", True)
+        super().__init__(field, robot, ball, skills, dt, **params)
+
+
+def time_to_ball(pos: np.ndarray, ball_pos: np.ndarray, max_speed: float) -> np.ndarray:
+    """Estimated time (s) for robots at ``pos`` (n, 2) to reach the ball at ``max_speed`` (m/s)."""
+    d = np.asarray(pos, float) - np.asarray(ball_pos, float)
+    return np.hypot(d[..., 0], d[..., 1]) / max(max_speed, 1e-9)
+
+
+__all__ = ["ShootState", "ShootParams", "ShootInputs", "GoToBallAndShoot", "Attacker", "time_to_ball", "math"]
