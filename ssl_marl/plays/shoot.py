@@ -22,7 +22,6 @@ the paper's.
 from __future__ import annotations
 
 import enum
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -167,4 +166,4 @@ def time_to_ball(pos: np.ndarray, ball_pos: np.ndarray, max_speed: float) -> np.
     return np.hypot(d[..., 0], d[..., 1]) / max(max_speed, 1e-9)
 
 
-__all__ = ["ShootState", "ShootParams", "ShootInputs", "GoToBallAndShoot", "Attacker", "time_to_ball", "math"]
+__all__ = ["ShootState", "ShootParams", "ShootInputs", "GoToBallAndShoot", "Attacker", "time_to_ball"]
