@@ -44,7 +44,9 @@ class DDPGConfig:
       training samples"); demonstration transitions are counted separately.
     * ``num_envs`` 1 synchronous env; ``eval_interval`` 25,000 samples with
       ``eval_episodes`` 10 deterministic episodes; ``checkpoint_interval`` 50,000.
-    * ``torch_threads`` 2: measured fastest on a 2-core machine (see
+    * ``torch_threads`` 1: 2 threads are ~1.4x faster on an idle 2-core
+      machine, but two 2-thread trainers sharing 2 cores slow each other down
+      several-fold (OpenMP spin-waiting); 1 is the safe default (see
       ``benchmarks/bench_ddpg.py``).
 
     Units: learning rates per Adam step; ``ou_dt`` in noise-process time units
@@ -88,7 +90,7 @@ class DDPGConfig:
     checkpoint_interval: int = 50_000  #: env samples between resumable checkpoints
     log_interval: int = 100  #: updates between loss read-outs (avoids a .item() sync per update)
     # --- speed -------------------------------------------------------------
-    torch_threads: int = 2  #: torch.set_num_threads; 0 leaves torch's default
+    torch_threads: int = 1  #: torch.set_num_threads; 0 leaves torch's default
     autocast_bf16: bool = False  #: bfloat16 autocast of the forward passes (~+20% updates/s here; less precise)
 
     def __post_init__(self) -> None:

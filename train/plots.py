@@ -64,7 +64,11 @@ def plot_run(run_dir: str | Path, out: str | Path | None = None, window: int = 5
     for ax, (key, label) in zip(axes, panels):
         y = prog[key]
         ax.plot(x, y, ".", ms=2, alpha=0.25, color="tab:blue")
-        ax.plot(x, rolling_mean(y, window), color="tab:blue", lw=1.5, label=f"training (mean of {window})")
+        for phase, color in (("demo", "0.35"), ("train", "tab:blue")):  # separate means: no blur at the seam
+            m = prog["phase"] == phase
+            if m.any():
+                ax.plot(x[m], rolling_mean(y[m], window), color=color, lw=1.5,
+                        label=f"{'demonstrations' if phase == 'demo' else 'training'} (mean of {window})")
         if key == "return" and "mean_return" in ev:
             ax.plot(ev["transitions"], ev["mean_return"], "o-", color="tab:red", ms=3, label="evaluation")
         if key == "success" and "success_rate" in ev and not np.all(np.isnan(ev["success_rate"])):

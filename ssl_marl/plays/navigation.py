@@ -34,7 +34,7 @@ import numpy as np
 
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
-from ..physics.state import WorldState, wrap_angle
+from ..physics.state import WorldState
 from ..skills.base import SkillStatus
 from ..skills.baseline import approach_speed, velocity_command
 
@@ -83,22 +83,32 @@ def _in_rect(p: np.ndarray, rect: tuple[float, float, float, float]) -> bool:
 
 def push_out_of_rect(p: np.ndarray, rect: tuple[float, float, float, float]) -> np.ndarray:
     """Nearest point on the boundary of ``rect`` if p is inside it, else p."""
-    p = np.asarray(p, float)
-    if not _in_rect(p, rect):
-        return p
+    x, y = float(p[0]), float(p[1])
     x0, x1, y0, y1 = rect
-    cands = [np.array([x0, p[1]]), np.array([x1, p[1]]), np.array([p[0], y0]), np.array([p[0], y1])]
-    d = [abs(p[0] - x0), abs(x1 - p[0]), abs(p[1] - y0), abs(y1 - p[1])]
-    return cands[int(np.argmin(d))]
+    if not (x0 < x < x1 and y0 < y < y1):
+        return np.array([x, y])
+    d = (x - x0, x1 - x, y - y0, y1 - y)
+    k = d.index(min(d))
+    if k == 0:
+        return np.array([x0, y])
+    if k == 1:
+        return np.array([x1, y])
+    return np.array([x, y0 if k == 2 else y1])
+
+
+def clamp_to_field(p: np.ndarray, field: FieldGeometry, margin: float = 0.0) -> np.ndarray:
+    """Scalar-fast :meth:`FieldGeometry.clamp_to_field` for one point."""
+    hl, hw = field.half_length - margin, field.half_width - margin
+    return np.array([min(max(float(p[0]), -hl), hl), min(max(float(p[1]), -hw), hw)])
 
 
 def sanitize_target(target: np.ndarray, field: FieldGeometry, params: NavParams) -> np.ndarray:
     """Clamp ``target`` into the playing area and out of the defense areas ``params`` forbids."""
-    p = field.clamp_to_field(np.asarray(target, float), margin=0.0)
+    p = clamp_to_field(target, field)
     for side, avoid in ((-1, params.avoid_own_defense), (1, params.avoid_opp_defense)):
         if avoid:
             p = push_out_of_rect(p, defense_rect(field, side, params.defense_margin))
-    return field.clamp_to_field(p, margin=0.0)
+    return clamp_to_field(p, field)
 
 
 def _segment_hits_rect(a: np.ndarray, b: np.ndarray, rect: tuple[float, float, float, float]) -> bool:
@@ -183,8 +193,7 @@ def other_robots(world: WorldState, robot: int) -> np.ndarray:
     """(k, 2) centres of every robot except ``robot`` of the frame's team."""
     own = world.team(world.frame).pos
     opp = world.opponents(world.frame).pos
-    mates = np.delete(own, robot, axis=0) if own.shape[0] else own
-    return np.concatenate([mates, opp], axis=0) if opp.shape[0] else mates
+    return np.concatenate([own[:robot], own[robot + 1:], opp], axis=0)
 
 
 class NavigateToPoint:
@@ -228,23 +237,31 @@ class NavigateToPoint:
         way = goal if way is None else way
         self.waypoint = way
         d_way = way - pos
-        dist_way = float(np.hypot(*d_way))
-        remaining = dist_way + (float(np.hypot(*(goal - way))) if way is not goal else 0.0)
+        dist_way = math.hypot(d_way[0], d_way[1])
+        remaining = dist_way + (math.hypot(goal[0] - way[0], goal[1] - way[1]) if way is not goal else 0.0)
         vmax = rp.max_speed if self.max_speed is None else min(self.max_speed, rp.max_speed)
         speed = min(approach_speed(remaining, rp, decel=0.6 * rp.max_brake), vmax)
-        v = d_way / dist_way * speed if dist_way > 1e-3 else np.zeros(2)
+        v = d_way * (speed / dist_way) if dist_way > 1e-3 else np.zeros(2)
         v = repulsion_velocity(pos, v, obstacles, p)
-        sp = float(np.hypot(*v))
+        sp = math.hypot(v[0], v[1])
         if sp > vmax:
             v *= vmax / sp
-        face_err = 0.0 if self.facing is None else float(wrap_angle(self.facing - h))
-        omega = float(np.clip(self.turn_gain * face_err, -rp.max_omega, rp.max_omega))
-        done = float(np.hypot(*(goal - pos))) <= self.tolerance and float(np.hypot(*vel)) < 0.2
+        face_err = 0.0 if self.facing is None else angle_diff(self.facing, h)
+        omega = min(max(self.turn_gain * face_err, -rp.max_omega), rp.max_omega)
+        done = (math.hypot(goal[0] - pos[0], goal[1] - pos[1]) <= self.tolerance
+                and math.hypot(vel[0], vel[1]) < 0.2)
         self.status = SkillStatus.SUCCEEDED if done else SkillStatus.RUNNING
         return velocity_command(world, robot, v, omega, rp, dribble=self.dribble)
 
 
+def angle_diff(a: float, b: float) -> float:
+    """a - b wrapped to (-pi, pi] (scalar)."""
+    d = math.fmod(a - b + math.pi, 2.0 * math.pi)
+    if d <= 0.0:
+        d += 2.0 * math.pi
+    return d - math.pi
+
+
 def facing_towards(src: np.ndarray, dst: np.ndarray) -> float:
     """Heading (rad) that points from ``src`` to ``dst``."""
-    d = np.asarray(dst, float) - np.asarray(src, float)
-    return math.atan2(d[1], d[0])
+    return math.atan2(float(dst[1]) - float(src[1]), float(dst[0]) - float(src[0]))

@@ -1,0 +1,168 @@
+"""TeamController: one team's STP stack, play -> assignment -> tactics -> skills -> actions.
+
+Works for 1-11 robots of either colour. Everything runs in the team's frame (own
+goal at -x): from an env it reads ``env.vision_state(team)`` (what the team sees,
+noise and latency included); a field-frame :class:`WorldState` is converted with
+:func:`~ssl_marl.physics.state.to_team_frame`. Robot 0 is the goalie when the team
+has at least two robots; a single robot plays attacker.
+
+Each tick:
+
+1. :func:`~ssl_marl.plays.play.make_context` derives possession, times to the ball
+   and the opponents' danger ranking;
+2. the :class:`~ssl_marl.plays.play.PlaySelector` keeps or changes the play;
+3. :func:`~ssl_marl.plays.assignment.assign` gives roles to robots (tiers, goalie
+   fixed, stickiness for the previous holders);
+4. each robot's tactic (kept while its role name and factory stay the same, else
+   built fresh) gets its parameters from the role's ``update`` and returns an action;
+   robots without a role stop in place.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Sequence
+
+import numpy as np
+
+from ..physics.field import FieldGeometry
+from ..physics.params import BallParams, RobotParams
+from ..physics.state import TEAMS, WorldState, to_team_frame
+from ..skills.base import make_action
+from .assignment import Assignment, RoleSlot, assign
+from .play import Play, PlayContext, PlaySelector, RoleDef, make_context, standard_plays
+from .skillset import SkillsSpec, validate_skills
+from .tactic_base import Tactic
+
+
+class TeamController:
+    """STP controller for one team.
+
+    Args:
+        team: "blue" or "yellow".
+        n_robots: robots in the team (1-11); agent names are ``f"{team}_{i}"``.
+        field: "div_a", "div_b" or a :class:`FieldGeometry`.
+        robot, ball: physical parameters (defaults when None).
+        skills: "baseline", "learned" or {skill: kind}, passed to every tactic.
+        plays: candidate plays (default :func:`~ssl_marl.plays.play.standard_plays`).
+        min_hold_s: play hysteresis (s).
+        adaptive: CMDragons-style weighted play selection with adapted weights.
+        stickiness: assignment bonus (s) for a role's previous holder.
+        seed: seed of the play-selection RNG.
+        dt: control period (s).
+    """
+
+    def __init__(self, team: str, n_robots: int, field: str | FieldGeometry = "div_b",
+                 robot: RobotParams | None = None, ball: BallParams | None = None, skills: SkillsSpec = "baseline",
+                 plays: Sequence[Play] | None = None, min_hold_s: float = 0.5, adaptive: bool = False,
+                 stickiness: float = 0.3, seed: int = 0, dt: float = 1.0 / 60.0) -> None:
+        if team not in TEAMS:
+            raise ValueError(f"TeamController: team must be 'blue' or 'yellow', got {team!r}")
+        if not isinstance(n_robots, int) or isinstance(n_robots, bool) or not 1 <= n_robots <= 11:
+            raise ValueError(f"TeamController: n_robots must be an integer in 1..11, got {n_robots!r}")
+        validate_skills(skills)
+        self.team, self.n = team, n_robots
+        self.field = FieldGeometry.from_name(field)
+        self.rp, self.bp = robot or RobotParams(), ball or BallParams()
+        self.skills, self.dt, self.stickiness = skills, float(dt), float(stickiness)
+        self.selector = PlaySelector(plays if plays is not None else standard_plays(), min_hold_s=min_hold_s,
+                                     adaptive=adaptive, seed=seed)
+        self.agents = [f"{team}_{i}" for i in range(n_robots)]
+        self.reset()
+
+    def reset(self) -> None:
+        """Forget tactics, assignment history, play history and the score seen."""
+        self.selector.reset()
+        self._tactics: dict[int, tuple[str, Any, Tactic]] = {}
+        self._previous: dict[str, int | None] = {}
+        self._score_seen: dict[str, int] | None = None
+        self.assignment: Assignment | None = None
+        self.play: Play | None = None
+        self.context: PlayContext | None = None
+
+    # ------------------------------------------------------------- queries
+    @property
+    def roles(self) -> dict[int, str]:
+        """robot index -> role name (last tick)."""
+        return dict(self.assignment.robots) if self.assignment else {}
+
+    def tactic(self, robot: int) -> Tactic | None:
+        """The tactic robot ``robot`` ran last tick (None if it had no role)."""
+        entry = self._tactics.get(robot)
+        return entry[2] if entry else None
+
+    # ------------------------------------------------------------- outcomes
+    def notify_goal(self, for_us: bool) -> None:
+        """Tell play selection that a goal was scored (for / against this team)."""
+        self.selector.record_goal(for_us)
+
+    def _check_score(self, env: Any) -> None:
+        score = getattr(env, "score", None)
+        if not isinstance(score, dict):
+            return
+        if self._score_seen is not None:
+            other = "yellow" if self.team == "blue" else "blue"
+            for _ in range(max(score.get(self.team, 0) - self._score_seen.get(self.team, 0), 0)):
+                self.notify_goal(True)
+            for _ in range(max(score.get(other, 0) - self._score_seen.get(other, 0), 0)):
+                self.notify_goal(False)
+        self._score_seen = dict(score)
+
+    # ----------------------------------------------------------------- tick
+    def team_world(self, env_or_world: Any) -> WorldState:
+        """The team-frame snapshot from an env (``vision_state``) or a WorldState."""
+        if isinstance(env_or_world, WorldState):
+            ws = env_or_world
+            if ws.frame == "field":
+                return to_team_frame(ws, self.team)
+            if ws.frame != self.team:
+                raise ValueError(f"TeamController({self.team!r}) got a snapshot in {ws.frame!r}'s frame")
+            return ws
+        if hasattr(env_or_world, "vision_state"):
+            self._check_score(env_or_world)
+            return env_or_world.vision_state(self.team)
+        raise TypeError(f"TeamController.act expects an SSL env or a WorldState, got {type(env_or_world).__name__}")
+
+    def _active_roles(self, play: Play, ctx: PlayContext) -> list[tuple[RoleDef, np.ndarray]]:
+        out = []
+        for r in play.roles:
+            if ctx.n < r.min_team_size:
+                continue
+            target = r.target(ctx)
+            if target is not None:
+                out.append((r, np.asarray(target, float)))
+        return out
+
+    def act(self, env_or_world: Any) -> dict[str, np.ndarray]:
+        """Actions ``{f"{team}_{i}": (5,) float32}`` for all robots of the team."""
+        world = self.team_world(env_or_world)
+        ours = world.team(self.team)
+        if ours.n != self.n:
+            raise ValueError(f"TeamController({self.team!r}) was built for {self.n} robots, the world has {ours.n}")
+        ctx = make_context(world, self.team, self.field, self.rp)
+        play = self.selector.select(ctx, world.t)
+        active = self._active_roles(play, ctx)
+        slots = [RoleSlot(r.name, r.priority, r.unfilled_cost) for r, _ in active]
+        cost = np.vstack([r.costs(ctx, tgt) for r, tgt in active]) if active else np.zeros((0, self.n))
+        fixed = {r.name: r.fixed_robot for r, _ in active if r.fixed_robot is not None}
+        assignment = assign(range(self.n), slots, cost, fixed=fixed, previous=self._previous,
+                            stickiness=self.stickiness)
+        self._previous = dict(assignment.roles)
+        self.play, self.context, self.assignment = play, ctx, assignment
+        by_name = {r.name: r for r, _ in active}
+        actions: dict[str, np.ndarray] = {}
+        for i in range(self.n):
+            role_name = assignment.robots.get(i)
+            if role_name is None:
+                self._tactics.pop(i, None)
+                actions[self.agents[i]] = make_action()
+                continue
+            role = by_name[role_name]
+            entry = self._tactics.get(i)
+            if entry is None or entry[0] != role_name or entry[1] is not role.tactic:
+                tactic = role.tactic(self.field, self.rp, self.bp, skills=self.skills, dt=self.dt)
+                self._tactics[i] = (role_name, role.tactic, tactic)
+            tactic = self._tactics[i][2]
+            if role.update is not None:
+                role.update(tactic, ctx, assignment)
+            actions[self.agents[i]] = tactic.act(world, i)
+        return actions

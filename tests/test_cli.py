@@ -1,0 +1,50 @@
+"""The ssl-marl command line: bad arguments are rejected clearly; commands run."""
+
+import json
+
+import pytest
+
+from ssl_marl.cli import build_parser, main
+
+
+@pytest.mark.parametrize("argv,needle", [
+    (["match", "--robots", "12"], "between 1 and 11"),
+    (["match", "--seconds", "-5"], "positive"),
+    (["match", "--blue", "telepathic"], "invalid choice"),
+    (["eval-skill", "go-to-ball", "--episodes", "0"], ">= 1"),
+    (["eval-skill", "juggle"], "invalid choice"),
+    (["demo", "--field", "div_c"], "invalid choice"),
+    (["eval-tactic", "--skills", "magic"], "invalid choice"),
+])
+def test_bad_arguments_exit_with_a_clear_message(argv, needle, capsys):
+    with pytest.raises(SystemExit) as exc:
+        build_parser().parse_args(argv)
+    assert exc.value.code == 2
+    assert needle in capsys.readouterr().err
+
+
+def test_missing_checkpoint_is_a_clear_error(capsys, tmp_path):
+    assert main(["eval-skill", "go-to-ball", "--policy", str(tmp_path / "nope.pt"), "--episodes", "2"]) == 2
+    assert "does not exist" in capsys.readouterr().err
+
+
+def test_help_explains_every_option(capsys):
+    for cmd in ("demo", "match", "eval-skill", "eval-tactic"):
+        with pytest.raises(SystemExit):
+            build_parser().parse_args([cmd, "--help"])
+        out = capsys.readouterr().out
+        assert "--seed" in out
+
+
+def test_demo_writes_a_gif(tmp_path, capsys):
+    out = tmp_path / "demo.gif"
+    assert main(["demo", "--robots", "2", "--seconds", "1", "--fps", "10", "--out", str(out), "--quiet"]) == 0
+    assert out.exists() and out.stat().st_size > 1000
+    assert "score blue" in capsys.readouterr().out
+
+
+def test_eval_skill_writes_results(tmp_path, capsys):
+    assert main(["eval-skill", "go-to-ball", "--episodes", "4", "--seed", "1", "--out", str(tmp_path), "--quiet"]) == 0
+    res = json.loads((tmp_path / "results.json").read_text())
+    assert res["episodes"] == 4 and res["success_rate"] == 1.0 and res["seed"] == 1
+    assert (tmp_path / "time_hist.png").exists()

@@ -1,0 +1,105 @@
+"""The DDPG update: Bellman target, soft update, one update step, config handling."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+import torch
+
+from train.config import DDPGConfig, apply_overrides, default_config, load_config
+from train.ddpg import DDPG, soft_update, td_target
+from train.replay import Batch
+
+torch.set_num_threads(1)
+
+
+def test_td_target_terminal_does_not_bootstrap_truncated_does() -> None:
+    rew = torch.tensor([1.0, 1.0, -2.0])
+    terminated = torch.tensor([1.0, 0.0, 0.0])  # terminal, truncated (stored as not terminated), ordinary
+    next_q = torch.tensor([5.0, 5.0, 10.0])
+    y = td_target(rew, terminated, next_q, gamma=0.9)
+    torch.testing.assert_close(y, torch.tensor([1.0, 1.0 + 0.9 * 5.0, -2.0 + 9.0]))
+
+
+def test_soft_update_is_exact_lerp() -> None:
+    torch.manual_seed(0)
+    target = [torch.randn(3, 4), torch.randn(5)]
+    online = [torch.randn(3, 4), torch.randn(5)]
+    expected = [t + 0.01 * (o - t) for t, o in zip(target, online)]
+    soft_update(target, online, 0.01)
+    for t, e in zip(target, expected):
+        torch.testing.assert_close(t, e, rtol=0, atol=1e-6)
+    soft_update(target, online, 1.0)  # tau = 1 copies
+    for t, o in zip(target, online):
+        torch.testing.assert_close(t, o, rtol=0, atol=0)
+
+
+def _batch(n: int = 16, terminated: float = 0.0) -> Batch:
+    g = torch.Generator().manual_seed(1)
+    return Batch(torch.randn(n, 4, generator=g), torch.rand(n, 2, generator=g) * 2 - 1, torch.randn(n, generator=g),
+                 torch.randn(n, 4, generator=g), torch.full((n,), terminated))
+
+
+def test_update_moves_networks_and_targets_by_tau() -> None:
+    torch.manual_seed(0)
+    cfg = DDPGConfig(actor_hidden=(8, 8), critic_hidden=(8, 8), tau=0.1, batch_size=16, buffer_size=100)
+    agent = DDPG(4, 2, cfg)
+    before = {k: v.clone() for k, v in agent.state_dict()["actor_target"].items()}
+    agent.update(_batch())
+    after_online = agent.actor.state_dict()
+    for k, v in agent.actor_target.state_dict().items():
+        torch.testing.assert_close(v, before[k] + 0.1 * (after_online[k] - before[k]), rtol=0, atol=1e-6)
+    assert agent.updates == 1
+    c, a = agent.read_losses()
+    assert np.isfinite(c) and np.isfinite(a)
+    assert agent.read_losses() is None
+    assert all(p.grad is None for p in agent.critic_target.parameters())
+
+
+def test_critic_fits_terminal_rewards_exactly() -> None:
+    """With terminated = 1 the target is r alone, so the critic regresses Q(s, a) onto r."""
+    torch.manual_seed(0)
+    cfg = DDPGConfig(actor_hidden=(16,), critic_hidden=(64, 64), critic_lr=3e-3, batch_size=16, buffer_size=100)
+    agent = DDPG(4, 2, cfg)
+    b = _batch(terminated=1.0)
+    for _ in range(300):
+        agent.update(b)
+    q = agent.critic(b.obs, b.act).squeeze(-1).detach()
+    assert torch.mean((q - b.rew) ** 2) < 0.05 * torch.var(b.rew)
+
+
+def test_shipped_configs_follow_the_paper() -> None:
+    g = default_config("go-to-ball")
+    assert (g.critic_lr, g.actor_lr, g.critic_hidden, g.actor_hidden) == (1e-3, 1e-4, (300, 400), (300, 400))
+    assert (g.buffer_size, g.demo_steps, g.total_samples) == (1_000_000, 50_000, 500_000)
+    a = default_config("aim-to-shoot")
+    assert (a.critic_lr, a.actor_lr, a.buffer_size, a.demo_steps) == (1e-4, 1e-4, 600_000, 10_000)
+    assert a.critic_hidden == a.actor_hidden == (200, 300, 300, 300)
+    for c in (g, a):
+        assert (c.ou_theta, c.ou_mu, c.ou_sigma) == (0.15, 0.0, 0.3)
+        assert c.layer_norm
+    p = default_config("pendulum")
+    assert p.env_id == "Pendulum-v1" and p.total_samples == 20_000
+
+
+def test_config_errors_and_overrides(tmp_path) -> None:
+    path = tmp_path / "c.json"
+    path.write_text(json.dumps({"_note": "comments allowed", "gamma": 0.9, "actor_hidden": [4, 4]}))
+    cfg = load_config(path)
+    assert cfg.gamma == 0.9 and cfg.actor_hidden == (4, 4)
+    cfg = apply_overrides(cfg, ["total_samples=2e4", "demo_fn=null", "critic_hidden=[8, 8]", "env_id=Foo-v0"])
+    assert cfg.total_samples == 20000 and isinstance(cfg.total_samples, int)
+    assert cfg.demo_fn is None and cfg.critic_hidden == (8, 8) and cfg.env_id == "Foo-v0"
+    path.write_text(json.dumps({"gamam": 0.9}))
+    with pytest.raises(ValueError, match="unknown DDPG config key"):
+        load_config(path)
+    with pytest.raises(ValueError, match="tau"):
+        apply_overrides(cfg, ["tau=0"])
+    with pytest.raises(ValueError, match="key=value"):
+        apply_overrides(cfg, ["tau"])
+    with pytest.raises(ValueError, match="demo_fn"):
+        DDPGConfig(demo_steps=10, demo_fn=None)
+    with pytest.raises(FileNotFoundError):
+        load_config(tmp_path / "missing.json")
