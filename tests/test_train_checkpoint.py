@@ -76,7 +76,6 @@ class _Evil:
         return (os.system, ("touch PWNED_BY_CHECKPOINT",))
 
 
-@pytest.mark.filterwarnings("ignore:Detected pickle protocol")
 def test_loading_never_executes_code(tmp_path, monkeypatch) -> None:
     monkeypatch.chdir(tmp_path)
     path = tmp_path / "evil.pt"

@@ -53,7 +53,8 @@ if COUNTER_ID not in gym.registry:
 
 def toy_config(**kw: Any) -> DDPGConfig:
     base = dict(skill="toy", env_id=TOY, actor_hidden=(64, 64), critic_hidden=(64, 64), actor_lr=1e-3, critic_lr=1e-3,
-                gamma=0.95, buffer_size=20_000, batch_size=64, total_samples=2_500, warmup_samples=250,
+                gamma=0.95, tau=0.02, ou_sigma=0.5, buffer_size=20_000, batch_size=64, total_samples=2_000,
+                warmup_samples=250,
                 eval_interval=0, eval_episodes=10, checkpoint_interval=10_000, torch_threads=1, log_interval=50)
     base.update(kw)
     return DDPGConfig(**base)
@@ -85,6 +86,20 @@ def test_autoreset_steps_are_never_stored(tmp_path) -> None:
         np.testing.assert_array_equal(ts, np.arange(int(obs[obs[:, 0] == ep][0, 2])))
     assert tr.episodes == int(ends.sum())
     tr.envs.close()
+
+
+def test_async_vector_env_collects_the_same_data(tmp_path) -> None:
+    buffers = []
+    for mode in ("sync", "async"):
+        cfg = toy_config(env_id=COUNTER_ID, num_envs=2, vector_mode=mode, warmup_samples=10**9, buffer_size=500)
+        tr = Trainer(cfg, seed=3, out=tmp_path / mode, progress=False)
+        tr._reset_envs()
+        for _ in range(25):
+            tr.collect_step()
+        tr.envs.close()
+        buffers.append((tr.buffer.obs[: tr.buffer.size].copy(), tr.buffer.act[: tr.buffer.size].copy()))
+    np.testing.assert_array_equal(buffers[0][0], buffers[1][0])
+    np.testing.assert_array_equal(buffers[0][1], buffers[1][1])
 
 
 def test_demo_burn_in_fills_buffer_with_demos_in_spaces(tmp_path) -> None:

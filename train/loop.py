@@ -87,7 +87,7 @@ class CsvLog:
     """Append-only CSV, flushed per row. Columns fixed by the existing header or the first row."""
 
     def __init__(self, path: Path, fields: list[str] | None = None) -> None:
-        self.path, self.fields, self.rows = path, fields, 0
+        self.path, self.fields, self.rows, self._initial_fields = path, fields, 0, fields
         if path.exists() and path.stat().st_size > 0:
             with path.open(newline="") as f:
                 reader = csv.reader(f)
@@ -116,6 +116,12 @@ class CsvLog:
         lines = self.path.read_text().splitlines(keepends=True)
         _atomic_write_text(self.path, "".join(lines[: rows + 1]))
         self.rows = min(rows, max(len(lines) - 1, 0))
+
+    def clear(self) -> None:
+        """Start the file afresh (a new run in a folder left by a run that never checkpointed)."""
+        self.close()
+        self.path.unlink(missing_ok=True)
+        self.fields, self.rows = self._initial_fields, 0
 
     def close(self) -> None:
         if self._f is not None:
@@ -193,8 +199,8 @@ class Trainer:
 
     def _reset_envs(self) -> None:
         """(Re)start every sub-env from a seed fixed by (seed, segment): part of the resume contract."""
-        env_seed = int(np.random.SeedSequence([self.seed, self.segment]).generate_state(1)[0] % 2**31)
-        self.obs, _ = self.envs.reset(seed=env_seed)
+        self.env_seed = int(np.random.SeedSequence([self.seed, self.segment]).generate_state(1)[0] % 2**31)
+        self.obs, _ = self.envs.reset(seed=self.env_seed)  # sub-env i gets env_seed + i
         self.autoreset = np.zeros(self.cfg.num_envs, bool)
         self.noise.reset()
         self.ep_return = np.zeros(self.cfg.num_envs)
@@ -351,6 +357,8 @@ class Trainer:
     # --- checkpoints ----------------------------------------------------------
     def save_checkpoint(self) -> Path:
         """Cut running episodes, then save everything needed to resume (atomically)."""
+        while self.next_checkpoint <= self.samples:
+            self.next_checkpoint += self.cfg.checkpoint_interval
         self.segment += 1
         self._reset_envs()
         replay_name = f"replay-{self.transitions:012d}.npz"
@@ -361,7 +369,7 @@ class Trainer:
             "rng": {"action": self.rng.bit_generator.state, "replay": self.buffer.rng.bit_generator.state,
                     "torch": torch.get_rng_state(), "python": random.getstate()},
             "counters": {"samples": self.samples, "transitions": self.transitions, "episodes": self.episodes,
-                         "segment": self.segment, "update_credit": self.update_credit,
+                         "segment": self.segment, "env_seed": self.env_seed, "update_credit": self.update_credit,
                          "demo_done": self.demo_done, "next_eval": self.next_eval,
                          "next_checkpoint": self.next_checkpoint, "wall_time": self.wall_time()},
             "losses": list(self.losses) if self.losses is not None else None,
@@ -413,6 +421,8 @@ class Trainer:
         if resume:
             self.load_checkpoint()
         else:
+            self.log.clear()
+            self.eval_log.clear()
             self._reset_envs()
             self.burn_in()
         bar = tqdm(total=cfg.total_samples, initial=min(self.samples, cfg.total_samples), desc=cfg.skill,
@@ -429,8 +439,6 @@ class Trainer:
                         self.next_eval += cfg.eval_interval
                 if self.samples >= self.next_checkpoint or self.samples >= cfg.total_samples:
                     self.save_checkpoint()
-                    while self.next_checkpoint <= self.samples:
-                        self.next_checkpoint += cfg.checkpoint_interval
                 if self.progress and time.perf_counter() - last_postfix > 1.0:
                     last_postfix = time.perf_counter()
                     bar.set_postfix(self.postfix(), refresh=False)

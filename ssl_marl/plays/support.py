@@ -120,7 +120,14 @@ class Support(Tactic):
         self.target = None
 
     def candidates(self) -> tuple[np.ndarray, tuple[float, float]]:
-        """Candidate grid (k, 2) and the x range used."""
+        """Candidate grid (k, 2) and the x range used (cached per parameter set)."""
+        key = (self.params.x_range, self.params.y_range, self.params.grid)
+        cached = getattr(self, "_grid_cache", None)
+        if cached is None or cached[0] != key:
+            self._grid_cache = (key, *self._candidates())
+        return self._grid_cache[1], self._grid_cache[2]
+
+    def _candidates(self) -> tuple[np.ndarray, tuple[float, float]]:
         f, p = self.field, self.params
         x_range = p.x_range or (0.3, f.half_length - f.defense_depth - 0.35)
         y_lo, y_hi = p.y_range or (-f.half_width, f.half_width)

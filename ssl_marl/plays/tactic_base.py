@@ -98,12 +98,17 @@ class Tactic:
     # ---------------------------------------------------------------- params
     def set_params(self, **changes: Any) -> None:
         """Set parameters (names of ``Params`` fields); plays call this every tick."""
-        names = {f.name for f in dataclasses.fields(self.Params)}
+        names = _field_names(self.Params)
         unknown = sorted(set(changes) - names)
         if unknown:
             raise ValueError(f"{type(self).__name__}.set_params: unknown parameter(s) {unknown}; "
                              f"known: {sorted(names)}")
-        self.params = dataclasses.replace(self.params, **changes)
+        try:
+            same = all(getattr(self.params, k) == v for k, v in changes.items())
+        except (TypeError, ValueError):  # e.g. numpy arrays: always replace
+            same = False
+        if not same:
+            self.params = dataclasses.replace(self.params, **changes)
 
     # ---------------------------------------------------------------- status
     @property
@@ -167,6 +172,16 @@ class Tactic:
     @staticmethod
     def stop() -> np.ndarray:
         return make_action()
+
+
+_FIELD_NAMES: dict[type, frozenset[str]] = {}
+
+
+def _field_names(cls: type) -> frozenset[str]:
+    names = _FIELD_NAMES.get(cls)
+    if names is None:
+        names = _FIELD_NAMES[cls] = frozenset(f.name for f in dataclasses.fields(cls))
+    return names
 
 
 def skill_status(skill: Any) -> SkillStatus:

@@ -21,6 +21,7 @@ import datetime as _dt
 import os
 import subprocess
 import tempfile
+import warnings
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -97,7 +98,9 @@ def safe_torch_load(path: str | os.PathLike[str], what: str = "ssl_marl checkpoi
     if not path.is_file():
         raise FileNotFoundError(f"checkpoint not found: {path}")
     try:
-        return torch.load(path, map_location="cpu", weights_only=True)
+        with warnings.catch_warnings():  # torch warns about foreign pickle protocols before failing
+            warnings.filterwarnings("ignore", message="Detected pickle protocol")
+            return torch.load(path, map_location="cpu", weights_only=True)
     except Exception as exc:  # UnpicklingError, RuntimeError (zip), EOFError, ...
         raise ValueError(f"{path} is not a valid {what} (could not be read safely: "
                          f"{type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''})") from exc

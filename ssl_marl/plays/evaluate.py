@@ -1,0 +1,232 @@
+"""The paper's tactic evaluation (section 5.2): go-to-ball-and-shoot from random scenes.
+
+Protocol (:func:`evaluate_tactic`): per episode, one blue robot (random position,
+random heading) and the ball (random position) are placed on an otherwise empty
+field; the env referee is on with ``after_goal="terminate"``. The
+:class:`~ssl_marl.plays.shoot.GoToBallAndShoot` tactic runs until a goal or
+``max_time_s`` (15 s). A goal by blue is a success (its time is the goal event's
+simulated time); an own goal or the time limit is a failure. The paper reports
+75.5 % success, 7.49 s mean, 3.87 s std with learned skills (2018 Division A field).
+
+Scenes: episode i uses ``episode_seed(seed, i)`` (numpy ``SeedSequence([seed, i])``)
+for both the scene RNG and the env reset, so results depend only on ``seed`` and the
+episode count, never on the number of worker processes. Positions are uniform over
+the playing area shrunk by 0.1 m; the robot starts at least 0.3 m from the ball.
+
+Outputs in ``out``: ``results.json`` (written atomically) and ``time_hist.png``
+(histogram of the successful episodes' times, like the paper's Figs. 4-5).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .match import run_pool
+
+PAPER_RESULT = {"success_rate": 0.755, "time_mean_s": 7.49, "time_std_s": 3.87, "episodes": 500}
+SCENE_MARGIN_M = 0.1
+MIN_ROBOT_BALL_DIST_M = 0.3
+
+
+def episode_seed(seed: int, index: int) -> int:
+    """Seed of episode ``index`` in an evaluation seeded ``seed`` (32-bit)."""
+    return int(np.random.SeedSequence([int(seed), int(index)]).generate_state(1)[0])
+
+
+def sample_scene(rng: np.random.Generator, field) -> tuple[np.ndarray, np.ndarray]:
+    """(ball (2,), robot pose (3,): x, y, heading) in the field frame (m, rad)."""
+    lo = np.array([-field.half_length + SCENE_MARGIN_M, -field.half_width + SCENE_MARGIN_M])
+    hi = -lo
+    ball = rng.uniform(lo, hi)
+    for _ in range(1000):
+        xy = rng.uniform(lo, hi)
+        if float(np.hypot(*(xy - ball))) >= MIN_ROBOT_BALL_DIST_M:
+            break
+    return ball, np.array([xy[0], xy[1], rng.uniform(-math.pi, math.pi)])
+
+
+def wilson_interval(successes: int, n: int, z: float = 1.959963984540054) -> tuple[float, float]:
+    """Wilson score interval (95 % by default) for a binomial proportion."""
+    if n <= 0:
+        return (0.0, 1.0)
+    p = successes / n
+    denom = 1.0 + z * z / n
+    centre = (p + z * z / (2 * n)) / denom
+    half = z / denom * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
+    return (max(0.0, centre - half), min(1.0, centre + half))
+
+
+_ENV_CACHE: dict[tuple, Any] = {}
+
+
+def _env(field: str, realism: Any, max_time_s: float):
+    from ..envs import parallel_env
+
+    key = (field if isinstance(field, str) else repr(field), repr(realism), float(max_time_s))
+    env = _ENV_CACHE.get(key)
+    if env is None:
+        env = _ENV_CACHE[key] = parallel_env(n_blue=1, n_yellow=0, field=field, realism=realism, referee=True,
+                                             after_goal="terminate", max_time_s=float(max_time_s))
+    return env
+
+
+def run_episode(index: int, seed: int, skills: Any = "baseline", realism: Any = "none", field: Any = "div_b",
+                max_time_s: float = 15.0, realtime: bool = False) -> dict:
+    """One evaluation episode; returns a dict (index, seed, success, outcome, time_s,
+    kicks, ball, robot, missed_deadlines)."""
+    from .shoot import GoToBallAndShoot
+
+    env = _env(field, realism, max_time_s)
+    es = episode_seed(seed, index)
+    rng = np.random.default_rng(es)
+    ball, pose = sample_scene(rng, env.field)
+    env.reset(seed=es, options={"ball": {"pos": ball.tolist()}, "robots": {"blue_0": pose.tolist()}})
+    tactic = GoToBallAndShoot(env.field, env.config.robot, env.config.ball, skills=skills, dt=env.config.dt)
+    outcome, t_end, missed = "timeout", max_time_s, 0
+    prev = np.zeros(5, np.float32)
+    while env.agents:
+        t0 = time.perf_counter()
+        a = tactic.act(env.vision_state("blue"), 0)
+        if realtime and time.perf_counter() - t0 > env.config.dt:
+            missed += 1
+            a = prev
+        prev = a
+        _, _, _, _, infos = env.step({"blue_0": a})
+        for e in infos["blue_0"]["events"]:
+            if e["type"] == "goal":
+                outcome = "goal" if e["team"] == "blue" else "own_goal"
+                t_end = float(e["t"])
+        if not env.agents and outcome == "timeout":
+            t_end = float(env.world_state().t)
+    return {"index": index, "seed": es, "success": outcome == "goal", "outcome": outcome, "time_s": t_end,
+            "kicks": tactic.status.kicks, "ball": [float(v) for v in ball], "robot": [float(v) for v in pose],
+            "missed_deadlines": missed}
+
+
+def _episode_worker(job: tuple) -> dict:
+    return run_episode(*job)
+
+
+def _atomic_write(path: Path, data: bytes) -> None:
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+        raise
+
+
+def time_stats(times: list[float]) -> dict:
+    """Mean / std / min / percentiles / max of ``times`` (s); NaN-free (None when empty)."""
+    if not times:
+        return {k: None for k in ("mean", "std", "min", "p5", "p25", "median", "p75", "p95", "max")}
+    a = np.asarray(times, float)
+    q = np.percentile(a, [5, 25, 50, 75, 95])
+    return {"mean": float(a.mean()), "std": float(a.std(ddof=1)) if a.size > 1 else 0.0, "min": float(a.min()),
+            "p5": float(q[0]), "p25": float(q[1]), "median": float(q[2]), "p75": float(q[3]), "p95": float(q[4]),
+            "max": float(a.max())}
+
+
+def write_time_histogram(times: list[float], path: Path, title: str, max_time_s: float = 15.0) -> None:
+    """Histogram of success times (Agg canvas, no global backend change), written atomically."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(6.4, 4.0), dpi=100)
+    FigureCanvasAgg(fig)
+    ax = fig.add_subplot(1, 1, 1)
+    bins = np.linspace(0.0, max_time_s, int(max_time_s * 2) + 1)
+    ax.hist(times, bins=bins, color="#3070b0", edgecolor="white")
+    ax.set_xlabel("time to score (s)")
+    ax.set_ylabel("episodes")
+    ax.set_xlim(0.0, max_time_s)
+    ax.set_title(title, fontsize=10)
+    fig.tight_layout()
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=".tmp.png", dir=path.parent)
+    os.close(fd)
+    try:
+        fig.savefig(tmp, format="png")
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+        raise
+
+
+def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0, workers: int = 1,
+                    realism: Any = "none", out: str | os.PathLike | None = None, field: Any = "div_b",
+                    max_time_s: float = 15.0, realtime: bool = False, progress: bool = True,
+                    start_method: str = "spawn") -> dict:
+    """Evaluate go-to-ball-and-shoot as in the paper's section 5.2 (see the module docstring).
+
+    Args:
+        skills: "learned", "baseline" or {skill: kind}.
+        episodes: number of random scenes (paper: 500).
+        seed: evaluation seed; episode i uses ``episode_seed(seed, i)``.
+        workers: worker processes (results do not depend on it).
+        realism: env realism preset / config.
+        out: output directory for results.json and time_hist.png (None: no files).
+        field: "div_b" (default), "div_a" or a FieldGeometry.
+        max_time_s: per-episode limit (paper: 15 s).
+        realtime: drop a command whose computation exceeds the 1/60 s deadline.
+        progress: tqdm bar.
+        start_method: multiprocessing start method for workers > 1.
+
+    Returns: the results dict (also written to ``out/results.json``).
+    """
+    if not isinstance(episodes, int) or episodes < 1:
+        raise ValueError(f"episodes must be a positive integer, got {episodes!r}")
+    if not isinstance(workers, int) or workers < 1:
+        raise ValueError(f"workers must be a positive integer, got {workers!r}")
+    from .skillset import validate_skills
+
+    validate_skills(skills)
+    t0 = time.perf_counter()
+    jobs = [(i, seed, skills, realism, field, max_time_s, realtime) for i in range(episodes)]
+    eps = run_pool(_episode_worker, jobs, workers, f"eval go-to-ball-and-shoot ({skills})", progress,
+                   start_method, unit="ep")
+    eps.sort(key=lambda e: e["index"])
+    succ_times = [e["time_s"] for e in eps if e["success"]]
+    k = len(succ_times)
+    lo, hi = wilson_interval(k, episodes)
+    failures = {"timeout": sum(e["outcome"] == "timeout" for e in eps),
+                "own_goal": sum(e["outcome"] == "own_goal" for e in eps)}
+    field_name = field if isinstance(field, str) else getattr(field, "name", repr(field))
+    results = {
+        "protocol": "paper section 5.2: one robot and the ball at random, go-to-ball-and-shoot until a goal "
+                    f"or {max_time_s:g} s",
+        "skills": skills if isinstance(skills, str) else dict(skills),
+        "episodes": episodes, "seed": seed,
+        "config": {"field": field_name, "realism": realism if isinstance(realism, str) else repr(realism),
+                   "max_time_s": max_time_s, "realtime": realtime, "workers": workers,
+                   "scene_margin_m": SCENE_MARGIN_M, "min_robot_ball_dist_m": MIN_ROBOT_BALL_DIST_M},
+        "success_rate": k / episodes, "successes": k, "success_ci95": [lo, hi],
+        "time_s": time_stats(succ_times), "failures": failures,
+        "kicks_mean": float(np.mean([e["kicks"] for e in eps])),
+        "missed_deadlines": int(sum(e["missed_deadlines"] for e in eps)),
+        "paper": PAPER_RESULT, "wall_time_s": time.perf_counter() - t0, "episodes_detail": eps,
+    }
+    if out is not None:
+        d = Path(out)
+        d.mkdir(parents=True, exist_ok=True)
+        _atomic_write(d / "results.json", (json.dumps(results, indent=2) + "\n").encode())
+        ts = results["time_s"]
+        title = (f"go-to-ball-and-shoot ({results['skills']}), {field_name}: success {k}/{episodes} "
+                 f"= {100 * k / episodes:.1f} %" + (f", {ts['mean']:.2f} +- {ts['std']:.2f} s" if k else ""))
+        write_time_histogram(succ_times, d / "time_hist.png", title, max_time_s)
+    return results
