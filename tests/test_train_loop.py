@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import csv
 import dataclasses
+import json
 from pathlib import Path
 from typing import Any
 
@@ -14,7 +15,7 @@ import torch
 
 from train.__main__ import main as cli_main
 from train.config import DDPGConfig
-from train.evaluate import run_episodes
+from train.evaluate import main as evaluate_main, run_episodes
 from train.loop import Trainer, train
 from train.toy import ENV_ID as TOY_ID, toy_demos
 
@@ -185,7 +186,7 @@ def test_resume_errors(tmp_path) -> None:
 
 def test_cli_runs_and_resumes(tmp_path, capsys) -> None:
     cfg_path = tmp_path / "toy.json"
-    cfg_path.write_text(__import__("json").dumps(toy_config(total_samples=300, warmup_samples=100).to_dict()))
+    cfg_path.write_text(json.dumps(toy_config(total_samples=300, warmup_samples=100).to_dict()))
     out = tmp_path / "run"
     args = ["pendulum", "--config", str(cfg_path), "--seed", "2", "--out", str(out), "--no-progress"]
     assert cli_main(args + ["--set", "eval_episodes=2", "--set", "actor_hidden=[16]"]) == 0
@@ -196,3 +197,6 @@ def test_cli_runs_and_resumes(tmp_path, capsys) -> None:
     meta = torch.load(out / "actor.pt", weights_only=True)["metadata"]
     assert meta["samples"] == 500 and meta["hidden"] == [16] and meta["obs_spec"] == "toy_move_to_target/v1"
     assert meta["skill"] == "toy" and meta["hyperparameters"]["eval_episodes"] == 2
+    assert evaluate_main([TOY, str(out / "actor.pt"), "--episodes", "2", "--out", str(tmp_path / "e.json")]) == 0
+    result = json.loads((tmp_path / "e.json").read_text())
+    assert result["episodes"] == 2 and result["skill"] == "toy" and np.isfinite(result["mean_return"])

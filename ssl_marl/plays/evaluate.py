@@ -115,11 +115,19 @@ def _episode_worker(job: tuple) -> dict:
     return run_episode(*job)
 
 
+def publish_mode(tmp: str) -> None:
+    """Give a mkstemp file (0600) the usual mode for new files (0666 minus the umask)."""
+    mask = os.umask(0)
+    os.umask(mask)
+    os.chmod(tmp, 0o666 & ~mask)
+
+
 def _atomic_write(path: Path, data: bytes) -> None:
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     try:
         with os.fdopen(fd, "wb") as fh:
             fh.write(data)
+        publish_mode(tmp)
         os.replace(tmp, path)
     except BaseException:
         try:
@@ -159,6 +167,7 @@ def write_time_histogram(times: list[float], path: Path, title: str, max_time_s:
     os.close(fd)
     try:
         fig.savefig(tmp, format="png")
+        publish_mode(tmp)
         os.replace(tmp, path)
     except BaseException:
         try:

@@ -69,9 +69,15 @@ class RandomController:
         return dict(zip(self.agents, a))
 
 
-def make_controller(kind: str, team: str, n_robots: int, field: Any = "div_b", seed: int = 0, **kwargs: Any):
+def make_controller(kind: Any, team: str, n_robots: int, field: Any = "div_b", seed: int = 0, **kwargs: Any):
     """Controller ``kind`` (one of :data:`CONTROLLERS`) for ``team``. ``kwargs`` go to
-    :class:`~ssl_marl.plays.team.TeamController` (robot, ball, plays, adaptive, ...)."""
+    :class:`~ssl_marl.plays.team.TeamController` (robot, ball, plays, adaptive, ...).
+    An object with ``act(env) -> {agent: action}`` and ``agents`` is passed through."""
+    if not isinstance(kind, str):
+        if not (hasattr(kind, "act") and hasattr(kind, "agents")):
+            raise ValueError(f"controller for {team} must be one of {CONTROLLERS} or an object with act() and "
+                             f"agents, got {kind!r}")
+        return kind
     if kind in ("learned", "baseline"):
         from .team import TeamController
 
@@ -172,6 +178,9 @@ class _VideoSink:
             self._writer.close()
             self._writer = None
             if ok:
+                mask = os.umask(0)
+                os.umask(mask)
+                os.chmod(self._tmp, 0o666 & ~mask)
                 os.replace(self._tmp, self.path)
             else:
                 try:
@@ -206,8 +215,8 @@ def play_match(blue: str = "baseline", yellow: str = "baseline", robots: int = 6
     from ..envs import parallel_env
 
     for name, kind in (("blue", blue), ("yellow", yellow)):
-        if kind not in CONTROLLERS:
-            raise ValueError(f"{name} must be one of {CONTROLLERS}, got {kind!r}")
+        if isinstance(kind, str) and kind not in CONTROLLERS:
+            raise ValueError(f"{name} must be one of {CONTROLLERS} or a controller object, got {kind!r}")
     if not (isinstance(seconds, (int, float)) and math.isfinite(seconds) and seconds > 0):
         raise ValueError(f"seconds must be a positive number, got {seconds!r}")
     env_opts = dict(n_blue=robots, n_yellow=robots, field=field, max_time_s=float(seconds), realism=realism,
@@ -218,9 +227,12 @@ def play_match(blue: str = "baseline", yellow: str = "baseline", robots: int = 6
     env = parallel_env(**env_opts)
     geom = env.field
     ck = dict(controller_kwargs or {})
-    ctrls = {"blue": make_controller(blue, "blue", robots, geom, seed=seed, **(ck if blue in ("learned", "baseline") else {})),
-             "yellow": make_controller(yellow, "yellow", robots, geom, seed=seed + 1,
-                                       **(ck if yellow in ("learned", "baseline") else {}))}
+    ctrls = {team: make_controller(kind, team, robots, geom, seed=seed + k,
+                                   **(ck if kind in ("learned", "baseline") else {}))
+             for k, (team, kind) in enumerate((("blue", blue), ("yellow", yellow)))}
+    for team, c in ctrls.items():
+        if hasattr(c, "reset"):
+            c.reset()
     dt = env.config.dt
     total_steps = int(round(seconds / dt))
     every = max(int(round(env.config.control_hz / render_fps)), 1)
@@ -239,7 +251,7 @@ def play_match(blue: str = "baseline", yellow: str = "baseline", robots: int = 6
     if progress:
         from tqdm.auto import tqdm
 
-        bar = tqdm(total=total_steps, desc=f"match {blue} vs {yellow} (seed {seed})", unit="step", leave=False)
+        bar = tqdm(total=total_steps, desc=f"match (seed {seed})", unit="step", leave=False)
     ok = False
     try:
         if sink is not None:
@@ -281,7 +293,8 @@ def play_match(blue: str = "baseline", yellow: str = "baseline", robots: int = 6
             sink.close(ok)
         env.close()
     wall = time.perf_counter() - t_start
-    config = dict(blue=blue, yellow=yellow, robots=robots, field=geom.name, seconds=float(seconds), seed=seed,
+    label = {t: k if isinstance(k, str) else type(k).__name__ for t, k in (("blue", blue), ("yellow", yellow))}
+    config = dict(blue=label["blue"], yellow=label["yellow"], robots=robots, field=geom.name, seconds=float(seconds), seed=seed,
                   realism=realism if isinstance(realism, str) else repr(realism), realtime=realtime,
                   render=str(render) if render is not None else None)
     return MatchResult(score=dict(env.score), goals=goals, shots=shots,

@@ -199,7 +199,13 @@ class AimToShootEnv(_SkillEnv):
         The robot does not translate.
     Reward
         0.05 (alpha - beta) |V_B| if alpha > beta else (alpha - beta) |V_B|, every step
-        (:func:`ssl_marl.skills.features.aim_to_shoot_reward`).
+        (:func:`ssl_marl.skills.features.aim_to_shoot_reward`), ``reward_form="paper"``.
+        Because the ball moves with the dribbler while the robot turns, that reward
+        charges ~6 * integral(alpha - beta) dtheta for a turn (about -38 for half a turn)
+        while a goal earns only ~+0.7, so from a badly oriented start "never turn" is
+        optimal. ``reward_form="kick_only"`` applies the same formula only once the
+        ball has been kicked (the paper's words: "positive reward when it kicks towards
+        the goal and negative when it kicks away"); ``success_bonus`` is added on a goal.
     Termination
         Spawn: robot uniformly in the attacking half (x in [0.5, L/2 - 0.5] m, |y| <=
         W/2 - 0.3 m) with a uniformly random heading, the ball resting on its dribbler.
@@ -216,10 +222,17 @@ class AimToShootEnv(_SkillEnv):
     spec_version = AIM_TO_SHOOT_SPEC
 
     def __init__(self, max_time_s: float = 1.6, post_kick_time_s: float = 2.0, lost_distance: float = 0.05,
-                 spawn_x: tuple[float, float] | None = None, **kwargs: Any) -> None:
+                 spawn_x: tuple[float, float] | None = None, reward_form: str = "paper", success_bonus: float = 0.0,
+                 **kwargs: Any) -> None:
         super().__init__(**kwargs)
         EzPickle.__init__(self, max_time_s=max_time_s, post_kick_time_s=post_kick_time_s,
-                          lost_distance=lost_distance, spawn_x=spawn_x, **kwargs)
+                          lost_distance=lost_distance, spawn_x=spawn_x, reward_form=reward_form,
+                          success_bonus=success_bonus, **kwargs)
+        if reward_form not in ("paper", "kick_only"):
+            raise ValueError(f"reward_form must be 'paper' or 'kick_only', got {reward_form!r}")
+        if not math.isfinite(success_bonus):
+            raise ValueError(f"success_bonus must be finite, got {success_bonus!r}")
+        self.reward_form, self.success_bonus = reward_form, float(success_bonus)
         self.max_time_s, self.post_kick_time_s, self.lost_distance = max_time_s, post_kick_time_s, lost_distance
         f = self.field
         self.spawn_x = spawn_x or (0.5, f.half_length - 0.5)
@@ -254,7 +267,11 @@ class AimToShootEnv(_SkillEnv):
         if self._kick_t is None and any(ev["type"] == "kick" and ev["agent"] == AGENT for ev in info["events"]):
             self._kick_t = self.t
         terms = aim_to_shoot_reward(truth, 0, self.field)
+        if self.reward_form == "kick_only" and self._kick_t is None:
+            terms = {"aim": 0.0}
         terminated, truncated, success, reason = self._outcome(truth)
+        if self.success_bonus:
+            terms["success_bonus"] = self.success_bonus if success else 0.0
         out: dict[str, Any] = {"reward_terms": terms, "t": self.t, "kicked": self._kick_t is not None}
         if terminated or truncated:
             out.update(is_success=success, failure_reason=reason, time_s=self.t)
