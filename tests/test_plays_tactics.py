@@ -145,6 +145,41 @@ def test_skills_are_swappable_through_the_factory():
         make_tactic_skill("dance", "baseline", F)
 
 
+def test_learned_skills_are_built_once_through_the_factory_then_copied(monkeypatch):
+    import ssl_marl.skills as skills_pkg
+    from ssl_marl.plays import skillset
+
+    built = []
+
+    class FakeLearned:
+        def __init__(self, name):
+            self.name, self.status, self.policy = name, SkillStatus.RUNNING, object()
+
+        def reset(self):
+            self.status = SkillStatus.RUNNING
+
+        def act(self, world, robot):
+            self.status = SkillStatus.FAILED
+            return np.zeros(5, np.float32)
+
+    def fake_make_skill(name, kind, field, robot=None, ball=None):
+        built.append((name, kind))
+        return FakeLearned(name) if kind == "learned" else GoToBallBaseline(field, robot, ball)
+
+    monkeypatch.setattr(skills_pkg, "make_skill", fake_make_skill)
+    skillset.clear_skill_cache()
+    try:
+        t1 = GoToBallAndShoot(F, skills={"go_to_ball": "learned"})
+        t2 = GoToBallAndShoot(F, skills={"go_to_ball": "learned"})
+        assert isinstance(t1.go_to_ball, FakeLearned) and t1.go_to_ball is not t2.go_to_ball
+        assert t1.go_to_ball.policy is t2.go_to_ball.policy  # shared weights
+        assert built.count(("go_to_ball", "learned")) == 1
+        t1.go_to_ball.act(None, 0)
+        assert t2.go_to_ball.status is SkillStatus.RUNNING  # per-instance state
+    finally:
+        skillset.clear_skill_cache()
+
+
 def test_yellow_tactic_works_in_its_team_frame():
     # yellow robot at field (1, 0) facing -x (field) = +x in yellow's frame, ball on its dribbler
     x, y, h = 1.0, 0.0, math.pi

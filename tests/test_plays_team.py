@@ -158,6 +158,20 @@ def test_team_controller_credits_goals_to_the_running_play():
     assert sum(s["goals_for"] for s in c.selector.summary().values()) == 1
 
 
+def test_team_controller_starts_afresh_after_an_env_reset():
+    env = parallel_env(n_blue=3, n_yellow=0, max_time_s=5.0)
+    env.reset(seed=0)
+    c = TeamController("blue", 3)
+    for _ in range(40):
+        env.step(c.act(env))
+    old = c.tactic(0)
+    selections = sum(st["selections"] for st in c.selector.summary().values())
+    env.reset(seed=1)
+    legal(c.act(env), c.agents)
+    assert c.tactic(0) is not old and c.selector.since == 0.0
+    assert sum(st["selections"] for st in c.selector.summary().values()) == selections + 1
+
+
 def run_until_goal(env, act, team, limit_s=15.0):
     goal = None
     while env.agents and goal is None:

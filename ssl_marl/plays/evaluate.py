@@ -152,6 +152,7 @@ def write_time_histogram(times: list[float], path: Path, title: str, max_time_s:
     """Histogram of success times (Agg canvas, no global backend change), written atomically."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
+    from matplotlib.ticker import MaxNLocator
 
     fig = Figure(figsize=(6.4, 4.0), dpi=100)
     FigureCanvasAgg(fig)
@@ -161,6 +162,7 @@ def write_time_histogram(times: list[float], path: Path, title: str, max_time_s:
     ax.set_xlabel("time to score (s)")
     ax.set_ylabel("episodes")
     ax.set_xlim(0.0, max_time_s)
+    ax.yaxis.set_major_locator(MaxNLocator(integer=True))
     ax.set_title(title, fontsize=10)
     fig.tight_layout()
     fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=".tmp.png", dir=path.parent)
@@ -202,9 +204,13 @@ def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0,
         raise ValueError(f"episodes must be a positive integer, got {episodes!r}")
     if not isinstance(workers, int) or workers < 1:
         raise ValueError(f"workers must be a positive integer, got {workers!r}")
-    from .skillset import validate_skills
+    from ..physics.field import FieldGeometry
+    from .skillset import SWAPPABLE, make_tactic_skill, skill_kind, validate_skills
 
     validate_skills(skills)
+    for name in SWAPPABLE:  # fail here (e.g. a missing checkpoint), not in every worker
+        if skill_kind(skills, name) == "learned":
+            make_tactic_skill(name, skills, FieldGeometry.from_name(field))
     t0 = time.perf_counter()
     jobs = [(i, seed, skills, realism, field, max_time_s, realtime) for i in range(episodes)]
     eps = run_pool(_episode_worker, jobs, workers, f"eval go-to-ball-and-shoot ({skills})", progress,
@@ -236,6 +242,6 @@ def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0,
         _atomic_write(d / "results.json", (json.dumps(results, indent=2) + "\n").encode())
         ts = results["time_s"]
         title = (f"go-to-ball-and-shoot ({results['skills']}), {field_name}: success {k}/{episodes} "
-                 f"= {100 * k / episodes:.1f} %" + (f", {ts['mean']:.2f} +- {ts['std']:.2f} s" if k else ""))
+                 f"= {100 * k / episodes:.1f} %" + (f", {ts['mean']:.2f} \u00b1 {ts['std']:.2f} s" if k else ""))
         write_time_histogram(succ_times, d / "time_hist.png", title, max_time_s)
     return results

@@ -190,10 +190,33 @@ class _VideoSink:
 
 
 # ------------------------------------------------------------------- match
+def start_options(env: Any, seed: int, jitter_m: float) -> dict | None:
+    """Reset options: the kickoff formation (field frame) with seeded jitter, or None."""
+    if not jitter_m:
+        return None
+    from ..envs.referee import kickoff_formation
+
+    rng = np.random.default_rng([int(seed), 0x5EED])
+    cfg = env.config
+    robots = {}
+    for team, sgn, count in (("blue", 1.0, cfg.n_blue), ("yellow", -1.0, cfg.n_yellow)):
+        tf = kickoff_formation(env.field, count)
+        for i in range(count):
+            dxy = np.clip(rng.normal(0.0, jitter_m, 2), -2 * jitter_m, 2 * jitter_m)
+            x, y = tf[i, 0] * sgn + dxy[0], tf[i, 1] * sgn + dxy[1]
+            if team == "blue":
+                x = min(x, -0.05)
+            else:
+                x = max(x, 0.05)
+            h = (0.0 if sgn > 0 else math.pi) + float(np.clip(rng.normal(0.0, jitter_m), -0.2, 0.2))
+            robots[f"{team}_{i}"] = (float(x), float(y), h)
+    return {"formation": "kickoff", "robots": robots}
+
+
 def play_match(blue: str = "baseline", yellow: str = "baseline", robots: int = 6, field: Any = "div_b",
                seconds: float = 300.0, seed: int = 0, realism: Any = "none", realtime: bool = False,
                render: str | os.PathLike | None = None, progress: bool = True, render_fps: float = 30.0,
-               render_width_px: int = 640, controller_kwargs: dict | None = None,
+               render_width_px: int = 640, start_jitter_m: float = 0.05, controller_kwargs: dict | None = None,
                env_kwargs: dict | None = None) -> MatchResult:
     """Play one match and return its :class:`MatchResult`.
 
@@ -209,6 +232,11 @@ def play_match(blue: str = "baseline", yellow: str = "baseline", robots: int = 6
         progress: show a tqdm bar (simulated seconds).
         render_fps: frames per simulated second in the video.
         render_width_px: video frame width.
+        start_jitter_m: the match starts from the kickoff formation with each robot
+            moved by Gaussian noise of this sigma (m, clipped at 2 sigma; headings by
+            sigma / 0.1 m x 0.1 rad), drawn from ``seed``. Without noise (realism
+            "none") the simulation is deterministic, so this is what makes matches
+            with different seeds differ; 0 = the exact formation.
         controller_kwargs: extra TeamController options for both teams.
         env_kwargs: extra env options.
     """
@@ -227,6 +255,9 @@ def play_match(blue: str = "baseline", yellow: str = "baseline", robots: int = 6
     env = parallel_env(**env_opts)
     geom = env.field
     ck = dict(controller_kwargs or {})
+    ck.setdefault("robot", env.config.robot)
+    ck.setdefault("ball", env.config.ball)
+    ck.setdefault("dt", env.config.dt)
     ctrls = {team: make_controller(kind, team, robots, geom, seed=seed + k,
                                    **(ck if kind in ("learned", "baseline") else {}))
              for k, (team, kind) in enumerate((("blue", blue), ("yellow", yellow)))}
@@ -239,7 +270,7 @@ def play_match(blue: str = "baseline", yellow: str = "baseline", robots: int = 6
     sink = _VideoSink(render, env.config.control_hz / every) if render is not None else None
 
     t_start = time.perf_counter()
-    env.reset(seed=seed)
+    env.reset(seed=seed, options=start_options(env, seed, start_jitter_m))
     prev = {team: {a: np.zeros(5, np.float32) for a in c.agents} for team, c in ctrls.items()}
     missed = {"blue": 0, "yellow": 0}
     act_time = {"blue": 0.0, "yellow": 0.0}
@@ -294,8 +325,9 @@ def play_match(blue: str = "baseline", yellow: str = "baseline", robots: int = 6
         env.close()
     wall = time.perf_counter() - t_start
     label = {t: k if isinstance(k, str) else type(k).__name__ for t, k in (("blue", blue), ("yellow", yellow))}
-    config = dict(blue=label["blue"], yellow=label["yellow"], robots=robots, field=geom.name, seconds=float(seconds), seed=seed,
-                  realism=realism if isinstance(realism, str) else repr(realism), realtime=realtime,
+    config = dict(blue=label["blue"], yellow=label["yellow"], robots=robots, field=geom.name,
+                  seconds=float(seconds), seed=seed, realism=realism if isinstance(realism, str) else repr(realism),
+                  realtime=realtime, start_jitter_m=start_jitter_m,
                   render=str(render) if render is not None else None)
     return MatchResult(score=dict(env.score), goals=goals, shots=shots,
                        possession={k: v / max(steps, 1) for k, v in held.items()}, steps=steps,

@@ -100,7 +100,8 @@ def make_context(world: WorldState, team: str, field: FieldGeometry, robot: Robo
         raise ValueError(f"make_context: expected a snapshot in {team!r}'s frame, got frame={world.frame!r}")
     ours, theirs = world.team(team), world.opponents(team)
     field_players = ours.pos[1:] if ours.n >= 2 else ours.pos
-    our_t = float(time_to_reach(field_players, world.ball_pos, robot.max_speed).min()) if len(field_players) else math.inf
+    our_t = (float(time_to_reach(field_players, world.ball_pos, robot.max_speed).min()) if len(field_players)
+             else math.inf)
     their_all = time_to_reach(theirs.pos, world.ball_pos, robot.max_speed) if theirs.n else np.zeros(0)
     their_t = float(their_all.min()) if theirs.n else math.inf
     threats: tuple[int, ...] = ()

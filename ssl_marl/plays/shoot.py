@@ -22,6 +22,7 @@ the paper's.
 from __future__ import annotations
 
 import enum
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -50,6 +51,9 @@ class ShootParams:
         keep_out_of_own_defense_area: wait outside the own defense area while the ball
             is in it (team play); False = the paper's machine.
         wait_margin: how far outside the defense area to wait (m, robot centre).
+        safe_drive_forward: scale the drive-forward speed down to 0 as the free space
+            ahead of the ball (to the field lines, along the heading) shrinks from 0.5 m
+            to 0.1 m, so the robot does not push the ball out of play; False = paper.
     """
 
     near_ball_m: float = NEAR_BALL_M
@@ -57,6 +61,7 @@ class ShootParams:
     drive_forward_speed: float = 0.5
     keep_out_of_own_defense_area: bool = False
     wait_margin: float = 0.2
+    safe_drive_forward: bool = False
 
 
 @dataclass(frozen=True)
@@ -141,6 +146,10 @@ class GoToBallAndShoot(Tactic):
         self._current_skill().reset()
 
     def execute(self, world: WorldState, robot: int, inputs: ShootInputs) -> np.ndarray:
+        if self.state is ShootState.DRIVE_FORWARD and self.params.safe_drive_forward:
+            heading = float(world.team(world.frame).heading[robot])
+            free = free_distance_ahead(world.ball_pos, heading, self.field)
+            self.drive_forward.speed = self.params.drive_forward_speed * min(max((free - 0.1) / 0.4, 0.0), 1.0)
         if self.state is ShootState.WAIT_OUTSIDE_DEFENSE_AREA:
             pos = world.team(world.frame).pos[robot]
             rect = defense_rect(self.field, -1, self.nav.params.defense_margin + self.params.wait_margin)
@@ -151,13 +160,35 @@ class GoToBallAndShoot(Tactic):
 
 class Attacker(GoToBallAndShoot):
     """Attacker role: :class:`GoToBallAndShoot` that waits outside the own defense area
-    while the ball is in it (the goalie clears it)."""
+    while the ball is in it (the goalie clears it) and does not drive the ball over the
+    lines in DRIVE_FORWARD (``safe_drive_forward``)."""
 
     name = "attacker"
 
     def __init__(self, field, robot=None, ball=None, skills="baseline", dt: float = 1.0 / 60.0, **params) -> None:
         params.setdefault("keep_out_of_own_defense_area", True)
+        params.setdefault("safe_drive_forward", True)
         super().__init__(field, robot, ball, skills, dt, **params)
+
+
+def free_distance_ahead(point: np.ndarray, heading: float, field) -> float:
+    """Distance (m) from ``point`` along ``heading`` to the playing-area boundary (the
+    goal lines and touch lines); 0 if the point is outside."""
+    x, y = float(point[0]), float(point[1])
+    c, s = math.cos(heading), math.sin(heading)
+    L2, W2 = field.half_length, field.half_width
+    if abs(x) > L2 or abs(y) > W2:
+        return 0.0
+    t = math.inf
+    if c > 1e-9:
+        t = min(t, (L2 - x) / c)
+    elif c < -1e-9:
+        t = min(t, (-L2 - x) / c)
+    if s > 1e-9:
+        t = min(t, (W2 - y) / s)
+    elif s < -1e-9:
+        t = min(t, (-W2 - y) / s)
+    return float(t)
 
 
 def time_to_ball(pos: np.ndarray, ball_pos: np.ndarray, max_speed: float) -> np.ndarray:
@@ -166,4 +197,5 @@ def time_to_ball(pos: np.ndarray, ball_pos: np.ndarray, max_speed: float) -> np.
     return np.hypot(d[..., 0], d[..., 1]) / max(max_speed, 1e-9)
 
 
-__all__ = ["ShootState", "ShootParams", "ShootInputs", "GoToBallAndShoot", "Attacker", "time_to_ball"]
+__all__ = ["ShootState", "ShootParams", "ShootInputs", "GoToBallAndShoot", "Attacker", "time_to_ball",
+           "free_distance_ahead"]

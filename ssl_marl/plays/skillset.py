@@ -13,11 +13,18 @@ Construction goes through the skills package factory
 that this module (and the baseline path) keeps working if the learned runtime is
 missing or broken. For ``"baseline"`` the hand-coded classes are used directly when
 the factory cannot be imported.
+
+Learned skills load their actor from disk when built. Tactics are built often (a
+robot that changes role gets a fresh tactic), so a learned skill is built through
+the factory once per (name, field, robot, ball) and later instances are shallow
+copies of that prototype, reset (the actor weights are shared and read-only; the
+per-run state lives in attributes that ``reset()`` rebinds).
 """
 
 from __future__ import annotations
 
-from typing import Mapping, Union
+import copy
+from typing import Any, Mapping, Union
 
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
@@ -56,6 +63,26 @@ def make_tactic_skill(name: str, skills: SkillsSpec, field: FieldGeometry, robot
     if name not in SWAPPABLE:
         raise ValueError(f"make_tactic_skill: unknown skill {name!r}; expected one of {SWAPPABLE}")
     kind = skill_kind(skills, name)
+    if kind == "learned":
+        key = (name, field, robot or RobotParams(), ball or BallParams())
+        proto = _LEARNED_PROTOTYPES.get(key)
+        if proto is None:
+            proto = _LEARNED_PROTOTYPES[key] = _build(name, kind, field, robot, ball)
+        skill = copy.copy(proto)
+        skill.reset()
+        return skill
+    return _build(name, kind, field, robot, ball)
+
+
+_LEARNED_PROTOTYPES: dict[tuple, Any] = {}
+
+
+def clear_skill_cache() -> None:
+    """Forget the learned-skill prototypes (e.g. after a new checkpoint was written)."""
+    _LEARNED_PROTOTYPES.clear()
+
+
+def _build(name: str, kind: str, field: FieldGeometry, robot: RobotParams | None, ball: BallParams | None):
     try:
         from ..skills import make_skill  # lazy: the learned runtime may pull in torch
     except ImportError as exc:  # pragma: no cover - only without the factory

@@ -30,7 +30,7 @@ from ..physics.state import TEAMS, WorldState, to_team_frame
 from ..skills.base import make_action
 from .assignment import Assignment, RoleSlot, assign
 from .play import Play, PlayContext, PlaySelector, RoleDef, make_context, standard_plays
-from .skillset import SkillsSpec, validate_skills
+from .skillset import SWAPPABLE, SkillsSpec, make_tactic_skill, skill_kind, validate_skills
 from .tactic_base import Tactic
 
 
@@ -67,6 +67,9 @@ class TeamController:
         self.selector = PlaySelector(plays if plays is not None else standard_plays(), min_hold_s=min_hold_s,
                                      adaptive=adaptive, seed=seed)
         self.agents = [f"{team}_{i}" for i in range(n_robots)]
+        for name in SWAPPABLE:  # fail now (e.g. a missing checkpoint), not in the first tick
+            if skill_kind(skills, name) == "learned":
+                make_tactic_skill(name, skills, self.field, self.rp, self.bp)
         self.reset()
 
     def reset(self) -> None:
@@ -75,9 +78,18 @@ class TeamController:
         self._tactics: dict[int, tuple[str, Any, Tactic]] = {}
         self._previous: dict[str, int | None] = {}
         self._score_seen: dict[str, int] | None = None
+        self._last_t: float | None = None
         self.assignment: Assignment | None = None
         self.play: Play | None = None
         self.context: PlayContext | None = None
+
+    def new_episode(self) -> None:
+        """The env was reset (detected from simulated time going back): drop tactics,
+        role history and the running play, keep the play weights and statistics."""
+        self._tactics = {}
+        self._previous = {}
+        self.assignment = self.play = self.context = None
+        self.selector.current, self.selector.since, self.selector._last_t = None, 0.0, None
 
     # ------------------------------------------------------------- queries
     @property
@@ -135,6 +147,9 @@ class TeamController:
     def act(self, env_or_world: Any) -> dict[str, np.ndarray]:
         """Actions ``{f"{team}_{i}": (5,) float32}`` for all robots of the team."""
         world = self.team_world(env_or_world)
+        if self._last_t is not None and world.t < self._last_t:
+            self.new_episode()
+        self._last_t = world.t
         ours = world.team(self.team)
         if ours.n != self.n:
             raise ValueError(f"TeamController({self.team!r}) was built for {self.n} robots, the world has {ours.n}")

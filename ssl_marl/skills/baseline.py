@@ -131,14 +131,17 @@ class AimToShootBaseline(_SkillBase):
 
 class DriveForward(_SkillBase):
     """The paper's fixed skill: dribbler on, drive forward for ``duration_s`` (1 s) at
-    ``speed`` (m/s). Succeeds when the time is up."""
+    ``speed`` (m/s). Succeeds when the time is up. The speed ramps down linearly over the
+    last ``ramp_s`` (0.3 s) so that the robot is nearly at rest when the next skill
+    starts: stopping at the full 6 m/s^2 braking limit would throw the ball off the
+    dribbler (its bounded force holds it up to 5 m/s^2)."""
 
     name = "drive_forward"
 
     def __init__(self, field, robot=None, ball=None, duration_s: float = 1.0, speed: float = 0.5,
-                 dt: float = 1.0 / 60.0):
+                 dt: float = 1.0 / 60.0, ramp_s: float = 0.3):
         super().__init__(field, robot, ball)
-        self.duration_s, self.speed, self.dt = duration_s, speed, dt
+        self.duration_s, self.speed, self.dt, self.ramp_s = duration_s, speed, dt, ramp_s
         self.elapsed = 0.0
 
     def reset(self) -> None:
@@ -146,10 +149,12 @@ class DriveForward(_SkillBase):
         self.elapsed = 0.0
 
     def act(self, world: WorldState, robot: int) -> np.ndarray:
+        remaining = self.duration_s - self.elapsed
         self.elapsed += self.dt
         if self.elapsed >= self.duration_s - 1e-9:
             self.status = SkillStatus.SUCCEEDED
-        return make_action(vx=self.speed / self.rp.max_speed, dribble=True)
+        ramp = min(1.0, max(remaining - self.dt, 0.0) / self.ramp_s) if self.ramp_s > 0 else 1.0
+        return make_action(vx=self.speed * ramp / self.rp.max_speed, dribble=True)
 
 
 class MoveToPoint(_SkillBase):

@@ -1,0 +1,68 @@
+"""Results tables from evaluation JSON files (never hand-typed numbers).
+
+    python -m train.report [--results results] [--out docs/results_tables.md]
+
+Reads every ``results/*/results.json`` written by ``ssl-marl eval-skill`` and
+``ssl-marl eval-tactic`` (and ``results/match_*.json`` series from ``ssl-marl match --json``)
+and writes markdown tables, printing them too.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+
+from ssl_marl.io import atomic_write_bytes
+
+
+def _fmt_time(t: dict) -> str:
+    if not t or t.get("mean") is None:
+        return "n/a"
+    return f"{t['mean']:.2f} +/- {t['std']:.2f}"
+
+
+def skill_rows(results: Path) -> list[str]:
+    rows = ["| run | skill | policy | realism | episodes | success [95% CI] | time to success (s) | failures | paper |",
+            "|---|---|---|---|---|---|---|---|---|"]
+    for f in sorted(results.glob("*/results.json")):
+        r = json.loads(f.read_text())
+        if "skill" not in r:
+            continue
+        lo, hi = r["success_ci95"]
+        rows.append(f"| `{f.parent.name}` | {r['skill']} | {r['policy']} | {r['config'].get('realism', 'none')} | "
+                    f"{r['episodes']} | {r['success_rate']:.3f} [{lo:.3f}, {hi:.3f}] | {_fmt_time(r['time_to_success_s'])} | "
+                    f"{r['failure_reasons'] or '-'} | {r.get('paper_success_rate', '')} |")
+    return rows
+
+
+def tactic_rows(results: Path) -> list[str]:
+    rows = ["| run | skills | realism | episodes | success [95% CI] | time to goal (s) | failures | paper |",
+            "|---|---|---|---|---|---|---|---|"]
+    for f in sorted(results.glob("*/results.json")):
+        r = json.loads(f.read_text())
+        if "tactic" not in r:
+            continue
+        lo, hi = r.get("success_ci95", [float("nan")] * 2)
+        rows.append(f"| `{f.parent.name}` | {r.get('skills')} | {r.get('realism', 'none')} | {r['episodes']} | "
+                    f"{r['success_rate']:.3f} [{lo:.3f}, {hi:.3f}] | {_fmt_time(r.get('time_to_success_s', {}))} | "
+                    f"{r.get('failure_reasons') or '-'} | 0.755, 7.49 +/- 3.87 s |")
+    return rows
+
+
+def main(argv: list[str] | None = None) -> str:
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--results", default="results", help="folder of evaluation outputs (default results)")
+    p.add_argument("--out", default=None, help="also write the markdown to this file")
+    a = p.parse_args(argv)
+    res = Path(a.results)
+    text = "\n".join(["### Skills (ssl-marl eval-skill)", "", *skill_rows(res), "",
+                      "### Tactic (ssl-marl eval-tactic)", "", *tactic_rows(res), ""])
+    print(text)
+    if a.out:
+        atomic_write_bytes(a.out, text.encode())
+    return text
+
+
+if __name__ == "__main__":
+    main()
