@@ -7,9 +7,7 @@ explains every option.
 from __future__ import annotations
 
 import argparse
-import json
 import sys
-from pathlib import Path
 
 FIELDS = ("div_a", "div_b")
 TEAM_POLICIES = ("learned", "baseline", "random", "idle")
@@ -93,27 +91,42 @@ def cmd_demo(args: argparse.Namespace) -> int:
 
 
 # --------------------------------------------------------------------- match
+def _match_line(res) -> str:
+    s, sh, po = res.score, res.shots, res.possession
+    return (f"blue ({res.config.get('blue')}) {s['blue']} - {s['yellow']} yellow ({res.config.get('yellow')})"
+            f"  | shots {sh.get('blue', 0)}-{sh.get('yellow', 0)}"
+            f"  | possession {100 * po.get('blue', 0):.0f}%-{100 * po.get('yellow', 0):.0f}%"
+            f"  | {res.sim_time_s:.0f} s simulated in {res.wall_time_s:.1f} s wall"
+            + (f"  | missed deadlines {res.missed_deadlines}" if res.config.get("realtime") else ""))
+
+
 def cmd_match(args: argparse.Namespace) -> int:
+    """Play one match (or a series) between two team controllers."""
+    from .io import atomic_write_json
     from .plays.match import play_match, play_series
 
+    common = dict(robots=args.robots, field=args.field, seconds=args.seconds, realism=args.realism,
+                  realtime=args.realtime)
+    render = None if str(args.render).lower() == "none" else args.render
     if args.matches == 1:
-        res = play_match(blue=args.blue, yellow=args.yellow, robots=args.robots, field=args.field,
-                         seconds=args.seconds, seed=args.seed, realism=args.realism, realtime=args.realtime,
-                         render=args.render, progress=not args.quiet)
-        print(res.summary())
+        res = play_match(blue=args.blue, yellow=args.yellow, seed=args.seed, render=render,
+                         render_fps=args.render_fps, render_width_px=args.render_width, progress=not args.quiet,
+                         **common)
+        print(_match_line(res) + (f"  | video -> {render}" if render else ""))
         if args.json:
-            from .io import atomic_write_json
-
             atomic_write_json(args.json, res.to_dict())
         return 0
-    series = play_series(blue=args.blue, yellow=args.yellow, robots=args.robots, field=args.field,
-                         seconds=args.seconds, seed=args.seed, realism=args.realism, realtime=args.realtime,
-                         matches=args.matches, workers=args.workers, progress=not args.quiet)
-    print(series.table())
+    results, summary = play_series(blue=args.blue, yellow=args.yellow, matches=args.matches, workers=args.workers,
+                                   seed=args.seed, progress=not args.quiet, **common)
+    print(f"{'match':>5} {'seed':>6}  {'score':>7}  {'shots':>7}  possession")
+    for i, r in enumerate(results):
+        print(f"{i:>5} {r.seed:>6}  {r.score['blue']:>3}-{r.score['yellow']:<3}  {r.shots['blue']:>3}-{r.shots['yellow']:<3}"
+              f"  {100 * r.possession['blue']:.0f}%-{100 * r.possession['yellow']:.0f}%")
+    print(f"blue ({args.blue}) vs yellow ({args.yellow}), {summary['matches']} matches: "
+          f"W {summary['wins']} D {summary['draws']} L {summary['losses']}, "
+          f"goals {summary['goals_for']}-{summary['goals_against']}")
     if args.json:
-        from .io import atomic_write_json
-
-        atomic_write_json(args.json, series.to_dict())
+        atomic_write_json(args.json, {"summary": summary, "matches": [r.to_dict() for r in results]})
     return 0
 
 
@@ -138,8 +151,13 @@ def cmd_eval_tactic(args: argparse.Namespace) -> int:
     from .plays.evaluate import evaluate_tactic
 
     s = evaluate_tactic(skills=args.skills, episodes=args.episodes, seed=args.seed, workers=args.workers,
-                        realism=args.realism, out=args.out, progress=not args.quiet)
-    print(json.dumps({k: v for k, v in s.items() if k not in ("episodes_detail",)}, indent=2, default=str))
+                        realism=args.realism, out=args.out, field=args.field, progress=not args.quiet)
+    t = s["time_s"]
+    lo, hi = s["success_ci95"]
+    mean = "n/a" if t["mean"] is None else f"{t['mean']:.2f} +/- {t['std']:.2f} s"
+    print(f"go-to-ball-and-shoot ({args.skills} skills): success {s['success_rate']:.3f} [95% CI {lo:.3f}-{hi:.3f}] "
+          f"over {s['episodes']} episodes, time to goal {mean}, failures {s['failures']} "
+          f"(paper: 0.755, 7.49 +/- 3.87 s)" + (f" -> {args.out}/results.json" if args.out else ""))
     return 0
 
 
@@ -176,15 +194,20 @@ def build_parser() -> argparse.ArgumentParser:
     m.add_argument("--yellow", choices=TEAM_POLICIES, default="baseline", help="yellow team's skills (default baseline)")
     m.add_argument("--robots", type=_robots, default=6, help="robots per team, 1-11 (default 6)")
     m.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")
-    m.add_argument("--seconds", type=_positive_float("--seconds"), default=60.0,
-                   help="simulated match length in seconds (default 60)")
+    m.add_argument("--seconds", type=_positive_float("--seconds"), default=30.0,
+                   help="simulated match length in seconds (default 30)")
     m.add_argument("--seed", type=int, default=0, help="random seed; match i of a series uses seed + i (default 0)")
     m.add_argument("--realism", choices=("none", "realistic"), default="none",
                    help="vision noise / latency preset (default none)")
     m.add_argument("--realtime", action="store_true",
                    help="paper's evaluation mode: a team whose controller misses the 16.7 ms deadline loses "
                         "that command")
-    m.add_argument("--render", default=None, metavar="PATH", help="write the match to PATH (.gif or .mp4)")
+    m.add_argument("--render", default="match.gif", metavar="PATH",
+                   help="write a single match to PATH (.gif or .mp4); 'none' to skip (default match.gif)")
+    m.add_argument("--render-fps", type=_positive_float("--render-fps"), default=10.0,
+                   help="video frames per simulated second (default 10)")
+    m.add_argument("--render-width", type=_positive_int("--render-width"), default=480,
+                   help="video width in pixels (default 480)")
     m.add_argument("--matches", type=_positive_int("--matches"), default=1, help="number of matches (default 1)")
     m.add_argument("--workers", type=_positive_int("--workers"), default=1,
                    help="parallel worker processes for a series (default 1)")
@@ -218,6 +241,7 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--workers", type=_positive_int("--workers"), default=1, help="worker processes (default 1)")
     t.add_argument("--realism", choices=("none", "realistic"), default="none", help="noise / latency preset")
     t.add_argument("--out", default=None, help="output directory")
+    t.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")
     t.add_argument("--quiet", action="store_true", help="no progress bar")
     t.set_defaults(func=cmd_eval_tactic)
 

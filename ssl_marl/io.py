@@ -22,6 +22,9 @@ def atomic_write_bytes(path: str | os.PathLike, data: bytes) -> None:
             fh.write(data)
             fh.flush()
             os.fsync(fh.fileno())
+        mask = os.umask(0)  # mkstemp makes 0600 files: give the usual 0666 minus umask
+        os.umask(mask)
+        os.chmod(tmp, 0o666 & ~mask)
         os.replace(tmp, path)
     except BaseException:
         if os.path.exists(tmp):
@@ -65,12 +68,15 @@ def wilson_interval(successes: int, n: int, z: float = 1.959964) -> tuple[float,
 
 
 def time_summary(times: list[float]) -> dict[str, float | None]:
-    """Mean, std, min, max and percentiles (s) of a list of times."""
+    """Mean, std (ddof 1), min, percentiles and max (s) of a list of times; None when empty."""
+    keys = ("mean", "std", "min", "p5", "p25", "median", "p75", "p95", "max")
     if not times:
-        return {"mean": None, "std": None, "min": None, "max": None, "p5": None, "p50": None, "p95": None}
-    t = np.asarray(times, dtype=float)
-    return {"mean": float(t.mean()), "std": float(t.std()), "min": float(t.min()), "max": float(t.max()),
-            "p5": float(np.percentile(t, 5)), "p50": float(np.percentile(t, 50)), "p95": float(np.percentile(t, 95))}
+        return {k: None for k in keys}
+    a = np.asarray(times, dtype=float)
+    q = np.percentile(a, [5, 25, 50, 75, 95])
+    return {"mean": float(a.mean()), "std": float(a.std(ddof=1)) if a.size > 1 else 0.0, "min": float(a.min()),
+            "p5": float(q[0]), "p25": float(q[1]), "median": float(q[2]), "p75": float(q[3]), "p95": float(q[4]),
+            "max": float(a.max())}
 
 
 def episode_seed(seed: int, index: int) -> int:

@@ -41,12 +41,23 @@ def tactic_rows(results: Path) -> list[str]:
             "|---|---|---|---|---|---|---|---|"]
     for f in sorted(results.glob("*/results.json")):
         r = json.loads(f.read_text())
-        if "tactic" not in r:
+        if "protocol" not in r or "skills" not in r:
             continue
-        lo, hi = r.get("success_ci95", [float("nan")] * 2)
-        rows.append(f"| `{f.parent.name}` | {r.get('skills')} | {r.get('realism', 'none')} | {r['episodes']} | "
-                    f"{r['success_rate']:.3f} [{lo:.3f}, {hi:.3f}] | {_fmt_time(r.get('time_to_success_s', {}))} | "
-                    f"{r.get('failure_reasons') or '-'} | 0.755, 7.49 +/- 3.87 s |")
+        lo, hi = r["success_ci95"]
+        rows.append(f"| `{f.parent.name}` | {r['skills']} | {r['config'].get('realism', 'none')} | {r['episodes']} | "
+                    f"{r['success_rate']:.3f} [{lo:.3f}, {hi:.3f}] | {_fmt_time(r['time_s'])} | "
+                    f"{r['failures']} | 0.755, 7.49 +/- 3.87 |")
+    return rows
+
+
+def match_rows(results: Path) -> list[str]:
+    rows = ["| series | blue | yellow | matches | W-D-L (blue) | goals for-against | shots/match (blue, yellow) | "
+            "possession (blue, yellow) |", "|---|---|---|---|---|---|---|---|"]
+    for f in sorted(results.glob("match_*.json")):
+        s = json.loads(f.read_text())["summary"]
+        rows.append(f"| `{f.stem}` | {s['blue']} | {s['yellow']} | {s['matches']} | {s['wins']}-{s['draws']}-{s['losses']} | "
+                    f"{s['goals_for']}-{s['goals_against']} | {s['shots_blue_mean']:.1f}, {s['shots_yellow_mean']:.1f} | "
+                    f"{100 * s['possession_blue_mean']:.0f}%, {100 * s['possession_yellow_mean']:.0f}% |")
     return rows
 
 
@@ -57,7 +68,9 @@ def main(argv: list[str] | None = None) -> str:
     a = p.parse_args(argv)
     res = Path(a.results)
     text = "\n".join(["### Skills (ssl-marl eval-skill)", "", *skill_rows(res), "",
-                      "### Tactic (ssl-marl eval-tactic)", "", *tactic_rows(res), ""])
+                      "### Tactic (ssl-marl eval-tactic)", "", *tactic_rows(res), "",
+                      "### Match series (ssl-marl match --matches K --json results/match_NAME.json)", "",
+                      *match_rows(res), ""])
     print(text)
     if a.out:
         atomic_write_bytes(a.out, text.encode())

@@ -146,7 +146,7 @@ def all_observations(ws: WorldState, field: FieldGeometry, max_teammates: int, m
     if n == 0:
         return out.astype(np.float32)
     sgn = np.concatenate([np.ones(nb), -np.ones(ny)])
-    team = np.concatenate([np.zeros(nb, np.int8), np.ones(ny, np.int8)])
+    np.concatenate([np.zeros(nb, np.int8), np.ones(ny, np.int8)])
     P = np.concatenate([ws.blue.pos, ws.yellow.pos])
     V = np.concatenate([ws.blue.vel, ws.yellow.vel])
     H = np.concatenate([ws.blue.heading, ws.yellow.heading])

@@ -38,7 +38,7 @@ import numpy as np
 
 from .field import FieldGeometry
 from .params import BallParams, RobotParams
-from .state import TeamState, WorldState, make_team_state, wrap_angle
+from .state import TeamState, WorldState, wrap_angle
 
 SCALE = 10.0  # Box2D units per metre
 VEL_ITERS = 8

@@ -22,23 +22,19 @@ from __future__ import annotations
 import json
 import math
 import os
-import tempfile
 import time
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from ..io import atomic_savefig, atomic_write_bytes, episode_seed, time_summary, wilson_interval
+
 from .match import run_pool
 
 PAPER_RESULT = {"success_rate": 0.755, "time_mean_s": 7.49, "time_std_s": 3.87, "episodes": 500}
 SCENE_MARGIN_M = 0.1
 MIN_ROBOT_BALL_DIST_M = 0.3
-
-
-def episode_seed(seed: int, index: int) -> int:
-    """Seed of episode ``index`` in an evaluation seeded ``seed`` (32-bit)."""
-    return int(np.random.SeedSequence([int(seed), int(index)]).generate_state(1)[0])
 
 
 def sample_scene(rng: np.random.Generator, field) -> tuple[np.ndarray, np.ndarray]:
@@ -51,17 +47,6 @@ def sample_scene(rng: np.random.Generator, field) -> tuple[np.ndarray, np.ndarra
         if float(np.hypot(*(xy - ball))) >= MIN_ROBOT_BALL_DIST_M:
             break
     return ball, np.array([xy[0], xy[1], rng.uniform(-math.pi, math.pi)])
-
-
-def wilson_interval(successes: int, n: int, z: float = 1.959963984540054) -> tuple[float, float]:
-    """Wilson score interval (95 % by default) for a binomial proportion."""
-    if n <= 0:
-        return (0.0, 1.0)
-    p = successes / n
-    denom = 1.0 + z * z / n
-    centre = (p + z * z / (2 * n)) / denom
-    half = z / denom * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
-    return (max(0.0, centre - half), min(1.0, centre + half))
 
 
 _ENV_CACHE: dict[tuple, Any] = {}
@@ -115,39 +100,6 @@ def _episode_worker(job: tuple) -> dict:
     return run_episode(*job)
 
 
-def publish_mode(tmp: str) -> None:
-    """Give a mkstemp file (0600) the usual mode for new files (0666 minus the umask)."""
-    mask = os.umask(0)
-    os.umask(mask)
-    os.chmod(tmp, 0o666 & ~mask)
-
-
-def _atomic_write(path: Path, data: bytes) -> None:
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
-        publish_mode(tmp)
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        raise
-
-
-def time_stats(times: list[float]) -> dict:
-    """Mean / std / min / percentiles / max of ``times`` (s); NaN-free (None when empty)."""
-    if not times:
-        return {k: None for k in ("mean", "std", "min", "p5", "p25", "median", "p75", "p95", "max")}
-    a = np.asarray(times, float)
-    q = np.percentile(a, [5, 25, 50, 75, 95])
-    return {"mean": float(a.mean()), "std": float(a.std(ddof=1)) if a.size > 1 else 0.0, "min": float(a.min()),
-            "p5": float(q[0]), "p25": float(q[1]), "median": float(q[2]), "p75": float(q[3]), "p95": float(q[4]),
-            "max": float(a.max())}
-
-
 def write_time_histogram(times: list[float], path: Path, title: str, max_time_s: float = 15.0) -> None:
     """Histogram of success times (Agg canvas, no global backend change), written atomically."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -165,18 +117,7 @@ def write_time_histogram(times: list[float], path: Path, title: str, max_time_s:
     ax.yaxis.set_major_locator(MaxNLocator(integer=True))
     ax.set_title(title, fontsize=10)
     fig.tight_layout()
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=".tmp.png", dir=path.parent)
-    os.close(fd)
-    try:
-        fig.savefig(tmp, format="png")
-        publish_mode(tmp)
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        raise
+    atomic_savefig(fig, path)
 
 
 def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0, workers: int = 1,
@@ -231,7 +172,7 @@ def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0,
                    "max_time_s": max_time_s, "realtime": realtime, "workers": workers,
                    "scene_margin_m": SCENE_MARGIN_M, "min_robot_ball_dist_m": MIN_ROBOT_BALL_DIST_M},
         "success_rate": k / episodes, "successes": k, "success_ci95": [lo, hi],
-        "time_s": time_stats(succ_times), "failures": failures,
+        "time_s": time_summary(succ_times), "failures": failures,
         "kicks_mean": float(np.mean([e["kicks"] for e in eps])),
         "missed_deadlines": int(sum(e["missed_deadlines"] for e in eps)),
         "paper": PAPER_RESULT, "wall_time_s": time.perf_counter() - t0, "episodes_detail": eps,
@@ -239,7 +180,7 @@ def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0,
     if out is not None:
         d = Path(out)
         d.mkdir(parents=True, exist_ok=True)
-        _atomic_write(d / "results.json", (json.dumps(results, indent=2) + "\n").encode())
+        atomic_write_bytes(d / "results.json", (json.dumps(results, indent=2) + "\n").encode())
         ts = results["time_s"]
         title = (f"go-to-ball-and-shoot ({results['skills']}), {field_name}: success {k}/{episodes} "
                  f"= {100 * k / episodes:.1f} %" + (f", {ts['mean']:.2f} \u00b1 {ts['std']:.2f} s" if k else ""))
