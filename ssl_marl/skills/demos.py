@@ -64,3 +64,41 @@ def aim_to_shoot_demos(n_steps: int, seed: int = 0, **env_kwargs: Any) -> Iterat
         return {"robot_pose": (x, y, math.atan2(aim_y - y, f.half_length - x))}
 
     return _run(env, n_steps, seed, options, lambda obs: kick)
+
+
+def aim_to_shoot_baseline_demos(n_steps: int, seed: int = 0, post_margin: float = 0.05,
+                                **env_kwargs: Any) -> Iterator[Transition]:
+    """``n_steps`` aim-to-shoot transitions from the hand-coded skill (turn towards the
+    goal with the dribbler on, kick once the heading is ``post_margin`` rad inside the
+    posts) from the task's own random spawns; only successful episodes are kept. These
+    show turning with the ball, which the paper's facing-the-goal demos do not."""
+    from .baseline import AimToShootBaseline
+    from .wrappers import task_action
+
+    env = AimToShootEnv(**env_kwargs)
+    skill = AimToShootBaseline(env.field, env.robot_params, env.ball_params, post_margin=post_margin)
+    rng = np.random.default_rng(seed)
+    produced = 0
+    while produced < n_steps:
+        obs, _ = env.reset(seed=int(rng.integers(2 ** 31)))
+        skill.reset()
+        episode: list[Transition] = []
+        while True:
+            action = task_action("aim-to-shoot", skill.act(env.seen(), 0))
+            next_obs, reward, terminated, truncated, info = env.step(action)
+            episode.append(Transition(obs, action, float(reward), next_obs, bool(terminated), bool(truncated), info))
+            obs = next_obs
+            if terminated or truncated:
+                break
+        if not info["is_success"]:
+            continue
+        for tr in episode[: n_steps - produced]:
+            yield tr
+        produced += min(len(episode), n_steps - produced)
+
+
+def aim_to_shoot_mixed_demos(n_steps: int, seed: int = 0, **env_kwargs: Any) -> Iterator[Transition]:
+    """Half :func:`aim_to_shoot_demos` (the paper's), half :func:`aim_to_shoot_baseline_demos`."""
+    half = n_steps // 2
+    yield from aim_to_shoot_demos(half, seed, **env_kwargs)
+    yield from aim_to_shoot_baseline_demos(n_steps - half, seed + 1, **env_kwargs)
