@@ -555,6 +555,9 @@ def write_animation(frames: Iterable[np.ndarray] | list[np.ndarray], path: str |
                 frames = [np.pad(f, ((0, h % 2), (0, w % 2), (0, 0)), mode="edge") for f in frames]
             iio.imwrite(tmp_name, np.stack(frames), extension=".mp4", plugin="FFMPEG", fps=fps,
                         codec="libx264", macro_block_size=1)
+        mask = os.umask(0)  # mkstemp files are 0600: publish with the usual 0666 minus umask
+        os.umask(mask)
+        os.chmod(tmp_name, 0o666 & ~mask)
         os.replace(tmp_name, path)
     except BaseException:
         try:
