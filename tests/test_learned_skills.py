@@ -1,0 +1,71 @@
+"""Learned skills: the numpy actor, the skill protocol, checkpoint checks, shipped actors."""
+
+import numpy as np
+import pytest
+import torch
+
+from ssl_marl.physics import FieldGeometry
+from ssl_marl.physics.state import TeamState, WorldState, make_team_state, to_team_frame
+from ssl_marl.skills import SkillStatus, make_skill
+from ssl_marl.skills.checkpoint import save_actor
+from ssl_marl.skills.features import AIM_TO_SHOOT_SPEC, GO_TO_BALL_SPEC
+from ssl_marl.skills.learned import PRETRAINED, LearnedAimToShoot, LearnedGoToBall, NumpyActor, load_policy
+from ssl_marl.skills.networks import Actor
+
+F = FieldGeometry.div_b()
+
+
+def tiny_checkpoint(path, skill="go_to_ball", spec=GO_TO_BALL_SPEC, obs_dim=14, hidden=(16, 8)):
+    torch.manual_seed(0)
+    actor = Actor(obs_dim, 3, hidden)
+    save_actor(path, actor, {"skill": skill, "obs_spec": spec})
+    return actor
+
+
+def scene(on_dribbler=False):
+    ts = make_team_state([[0.0, 0.0]], [0.0], [[0.0, 0.0]], [0.0], [on_dribbler], [True])
+    return to_team_frame(WorldState(t=0.0, ball_pos=np.array([0.1015, 0.0]), ball_vel=np.zeros(2), blue=ts,
+                                    yellow=TeamState.empty()), "blue")
+
+
+def test_numpy_actor_matches_torch(tmp_path):
+    actor = tiny_checkpoint(tmp_path / "a.pt", hidden=(300, 400))
+    x = np.random.default_rng(0).normal(size=(64, 14)).astype(np.float32)
+    np.testing.assert_allclose(NumpyActor(actor)(x), actor.act(x), atol=1e-5)
+
+
+def test_learned_skills_follow_the_protocol(tmp_path):
+    tiny_checkpoint(tmp_path / "g.pt")
+    tiny_checkpoint(tmp_path / "a.pt", "aim_to_shoot", AIM_TO_SHOOT_SPEC, obs_dim=10)
+    g = make_skill("go_to_ball", "learned", F, checkpoint=tmp_path / "g.pt")
+    assert isinstance(g, LearnedGoToBall)
+    a = g.act(scene(), 0)
+    assert a.shape == (5,) and np.all(np.abs(a) <= 1) and g.status == SkillStatus.RUNNING
+    g.act(scene(on_dribbler=True), 0)
+    assert g.status == SkillStatus.SUCCEEDED
+    s = make_skill("aim_to_shoot", "learned", F, checkpoint=tmp_path / "a.pt")
+    assert isinstance(s, LearnedAimToShoot)
+    a = s.act(scene(on_dribbler=True), 0)
+    assert a.shape == (5,) and a[0] == 0 and a[1] == 0  # aim-to-shoot never translates
+
+
+def test_mismatched_and_corrupt_checkpoints_raise(tmp_path):
+    tiny_checkpoint(tmp_path / "g.pt")
+    with pytest.raises(ValueError, match="aim_to_shoot"):
+        load_policy("aim_to_shoot", tmp_path / "g.pt")
+    (tmp_path / "bad.pt").write_bytes(b"not a checkpoint at all")
+    with pytest.raises(ValueError, match="not a valid"):
+        load_policy("go_to_ball", tmp_path / "bad.pt")
+    with pytest.raises(FileNotFoundError):
+        load_policy("go_to_ball", tmp_path / "missing.pt")
+    with pytest.raises(ValueError, match="unknown learned skill"):
+        load_policy("juggle")
+
+
+@pytest.mark.parametrize("task", ["go-to-ball", "aim-to-shoot"])
+def test_shipped_actor_reaches_95_percent(task):
+    from ssl_marl.skills.evaluation import evaluate_skill
+
+    assert PRETRAINED[task.replace("-", "_")].exists(), "shipped actor missing"
+    s = evaluate_skill(task, "learned", episodes=50, seed=777, workers=1, progress=False)
+    assert s["success_rate"] >= 0.95, s["failure_reasons"]
