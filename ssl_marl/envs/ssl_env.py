@@ -170,14 +170,8 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
                 pose[i] = (xy[0], xy[1], self.np_random.uniform(-np.pi, np.pi))
         return pose, ball_pos, ball_vel
 
-    def _free_spot(self, taken: list[np.ndarray], min_dist: float, margin: float) -> np.ndarray:
-        f = self.field
-        for _ in range(1000):
-            p = self.np_random.uniform([-f.half_length + margin, -f.half_width + margin],
-                                       [f.half_length - margin, f.half_width - margin])
-            if all(np.hypot(*(p - q)) >= min_dist for q in taken):
-                return p
-        raise RuntimeError("could not find a free spot on the field for a robot or the ball")
+    def _free_spot(self, taken: list[np.ndarray], min_dist: float, margin: float = 0.2) -> np.ndarray:
+        return self.field.random_free_point(self.np_random, margin, taken, min_dist)
 
     @staticmethod
     def _vec(v: Any, n: int, name: str) -> np.ndarray | None:

@@ -143,6 +143,18 @@ class FieldGeometry:
                        [-self.half_length + margin, -self.half_width + margin],
                        [self.half_length - margin, self.half_width - margin])
 
+    def random_free_point(self, rng: np.random.Generator, margin: float = 0.0, taken: list | tuple = (),
+                          min_dist: float = 0.0, tries: int = 1000) -> np.ndarray:
+        """Uniform point in the playing area shrunk by ``margin``, at least ``min_dist`` from
+        every point in ``taken`` (rejection sampling; RuntimeError if none is found)."""
+        lo = [-self.half_length + margin, -self.half_width + margin]
+        hi = [self.half_length - margin, self.half_width - margin]
+        for _ in range(tries):
+            p = rng.uniform(lo, hi)
+            if all(np.hypot(*(p - np.asarray(q))) >= min_dist for q in taken):
+                return p
+        raise RuntimeError(f"no free point on the {self.name} field {min_dist} m from {len(taken)} others")
+
     def edge_closest_points(self, p: np.ndarray) -> np.ndarray:
         """Closest points on the top (+y), bottom (-y), left (-x) and right (+x) field
         lines to point p, as a (4, 2) array in the field frame (the paper's go-to-ball

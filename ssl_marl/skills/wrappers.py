@@ -87,13 +87,7 @@ class _SkillEnv(gymnasium.Env, EzPickle):
         self.t = 0.0
 
     def _free_spot(self, taken: list[np.ndarray], min_dist: float, margin: float = 0.2) -> np.ndarray:
-        f = self.field
-        for _ in range(1000):
-            p = self.np_random.uniform([-f.half_length + margin, -f.half_width + margin],
-                                       [f.half_length - margin, f.half_width - margin])
-            if all(np.hypot(*(p - q)) >= min_dist for q in taken):
-                return p
-        raise RuntimeError("no free spot for an opponent robot")
+        return self.field.random_free_point(self.np_random, margin, taken, min_dist)
 
     def _step_inner(self, action5: np.ndarray) -> dict:
         acts = {AGENT: action5}
