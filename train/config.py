@@ -81,6 +81,7 @@ class DDPGConfig:
     ou_theta: float = 0.15
     ou_mu: float = 0.0
     ou_sigma: float = 0.3
+    ou_sigma_per_dim: tuple[float, ...] | None = None  #: per action dimension; overrides ou_sigma when set
     ou_dt: float = 1.0
     # --- envs, evaluation, logging -------------------------------------------
     num_envs: int = 1
@@ -102,6 +103,10 @@ class DDPGConfig:
                 setattr(self, f.name, float(v))
             elif f.type in ("int", "float", "bool") and not isinstance(getattr(self, f.name), (int, float)):
                 raise ValueError(f"invalid DDPG config: {f.name} must be {f.type} (got {v!r})")
+        if self.ou_sigma_per_dim is not None:
+            self.ou_sigma_per_dim = tuple(float(v) for v in self.ou_sigma_per_dim)
+            if any(v < 0 for v in self.ou_sigma_per_dim):
+                raise ValueError(f"invalid DDPG config: ou_sigma_per_dim must be >= 0 (got {self.ou_sigma_per_dim})")
         self.actor_hidden = tuple(int(h) for h in self.actor_hidden)
         self.critic_hidden = tuple(int(h) for h in self.critic_hidden)
         self.env_kwargs = dict(self.env_kwargs)

@@ -169,7 +169,10 @@ class Trainer:
 
         self.agent = DDPG(self.obs_dim, self.act_dim, cfg)
         self.buffer = ReplayBuffer(cfg.buffer_size, self.obs_dim, self.act_dim, cfg.batch_size, replay_rng)
-        self.noise = OUNoise(cfg.num_envs, self.act_dim, cfg.ou_theta, cfg.ou_mu, cfg.ou_sigma, cfg.ou_dt, noise_rng)
+        sigma = cfg.ou_sigma if cfg.ou_sigma_per_dim is None else cfg.ou_sigma_per_dim
+        if cfg.ou_sigma_per_dim is not None and len(cfg.ou_sigma_per_dim) != self.act_dim:
+            raise ValueError(f"ou_sigma_per_dim has {len(cfg.ou_sigma_per_dim)} values, the action has {self.act_dim}")
+        self.noise = OUNoise(cfg.num_envs, self.act_dim, cfg.ou_theta, cfg.ou_mu, sigma, cfg.ou_dt, noise_rng)
         env_fns = [lambda: make_env(cfg.env_id, cfg.env_kwargs, cfg.max_episode_steps)] * cfg.num_envs
         vec_cls = SyncVectorEnv if cfg.vector_mode == "sync" else AsyncVectorEnv
         self.envs = vec_cls(env_fns, autoreset_mode=AutoresetMode.NEXT_STEP)

@@ -12,6 +12,7 @@ actor's normalised action units.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -20,11 +21,15 @@ import numpy as np
 class OUNoise:
     """Vectorised OU process of shape ``(num_envs, act_dim)``; reset per sub-env at episode end."""
 
-    def __init__(self, num_envs: int, act_dim: int, theta: float = 0.15, mu: float = 0.0, sigma: float = 0.3,
-                 dt: float = 1.0, rng: np.random.Generator | None = None) -> None:
-        if theta < 0 or sigma < 0 or dt <= 0:
+    def __init__(self, num_envs: int, act_dim: int, theta: float = 0.15, mu: float = 0.0,
+                 sigma: float | Sequence[float] = 0.3, dt: float = 1.0,
+                 rng: np.random.Generator | None = None) -> None:
+        """``sigma`` is one value for every action dimension or one per dimension."""
+        sig = np.broadcast_to(np.asarray(sigma, dtype=np.float64), (act_dim,)).copy() if np.ndim(sigma) \
+            else float(sigma)
+        if theta < 0 or np.any(np.asarray(sig) < 0) or dt <= 0:
             raise ValueError(f"need theta >= 0, sigma >= 0, dt > 0 (got {theta}, {sigma}, {dt})")
-        self.theta, self.mu, self.sigma, self.dt = float(theta), float(mu), float(sigma), float(dt)
+        self.theta, self.mu, self.sigma, self.dt = float(theta), float(mu), sig, float(dt)
         self.rng = rng if rng is not None else np.random.default_rng()
         self.x = np.full((num_envs, act_dim), self.mu, dtype=np.float64)
 
