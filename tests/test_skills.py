@@ -246,3 +246,33 @@ def test_evaluation_is_deterministic_whatever_the_workers(tmp_path):
     b = evaluate_skill("aim-to-shoot", "baseline", episodes=12, seed=5, workers=2, progress=False, out=tmp_path)
     assert a["episodes_detail"] == b["episodes_detail"]
     assert (tmp_path / "results.json").exists() and (tmp_path / "time_hist.png").exists()
+
+
+def test_aim_to_shoot_reward_options():
+    env = AimToShootEnv(reward_form="kick_only", success_bonus=5.0)
+    env.reset(seed=0, options={"robot_pose": (2.5, 0.0, 2.0)})
+    _, r, *_ = env.step(np.array([0.5, 1.0, -1.0], np.float32))  # turning with the ball: free before a kick
+    assert r == 0.0
+    env.reset(seed=0, options={"robot_pose": (2.5, 0.0, 0.0)})
+    total, info = 0.0, {}
+    for _ in range(120):
+        _, r, term, trunc, info = env.step(np.array([0.0, 1.0, 1.0], np.float32))
+        total += r
+        if term or trunc:
+            break
+    assert info["is_success"] and info["reward_terms"]["success_bonus"] == 5.0 and total > 5.0
+    paper = AimToShootEnv()
+    paper.reset(seed=0, options={"robot_pose": (2.5, 0.0, 2.0)})
+    _, r, *_ = paper.step(np.array([0.5, 1.0, -1.0], np.float32))
+    assert r < 0.0  # the printed reward charges the ball's motion while turning unaimed
+    with pytest.raises(ValueError, match="reward_form"):
+        AimToShootEnv(reward_form="dense")
+
+
+def test_aim_to_shoot_baseline_demos_show_turning_and_succeed():
+    from ssl_marl.skills.demos import aim_to_shoot_baseline_demos
+
+    trans = list(aim_to_shoot_baseline_demos(400, seed=0))
+    ends = [t for t in trans if t.terminated or t.truncated]
+    assert ends and all(t.info["is_success"] for t in ends)
+    assert any(abs(t.action[0]) > 0.1 for t in trans)  # omega used: the robot turns

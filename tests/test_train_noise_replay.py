@@ -104,3 +104,15 @@ def test_replay_save_load_roundtrip(tmp_path) -> None:
     with pytest.raises(ValueError, match="not a valid replay"):
         other.load(tmp_path / "bad.npz")
     assert not list(tmp_path.glob("*.tmp"))
+
+
+def test_ou_noise_per_dimension_sigma():
+    import numpy as np
+
+    from train.noise import OUNoise
+
+    noise = OUNoise(1, 3, theta=0.15, sigma=[0.3, 0.0, 0.05], rng=np.random.default_rng(0))
+    xs = np.array([noise()[0] for _ in range(20000)])
+    std = xs[2000:].std(axis=0)
+    assert std[1] == 0.0
+    assert abs(std[0] / std[2] - 6.0) < 0.6
