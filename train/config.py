@@ -76,6 +76,8 @@ class DDPGConfig:
     warmup_samples: int = 1_000
     random_warmup: bool = False  #: uniform-random actions (not actor + noise) during warm-up
     updates_per_sample: float = 1.0
+    bc_weight: float = 0.0  #: DDPGfD-style behaviour cloning: + bc_weight * MSE(mu(s_d), a_d) on demo rows (0: plain DDPG)
+    bc_batch_size: int = 64  #: demonstration rows per update for the behaviour-cloning term
     reward_scale: float = 1.0  #: rewards are multiplied by this before storage (logs show raw)
     # --- exploration (Ornstein-Uhlenbeck, in the actor's [-1, 1] action units) --
     ou_theta: float = 0.15
@@ -116,7 +118,7 @@ class DDPGConfig:
             if not getattr(self, name) > 0:
                 problems.append(f"{name} must be > 0 (got {getattr(self, name)!r})")
         for name in ("total_samples", "warmup_samples", "demo_steps", "eval_interval", "critic_weight_decay",
-                     "torch_threads", "updates_per_sample", "ou_sigma", "ou_theta"):
+                     "torch_threads", "updates_per_sample", "ou_sigma", "ou_theta", "bc_weight"):
             if getattr(self, name) < 0:
                 problems.append(f"{name} must be >= 0 (got {getattr(self, name)!r})")
         if not 0.0 <= self.gamma <= 1.0:

@@ -4,7 +4,7 @@ One update, all of it in :meth:`DDPG.update`::
 
     y        = r + gamma * (1 - terminated) * Q'(s', mu'(s'))      # no grad; truncations bootstrap
     L_critic = mean((Q(s, a) - y)^2)                               # Adam step on the critic
-    L_actor  = -mean(Q(s, mu(s)))                                  # Adam step on the actor only
+    L_actor  = -mean(Q(s, mu(s))) [+ w_bc * mean((mu(s_d) - a_d)^2)]  # Adam step on the actor only
     theta'   <- theta' + tau * (theta - theta')                    # Polyak, both targets
 
 Speed (measured, see benchmarks/bench_ddpg.py): fused Adam, the actor loss
@@ -70,8 +70,10 @@ class DDPG:
         self._loss_sum = torch.zeros(2)  # (critic, actor) summed since the last read-out
         self._loss_count = 0
 
-    def update(self, b: Batch) -> None:
-        """One DDPG update from batch ``b`` (see the module docstring)."""
+    def update(self, b: Batch, demo: Batch | None = None) -> None:
+        """One DDPG update from batch ``b`` (see the module docstring); with ``demo`` and
+        ``cfg.bc_weight`` > 0 the actor also regresses onto the demonstrated actions
+        (behaviour cloning as in DDPGfD / TD3+BC)."""
         cfg, ac = self.cfg, self._autocast
         with torch.no_grad(), ac():
             next_q = self.critic_target(b.next_obs, self.actor_target(b.next_obs)).float().squeeze(-1)
@@ -85,6 +87,8 @@ class DDPG:
 
         with ac():
             actor_loss = -self.critic(b.obs, self.actor(b.obs)).float().mean()
+            if demo is not None and cfg.bc_weight > 0:
+                actor_loss = actor_loss + cfg.bc_weight * F.mse_loss(self.actor(demo.obs).float(), demo.act)
         self.actor_opt.zero_grad(set_to_none=True)
         actor_loss.backward(inputs=self._actor_params)  # no critic weight grads needed
         self.actor_opt.step()

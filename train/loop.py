@@ -337,8 +337,11 @@ class Trainer:
         if self.samples < cfg.warmup_samples or len(self.buffer) < cfg.batch_size:
             return
         self.update_credit += n_new * cfg.updates_per_sample
+        n_demo = self.transitions - self.samples  # burn-in wrote the demos to rows [0, n_demo)
+        use_bc = cfg.bc_weight > 0 and n_demo > 0 and self.transitions <= self.buffer.capacity  # not overwritten yet
         while self.update_credit >= 1.0:
-            self.agent.update(self.buffer.sample())
+            demo = self.buffer.sample_rows(0, n_demo, cfg.bc_batch_size) if use_bc else None
+            self.agent.update(self.buffer.sample(), demo)
             self.update_credit -= 1.0
             if self.agent.updates % cfg.log_interval == 0:
                 self.losses = self.agent.read_losses()

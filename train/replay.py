@@ -81,6 +81,12 @@ class ReplayBuffer:
         return self._batch
 
     # --- persistence ------------------------------------------------------
+    def sample_rows(self, lo: int, hi: int, n: int) -> Batch:
+        """A fresh batch of ``n`` rows drawn uniformly from rows [lo, hi) (e.g. the demonstrations,
+        which burn-in writes first)."""
+        idx = self.rng.integers(lo, hi, n)
+        return Batch(*(torch.from_numpy(getattr(self, k)[idx]) for k in self._FIELDS))
+
     def save(self, path: str | os.PathLike[str]) -> Path:
         """Write the contents to an ``.npz`` atomically (the sampling RNG is saved by the caller)."""
         path = Path(path)
