@@ -103,3 +103,15 @@ def test_config_errors_and_overrides(tmp_path) -> None:
         DDPGConfig(demo_steps=10, demo_fn=None)
     with pytest.raises(FileNotFoundError):
         load_config(tmp_path / "missing.json")
+
+
+def test_behaviour_cloning_term_pulls_the_actor_to_the_demonstrations() -> None:
+    torch.manual_seed(0)
+    cfg = DDPGConfig(actor_hidden=(32,), critic_hidden=(32,), batch_size=16, bc_weight=10.0, actor_lr=1e-3)
+    agent = DDPG(4, 2, cfg)
+    demo = Batch(torch.randn(16, 4), torch.full((16, 2), 0.8), torch.zeros(16), torch.randn(16, 4), torch.zeros(16))
+    before = float(((agent.actor(demo.obs) - demo.act) ** 2).mean())
+    for _ in range(200):
+        agent.update(_batch(), demo)
+    after = float(((agent.actor(demo.obs) - demo.act) ** 2).mean())
+    assert after < 0.1 * before
