@@ -20,7 +20,6 @@ from __future__ import annotations
 import datetime as _dt
 import os
 import subprocess
-import tempfile
 import warnings
 from collections.abc import Mapping
 from pathlib import Path
@@ -69,23 +68,15 @@ def to_plain(value: Any, where: str = "metadata") -> Any:
 
 
 def atomic_torch_save(obj: Any, path: str | os.PathLike[str]) -> Path:
-    """``torch.save(obj)`` to ``path`` atomically (temp file in the same dir + ``os.replace``)."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "wb") as f:
-            torch.save(obj, f)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except FileNotFoundError:
-            pass
-        raise
-    return path
+    """``torch.save(obj)`` to ``path`` atomically (via :func:`ssl_marl.io.atomic_write_bytes`)."""
+    import io
+
+    from ..io import atomic_write_bytes
+
+    buf = io.BytesIO()
+    torch.save(obj, buf)
+    atomic_write_bytes(path, buf.getvalue())
+    return Path(path)
 
 
 def safe_torch_load(path: str | os.PathLike[str], what: str = "ssl_marl checkpoint") -> Any:
