@@ -54,6 +54,14 @@ class ShootParams:
         safe_drive_forward: scale the drive-forward speed down to 0 as the free space
             ahead of the ball (to the field lines, along the heading) shrinks from 0.5 m
             to 0.1 m, so the robot does not push the ball out of play; False = paper.
+        approach_speed: speed governor on the go-to-ball skill (m/s at contact, None =
+            off): the commanded speed is capped at sqrt(v^2 + 2 a gap) (a =
+            ``approach_decel``, gap = ball distance - reach), so a skill that drives into
+            the ball at full speed (the learned one does: it was rewarded for contact, not
+            for control) touches it gently enough to keep it. Not in the paper's Fig. 2;
+            applied to learned and hand-coded skills alike (the baseline already
+            approaches at ~0.7 m/s).
+        approach_decel: deceleration used by the governor (m/s^2).
     """
 
     near_ball_m: float = NEAR_BALL_M
@@ -62,6 +70,8 @@ class ShootParams:
     keep_out_of_own_defense_area: bool = False
     wait_margin: float = 0.2
     safe_drive_forward: bool = False
+    approach_speed: float | None = 0.8
+    approach_decel: float = 3.0
 
 
 @dataclass(frozen=True)
@@ -155,7 +165,25 @@ class GoToBallAndShoot(Tactic):
             rect = defense_rect(self.field, -1, self.nav.params.defense_margin + self.params.wait_margin)
             self.nav.target = push_out_of_rect(world.ball_pos, rect)
             self.nav.facing = facing_towards(pos, world.ball_pos)
-        return self._current_skill().act(world, robot)
+        action = self._current_skill().act(world, robot)
+        if self.state is ShootState.GO_TO_BALL and self.params.approach_speed is not None:
+            action = govern_approach(action, world, robot, self.rp, self.bp, self.params.approach_speed,
+                                     self.params.approach_decel)
+        return action
+
+
+def govern_approach(action: np.ndarray, world: WorldState, robot: int, rp, bp, v_touch: float,
+                    decel: float) -> np.ndarray:
+    """Cap the commanded translational speed of a (5,) action at sqrt(v_touch^2 + 2 decel gap),
+    gap = distance from the robot centre to the ball minus the face reach (m)."""
+    pos = world.team(world.frame).pos[robot]
+    gap = float(np.hypot(*(world.ball_pos - pos))) - rp.front_distance - bp.radius
+    v_lim = float(np.sqrt(v_touch ** 2 + 2.0 * decel * max(gap, 0.0)))
+    a = np.array(action, dtype=np.float32, copy=True)
+    speed = float(np.hypot(a[0], a[1])) * rp.max_speed
+    if speed > v_lim:
+        a[0:2] *= v_lim / speed
+    return a
 
 
 class Attacker(GoToBallAndShoot):
