@@ -51,9 +51,11 @@ def bench_skill_inference(calls: int = 2000) -> dict:
 
     out = {}
     env = parallel_env(n_blue=1, n_yellow=0)
-    env.reset(seed=0)
-    ws = env.vision_state("blue")
+    reach = env.config.robot.front_distance + env.config.ball.radius
     for name in ("go_to_ball", "aim_to_shoot"):
+        ball = (2.0, 1.0) if name == "go_to_ball" else (2.0 + reach, 0.0)  # aim-to-shoot: ball on the dribbler
+        env.reset(options={"robots": {"blue_0": (2.0, 0.0, 0.0)}, "ball": {"pos": ball}})
+        ws = env.vision_state("blue")
         if not PRETRAINED[name].exists():
             out[name] = None
             continue
@@ -61,6 +63,7 @@ def bench_skill_inference(calls: int = 2000) -> dict:
         skill.act(ws, 0)
         t0 = time.perf_counter()
         for _ in range(calls):
+            skill.reset()  # aim-to-shoot would otherwise stop after its first kick
             skill.act(ws, 0)
         out[name + "_act_ms"] = round((time.perf_counter() - t0) / calls * 1e3, 4)
     return out
