@@ -85,3 +85,17 @@ def test_shipped_aim_to_shoot_beats_the_baseline():
 def test_shipped_aim_to_shoot_reaches_95_percent():
     s = _success("aim-to-shoot", "learned")
     assert s["success_rate"] >= 0.95, s["failure_reasons"]
+
+
+def test_learned_aim_to_shoot_gives_up_after_its_training_horizon():
+    from dataclasses import replace
+
+    never_kicks = lambda obs: np.array([0.2, 1.0, -1.0], np.float32)  # noqa: E731
+    s = LearnedAimToShoot(F, policy=never_kicks)
+    ws = scene(on_dribbler=True)
+    s.act(ws, 0)
+    assert s.status == SkillStatus.RUNNING
+    s.act(replace(ws, t=1.5), 0)
+    assert s.status == SkillStatus.RUNNING
+    s.act(replace(ws, t=1.7), 0)
+    assert s.status == SkillStatus.FAILED

@@ -95,29 +95,38 @@ class LearnedGoToBall:
 
 class LearnedAimToShoot:
     """Learned aim-to-shoot (paper's DDPG skill). Succeeds when it kicks; fails if the
-    ball leaves the dribbler (> 0.05 m) before the kick."""
+    ball leaves the dribbler (> 0.05 m) before the kick, or after ``max_time_s`` (1.6 s,
+    its training episode length) without a kick: beyond that horizon the policy was never
+    trained, and a tactic should try something else (e.g. drive closer and aim again)."""
 
     name = "aim_to_shoot"
 
     def __init__(self, field: FieldGeometry, robot: RobotParams | None = None, ball: BallParams | None = None,
-                 checkpoint: str | Path | None = None, policy: NumpyActor | None = None) -> None:
+                 checkpoint: str | Path | None = None, policy: NumpyActor | None = None,
+                 max_time_s: float | None = 1.6) -> None:
         self.field = field
         self.rp, self.bp = robot or RobotParams(), ball or BallParams()
         self.policy = policy if policy is not None else load_policy("aim_to_shoot", checkpoint)[0]
+        self.max_time_s = max_time_s
         self.status = SkillStatus.RUNNING
         self._kicked = False
+        self._t0: float | None = None
 
     def reset(self) -> None:
         self.status = SkillStatus.RUNNING
         self._kicked = False
+        self._t0 = None
 
     def act(self, world: WorldState, robot: int) -> np.ndarray:
         if self._kicked:
             self.status = SkillStatus.SUCCEEDED
             return make_action()
-        if dribbler_ball_distance(world, robot, self.rp, self.bp) > 0.05:
+        if self._t0 is None:
+            self._t0 = world.t
+        timed_out = self.max_time_s is not None and world.t - self._t0 > self.max_time_s
+        if timed_out or dribbler_ball_distance(world, robot, self.rp, self.bp) > 0.05:
             self.status = SkillStatus.FAILED
-            return make_action()
+            return make_action(dribble=True)
         a = expand_task_action("aim-to-shoot", self.policy(aim_to_shoot_features(world, robot, self.field)))
         team = world.team(world.frame)
         if a[4] > 0 and bool(team.kick_ready[robot]) and bool(team.ball_on_dribbler[robot]):
