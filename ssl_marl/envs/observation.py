@@ -85,6 +85,30 @@ def _slots(pos: np.ndarray, other: TeamState, n_slots: int, exclude_self: bool, 
     return out.reshape(n, -1)
 
 
+def _fill_self(out: np.ndarray, pos: np.ndarray, cos_h: np.ndarray, sin_h: np.ndarray, vel: np.ndarray,
+               omega: np.ndarray, ball_pos: np.ndarray, ball_vel: np.ndarray, on_dribbler: np.ndarray,
+               kick_ready: np.ndarray, ball_visible: bool, field: FieldGeometry) -> None:
+    """Write the 21 own/ball/goal values (indices 0-20) of every row of ``out``; all
+    inputs already in each row's team frame."""
+    out[:, 0:2] = pos
+    out[:, 2] = cos_h
+    out[:, 3] = sin_h
+    out[:, 4:6] = vel
+    out[:, 6] = omega
+    out[:, 7:9] = ball_pos - pos
+    out[:, 9:11] = ball_vel
+    out[:, 11] = on_dribbler
+    out[:, 12] = kick_ready
+    out[:, 13] = 1.0 if ball_visible else 0.0
+    out[:, 14] = field.half_length - pos[:, 0]
+    out[:, 15] = -pos[:, 1]
+    out[:, 16] = -field.half_length - pos[:, 0]
+    out[:, 17] = -pos[:, 1]
+    out[:, 18] = field.half_length
+    out[:, 19] = field.half_width
+    out[:, 20] = field.goal_width / 2
+
+
 def team_observations(ws: WorldState, team: str, field: FieldGeometry, max_teammates: int,
                       max_opponents: int) -> np.ndarray:
     """(n_team, obs_dim) float32 observations for every robot of ``team`` from a
@@ -98,23 +122,8 @@ def team_observations(ws: WorldState, team: str, field: FieldGeometry, max_teamm
         return out.astype(np.float32)
     pos = own.pos * sgn
     h = own.heading + (0.0 if sgn > 0 else np.pi)
-    out[:, 0:2] = pos
-    out[:, 2] = np.cos(h)
-    out[:, 3] = np.sin(h)
-    out[:, 4:6] = own.vel * sgn
-    out[:, 6] = own.omega
-    out[:, 7:9] = ws.ball_pos * sgn - pos
-    out[:, 9:11] = ws.ball_vel * sgn
-    out[:, 11] = own.ball_on_dribbler
-    out[:, 12] = own.kick_ready
-    out[:, 13] = 1.0 if ws.ball_visible else 0.0
-    out[:, 14] = field.half_length - pos[:, 0]
-    out[:, 15] = -pos[:, 1]
-    out[:, 16] = -field.half_length - pos[:, 0]
-    out[:, 17] = -pos[:, 1]
-    out[:, 18] = field.half_length
-    out[:, 19] = field.half_width
-    out[:, 20] = field.goal_width / 2
+    _fill_self(out, pos, np.cos(h), np.sin(h), own.vel * sgn, own.omega, ws.ball_pos * sgn, ws.ball_vel * sgn,
+               own.ball_on_dribbler, own.kick_ready, ws.ball_visible, field)
     a = SELF_DIM
     b = a + SLOT_DIM * max_teammates
     out[:, a:b] = _slots(pos, own, max_teammates, True, sgn)
@@ -138,7 +147,8 @@ def _category_offset(nb: int, ny: int) -> np.ndarray:
 
 def all_observations(ws: WorldState, field: FieldGeometry, max_teammates: int, max_opponents: int) -> np.ndarray:
     """(n_blue + n_yellow, obs_dim) float32 observations of every robot (blue first),
-    in one vectorised pass; row for row equal to :func:`team_observations`."""
+    in one vectorised pass; row for row equal to :func:`team_observations` (the simpler
+    per-team reference that the tests compare against)."""
     nb, ny = ws.blue.n, ws.yellow.n
     n = nb + ny
     d = obs_dim(max_teammates, max_opponents)
@@ -146,30 +156,16 @@ def all_observations(ws: WorldState, field: FieldGeometry, max_teammates: int, m
     if n == 0:
         return out.astype(np.float32)
     sgn = np.concatenate([np.ones(nb), -np.ones(ny)])
-    np.concatenate([np.zeros(nb, np.int8), np.ones(ny, np.int8)])
     P = np.concatenate([ws.blue.pos, ws.yellow.pos])
     V = np.concatenate([ws.blue.vel, ws.yellow.vel])
     H = np.concatenate([ws.blue.heading, ws.yellow.heading])
+    cos_h, sin_h = np.cos(H), np.sin(H)
     s2 = sgn[:, None]
     pos = P * s2
-    hcos, hsin = np.cos(H) * sgn, np.sin(H) * sgn  # heading + pi for yellow
-    out[:, 0:2] = pos
-    out[:, 2] = hcos
-    out[:, 3] = hsin
-    out[:, 4:6] = V * s2
-    out[:, 6] = np.concatenate([ws.blue.omega, ws.yellow.omega])
-    out[:, 7:9] = ws.ball_pos[None, :] * s2 - pos
-    out[:, 9:11] = ws.ball_vel[None, :] * s2
-    out[:, 11] = np.concatenate([ws.blue.ball_on_dribbler, ws.yellow.ball_on_dribbler])
-    out[:, 12] = np.concatenate([ws.blue.kick_ready, ws.yellow.kick_ready])
-    out[:, 13] = 1.0 if ws.ball_visible else 0.0
-    out[:, 14] = field.half_length - pos[:, 0]
-    out[:, 15] = -pos[:, 1]
-    out[:, 16] = -field.half_length - pos[:, 0]
-    out[:, 17] = -pos[:, 1]
-    out[:, 18] = field.half_length
-    out[:, 19] = field.half_width
-    out[:, 20] = field.goal_width / 2
+    _fill_self(out, pos, cos_h * sgn, sin_h * sgn, V * s2, np.concatenate([ws.blue.omega, ws.yellow.omega]),
+               ws.ball_pos[None, :] * s2, ws.ball_vel[None, :] * s2,
+               np.concatenate([ws.blue.ball_on_dribbler, ws.yellow.ball_on_dribbler]),
+               np.concatenate([ws.blue.kick_ready, ws.yellow.kick_ready]), ws.ball_visible, field)
     if n > 1 and (max_teammates or max_opponents):
         # One argsort per step: key = distance^2 + category offset (teammates, then
         # opponents, then self), so each row lists teammates by distance, then opponents.
@@ -181,8 +177,8 @@ def all_observations(ws: WorldState, field: FieldGeometry, max_teammates: int, m
         feat[:, :, 0] = 1.0
         feat[:, :, 1:3] = rel
         feat[:, :, 3:5] = V[None, :, :] * s2[:, :, None]
-        feat[:, :, 5] = np.cos(H)[None, :] * s2  # heading + pi in yellow's frame
-        feat[:, :, 6] = np.sin(H)[None, :] * s2
+        feat[:, :, 5] = cos_h[None, :] * s2  # heading + pi in yellow's frame
+        feat[:, :, 6] = sin_h[None, :] * s2
         g = np.take_along_axis(feat, order[:, :, None], axis=1)  # (n, n, 7) sorted
         t_start, o_start = SELF_DIM, SELF_DIM + SLOT_DIM * max_teammates
         for rows, n_mates, n_opp in ((slice(0, nb), nb - 1, ny), (slice(nb, n), ny - 1, nb)):

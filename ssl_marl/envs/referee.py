@@ -89,3 +89,13 @@ def kickoff_formation(field: FieldGeometry, n: int) -> np.ndarray:
                 poses.append((x, float(np.clip(y + y_shift, -W2 + 0.3, W2 - 0.3)), 0.0))
         row += 1
     return np.array(poses[:n], dtype=float).reshape(n, 3)
+
+
+def kickoff_poses(field: FieldGeometry, n_blue: int, n_yellow: int) -> np.ndarray:
+    """(n_blue + n_yellow, 3) kickoff poses in the *field* frame: blue in the -x half
+    facing +x, yellow mirrored in the +x half facing -x (blue rows first)."""
+    blue = kickoff_formation(field, n_blue)
+    yellow = kickoff_formation(field, n_yellow)
+    yellow[:, 0:2] *= -1.0
+    yellow[:, 2] = np.pi
+    return np.concatenate([blue, yellow]).reshape(n_blue + n_yellow, 3)

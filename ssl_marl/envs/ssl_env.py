@@ -52,7 +52,7 @@ from .actions import ACTION_DIM, scale_actions, validate_actions
 from .config import EnvConfig, make_config
 from .observation import all_observations, obs_dim, state_dim, state_vector
 from .realism import Radio, Vision
-from .referee import clear_robots_from, judge, kickoff_formation
+from .referee import clear_robots_from, judge, kickoff_poses
 
 
 class SSLParallelEnv(ParallelEnv, EzPickle):
@@ -90,7 +90,7 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         self._prev_cmd = np.zeros((self.n, ACTION_DIM))
         self._next_tick = 0.0
         self._renderer = None
-        self.steps = 0
+        self._team_of = {a: a.split("_")[0] for a in self.possible_agents}
 
     # ------------------------------------------------------------------ spaces
     def observation_space(self, agent: str) -> gymnasium.spaces.Box:
@@ -119,7 +119,6 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         self.score = {"blue": 0, "yellow": 0}
         self._prev_cmd = np.zeros((self.n, ACTION_DIM))
         self.radio.reset()
-        self.steps = 0
         self._truth = self.physics.snapshot()
         self._seen = self.vision.reset(self._truth, self._noise_rng)
         self._prev_ball_x = float(self._truth.ball_pos[0])
@@ -154,10 +153,7 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         if formation == "kickoff":
             if ball_pos is None:
                 ball_pos = np.zeros(2)
-            for team, sgn, count, off in (("blue", 1.0, cfg.n_blue, 0), ("yellow", -1.0, cfg.n_yellow, cfg.n_blue)):
-                tf = kickoff_formation(f, count)
-                pose[off:off + count, 0:2] = tf[:, 0:2] * sgn
-                pose[off:off + count, 2] = 0.0 if sgn > 0 else np.pi
+            pose = kickoff_poses(f, cfg.n_blue, cfg.n_yellow)
         placed: list[np.ndarray] = [p[:2] for p in fixed.values()]
         if ball_pos is None:
             ball_pos = self._free_spot(placed, 0.15, margin=0.1)
@@ -227,8 +223,7 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         trunc = {a: bool(truncated) for a in self.agents}
         infos = {}
         for a in self.agents:
-            team = a.split("_")[0]
-            infos[a] = {"events": events, "score": dict(self.score), "reward_terms": terms[team]}
+            infos[a] = {"events": events, "score": dict(self.score), "reward_terms": terms[self._team_of[a]]}
         if terminated or truncated:
             self.agents = []
         if self.render_mode == "human":
@@ -239,7 +234,6 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         executed = self.radio.transmit(cmd, self._noise_rng)
         v, w, drib, kick = scale_actions(executed, self.config.robot)
         self.physics.step(v, w, drib, kick)
-        self.steps += 1
         for i, speed in self.physics.kicks_this_step:
             events.append({"type": "kick", "agent": self.possible_agents[i], "speed": speed})
         self._truth = self.physics.snapshot()
@@ -264,13 +258,7 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         return None
 
     def _kickoff(self) -> None:
-        cfg, f = self.config, self.field
-        pose = np.zeros((self.n, 3))
-        for sgn, count, off in ((1.0, cfg.n_blue, 0), (-1.0, cfg.n_yellow, cfg.n_blue)):
-            tf = kickoff_formation(f, count)
-            pose[off:off + count, 0:2] = tf[:, 0:2] * sgn
-            pose[off:off + count, 2] = 0.0 if sgn > 0 else np.pi
-        self.physics.set_robots(pose)
+        self.physics.set_robots(kickoff_poses(self.field, self.config.n_blue, self.config.n_yellow))
         self.physics.set_ball(np.zeros(2))
         self._truth = self.physics.snapshot()
         self._prev_ball_x = 0.0
@@ -301,7 +289,8 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
             terms[team] = {"goal": scales["goal"] * goal,
                            "ball_progress": scales["ball_progress"] * sgn * progress,
                            "possession": scales["possession"] * (self.config.dt if possess[team] else 0.0)}
-        rewards = {a: float(sum(terms[a.split("_")[0]].values())) for a in self.agents}
+        team_reward = {team: float(sum(t.values())) for team, t in terms.items()}
+        rewards = {a: team_reward[self._team_of[a]] for a in self.agents}
         return rewards, terms
 
     # ------------------------------------------------------------ observations

@@ -87,7 +87,6 @@ class PhysicsWorld:
         self.ball_vel = np.zeros(2)
         self._slide_until = math.inf  # ball slides while speed > this (m/s)
         self.kicks_this_step: list[tuple[int, float]] = []  # (robot index, ball speed)
-        self.last_touch: int = -1  # index of the last robot to touch the ball (-1: none)
 
     # ---------------------------------------------------------------- building
     def _make_fixture_defs(self) -> None:
@@ -167,12 +166,10 @@ class PhysicsWorld:
         rv = np.zeros((self.n, 3)) if robot_vel is None else np.asarray(robot_vel, float).reshape(self.n, 3)
         bv = np.zeros(2) if ball_vel is None else np.asarray(ball_vel, float)
         self._build(robot_pose, rv, np.asarray(ball_pos, float), bv)
-        speed = float(np.hypot(*bv))
-        self._slide_until = self.ball_params.slide_to_roll_ratio * speed if speed > 0 else math.inf
+        self._launch_ball(float(np.hypot(*bv)))
         self.t = 0.0
         self.kick_cooldown = np.zeros(self.n)
         self.kicks_this_step = []
-        self.last_touch = -1
         self._read_state()
 
     def step(self, v_body: np.ndarray, omega: np.ndarray, dribble: np.ndarray, kick: np.ndarray) -> None:
@@ -219,19 +216,16 @@ class PhysicsWorld:
         # --- kicker -------------------------------------------------------------
         self.kick_cooldown = np.maximum(self.kick_cooldown - dt, 0.0)  # new array: snapshots stay intact
         self.kicks_this_step = []
-        kicked = False
-        can_kick = (kick > 0) & self._on_face_now & (self.kick_cooldown <= 0) if near else ()
-        for i in np.flatnonzero(can_kick) if near else ():
-            if kicked:
-                break
+        kickers = np.flatnonzero((kick > 0) & self._on_face_now & (self.kick_cooldown <= 0)) if near else ()
+        kicked = len(kickers) > 0
+        if kicked:  # the first robot (in index order) whose kick fires gets the ball
+            i = int(kickers[0])
             speed = float(min(kick[i], 1.0)) * rp.kick_speed_max
             h = self.heading[i]
             self._ball_body.linearVelocity = (speed * math.cos(h) * S, speed * math.sin(h) * S)
-            self._slide_until = self.ball_params.slide_to_roll_ratio * speed
+            self._launch_ball(speed)
             self.kick_cooldown[i] = rp.kick_recharge_s
-            self.kicks_this_step.append((int(i), speed))
-            self.last_touch = int(i)
-            kicked = True
+            self.kicks_this_step.append((i, speed))
         # --- sub-steps: dribbler, ball friction, Box2D -------------------------
         dribblers = [] if kicked else [i for i in near if dribble[i]]
         # robots near the ball are checked after every sub-step, so a fast robot whose
@@ -247,8 +241,6 @@ class PhysicsWorld:
         self.t += dt
         self._read_state()
         self.on_dribbler = self._on_face_now | touched
-        if near and not kicked and self.on_dribbler.any():
-            self.last_touch = int(np.flatnonzero(self.on_dribbler)[0])
 
     # ----------------------------------------------------------------- helpers
     def _apply_dribblers(self, idx: list[int]) -> None:
@@ -294,6 +286,11 @@ class PhysicsWorld:
         pos = np.array([(b.position[0] / S, b.position[1] / S) for b in (self._robot_bodies[i] for i in idx)])
         hd = np.array([self._robot_bodies[i].angle for i in idx])
         touched[idx] |= self.ball_on_face(pos, hd, ball)
+
+    def _launch_ball(self, speed: float) -> None:
+        """A ball set moving at ``speed`` (m/s) by a kick or a placement slides until it
+        has slowed to ``slide_to_roll_ratio`` of that speed; a ball at rest rolls."""
+        self._slide_until = self.ball_params.slide_to_roll_ratio * speed if speed > 0 else math.inf
 
     def _apply_ball_friction(self) -> None:
         bp, S = self.ball_params, SCALE
@@ -363,8 +360,7 @@ class PhysicsWorld:
         v = np.zeros(2) if vel is None else np.asarray(vel, float)
         self._ball_body.position = (float(pos[0]) * S, float(pos[1]) * S)
         self._ball_body.linearVelocity = (float(v[0]) * S, float(v[1]) * S)
-        sp = float(np.hypot(*v))
-        self._slide_until = self.ball_params.slide_to_roll_ratio * sp if sp > 0 else math.inf
+        self._launch_ball(float(np.hypot(*v)))
         self._read_state()
 
     def set_robots(self, pose: np.ndarray, only: np.ndarray | None = None) -> None:

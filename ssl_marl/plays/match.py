@@ -194,22 +194,18 @@ def start_options(env: Any, seed: int, jitter_m: float) -> dict | None:
     """Reset options: the kickoff formation (field frame) with seeded jitter, or None."""
     if not jitter_m:
         return None
-    from ..envs.referee import kickoff_formation
+    from ..envs.referee import kickoff_poses
 
     rng = np.random.default_rng([int(seed), 0x5EED])
     cfg = env.config
+    poses = kickoff_poses(env.field, cfg.n_blue, cfg.n_yellow)
     robots = {}
-    for team, sgn, count in (("blue", 1.0, cfg.n_blue), ("yellow", -1.0, cfg.n_yellow)):
-        tf = kickoff_formation(env.field, count)
-        for i in range(count):
-            dxy = np.clip(rng.normal(0.0, jitter_m, 2), -2 * jitter_m, 2 * jitter_m)
-            x, y = tf[i, 0] * sgn + dxy[0], tf[i, 1] * sgn + dxy[1]
-            if team == "blue":
-                x = min(x, -0.05)
-            else:
-                x = max(x, 0.05)
-            h = (0.0 if sgn > 0 else math.pi) + float(np.clip(rng.normal(0.0, jitter_m), -0.2, 0.2))
-            robots[f"{team}_{i}"] = (float(x), float(y), h)
+    for name, (x0, y0, h0) in zip(env.possible_agents, poses.tolist()):
+        dxy = np.clip(rng.normal(0.0, jitter_m, 2), -2 * jitter_m, 2 * jitter_m)
+        x, y = x0 + dxy[0], y0 + dxy[1]
+        x = min(x, -0.05) if name.startswith("blue") else max(x, 0.05)  # stay in the own half
+        h = h0 + float(np.clip(rng.normal(0.0, jitter_m), -0.2, 0.2))
+        robots[name] = (float(x), float(y), h)
     return {"formation": "kickoff", "robots": robots}
 
 
