@@ -22,12 +22,11 @@ from ..physics.field import FieldGeometry
 from ..physics.params import RobotParams
 from ..physics.state import WorldState, wrap_angle
 from ..skills.base import make_action
-from ..skills.features import dribbler_ball_distance
-from .navigation import (NavigateToPoint, NavParams, clamp_to_field, defense_rect, facing_towards,
-                         push_out_of_rect)
+from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance
+from .navigation import NavigateToPoint, NavParams, defense_rect, facing_towards, push_out_of_rect
 from .tactic_base import NEAR_BALL_M, Tactic
 
-LOST_BALL_M = 0.05  # d_{d-b} above which a ball being cleared counts as lost (hysteresis over 35 mm)
+LOST_BALL_M = BALL_LOST_DISTANCE  # d_{d-b} above which a ball being cleared counts as lost (hysteresis over 35 mm)
 
 
 # ----------------------------------------------------------------- geometry
@@ -74,7 +73,7 @@ def block_position(ball_pos: np.ndarray, field: FieldGeometry, standoff: float =
         t = min(t, hw / abs(uy))
     p = np.array([gx + ux * t - lane_offset * uy, uy * t + lane_offset * ux])
     p = push_out_of_rect(p, defense_rect(field, -1, standoff))
-    return clamp_to_field(p, field)
+    return field.clamp_to_field(p)
 
 
 def mark_position(opp_pos: np.ndarray, ball_pos: np.ndarray, field: FieldGeometry, distance: float = 0.35,
@@ -90,7 +89,7 @@ def mark_position(opp_pos: np.ndarray, ball_pos: np.ndarray, field: FieldGeometr
     gx, gy = unit(-field.half_length - ox, -oy)
     bx, by = unit(float(ball_pos[0]) - ox, float(ball_pos[1]) - oy)
     dx, dy = unit((1.0 - ball_bias) * gx + ball_bias * bx, (1.0 - ball_bias) * gy + ball_bias * by)
-    return clamp_to_field(np.array([ox + distance * dx, oy + distance * dy]), field)
+    return field.clamp_to_field(np.array([ox + distance * dx, oy + distance * dy]))
 
 
 def clear_kick_action(world: WorldState, robot: int, rp: RobotParams, cone: float, strength: float,

@@ -96,19 +96,13 @@ def push_out_of_rect(p: np.ndarray, rect: tuple[float, float, float, float]) -> 
     return np.array([x, y0 if k == 2 else y1])
 
 
-def clamp_to_field(p: np.ndarray, field: FieldGeometry, margin: float = 0.0) -> np.ndarray:
-    """Scalar-fast :meth:`FieldGeometry.clamp_to_field` for one point."""
-    hl, hw = field.half_length - margin, field.half_width - margin
-    return np.array([min(max(float(p[0]), -hl), hl), min(max(float(p[1]), -hw), hw)])
-
-
 def sanitize_target(target: np.ndarray, field: FieldGeometry, params: NavParams) -> np.ndarray:
     """Clamp ``target`` into the playing area and out of the defense areas ``params`` forbids."""
-    p = clamp_to_field(target, field)
+    p = field.clamp_to_field(target)
     for side, avoid in ((-1, params.avoid_own_defense), (1, params.avoid_opp_defense)):
         if avoid:
             p = push_out_of_rect(p, defense_rect(field, side, params.defense_margin))
-    return clamp_to_field(p, field)
+    return field.clamp_to_field(p)
 
 
 def _segment_hits_rect(a: np.ndarray, b: np.ndarray, rect: tuple[float, float, float, float]) -> bool:

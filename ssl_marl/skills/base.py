@@ -20,7 +20,10 @@ from typing import Protocol, runtime_checkable
 
 import numpy as np
 
+from ..physics.field import FieldGeometry
+from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState
+from .features import BALL_LOST_DISTANCE, dribbler_ball_distance
 
 
 class SkillStatus(enum.Enum):
@@ -48,3 +51,74 @@ def make_action(vx: float = 0.0, vy: float = 0.0, omega: float = 0.0, dribble: b
     """Build a normalised (5,) action, clipping each entry to [-1, 1]."""
     a = np.array([vx, vy, omega, 1.0 if dribble else -1.0, kick if kick > 0 else -1.0], dtype=np.float32)
     return np.clip(a, -1.0, 1.0)
+
+
+class SkillBase:
+    """Plumbing every skill shares: field, robot and ball parameters, and a status."""
+
+    name = "skill"
+
+    def __init__(self, field: FieldGeometry, robot: RobotParams | None = None, ball: BallParams | None = None):
+        self.field = field
+        self.rp = robot or RobotParams()
+        self.bp = ball or BallParams()
+        self.status = SkillStatus.RUNNING
+
+    def reset(self) -> None:
+        self.status = SkillStatus.RUNNING
+
+
+class GoToBallSkill(SkillBase):
+    """go-to-ball, hand-coded or learned: succeeds when the ball is on the dribbler;
+    subclasses say how to approach it (:meth:`approach`)."""
+
+    name = "go_to_ball"
+
+    def act(self, world: WorldState, robot: int) -> np.ndarray:
+        if bool(world.team(world.frame).ball_on_dribbler[robot]):
+            self.status = SkillStatus.SUCCEEDED
+            return make_action(dribble=True)
+        self.status = SkillStatus.RUNNING
+        return self.approach(world, robot)
+
+    def approach(self, world: WorldState, robot: int) -> np.ndarray:
+        raise NotImplementedError
+
+
+class AimToShootSkill(SkillBase):
+    """aim-to-shoot, hand-coded or learned: succeeds once it has kicked; fails if the
+    ball leaves the dribbler (d_{d-b} > ``BALL_LOST_DISTANCE``) before the kick, or when
+    ``max_time_s`` (None = no limit) passes without one. Subclasses implement
+    :meth:`aim`, returning the action and whether it fires the kicker."""
+
+    name = "aim_to_shoot"
+
+    def __init__(self, field: FieldGeometry, robot: RobotParams | None = None, ball: BallParams | None = None,
+                 max_time_s: float | None = None) -> None:
+        super().__init__(field, robot, ball)
+        self.max_time_s = max_time_s
+        self._kicked = False
+        self._t0: float | None = None
+
+    def reset(self) -> None:
+        super().reset()
+        self._kicked = False
+        self._t0 = None
+
+    def act(self, world: WorldState, robot: int) -> np.ndarray:
+        if self._kicked:
+            self.status = SkillStatus.SUCCEEDED
+            return make_action()
+        if self._t0 is None:
+            self._t0 = world.t
+        timed_out = self.max_time_s is not None and world.t - self._t0 > self.max_time_s
+        if timed_out or dribbler_ball_distance(world, robot, self.rp, self.bp) > BALL_LOST_DISTANCE:
+            self.status = SkillStatus.FAILED
+            return make_action(dribble=True)
+        action, kicks = self.aim(world, robot)
+        self._kicked = kicks
+        self.status = SkillStatus.SUCCEEDED if kicks else SkillStatus.RUNNING
+        return action
+
+    def aim(self, world: WorldState, robot: int) -> tuple[np.ndarray, bool]:
+        raise NotImplementedError

@@ -10,11 +10,10 @@ import math
 
 import numpy as np
 
-from ..physics.field import FieldGeometry
-from ..physics.params import BallParams, RobotParams
+from ..physics.params import RobotParams
 from ..physics.state import WorldState, wrap_angle
-from .base import SkillStatus, make_action
-from .features import dribbler_ball_distance, goal_post_angles, rotate_to_robot
+from .base import AimToShootSkill, GoToBallSkill, SkillBase, SkillStatus, make_action
+from .features import goal_post_angles, rotate_to_robot
 
 
 def _pose(world: WorldState, robot: int) -> tuple[np.ndarray, float, np.ndarray]:
@@ -36,20 +35,7 @@ def approach_speed(distance: float, rp: RobotParams, decel: float | None = None,
     return min(rp.max_speed, math.sqrt(max(v_end * v_end + 2.0 * a * max(distance, 0.0), 0.0)))
 
 
-class _SkillBase:
-    name = "skill"
-
-    def __init__(self, field: FieldGeometry, robot: RobotParams | None = None, ball: BallParams | None = None):
-        self.field = field
-        self.rp = robot or RobotParams()
-        self.bp = ball or BallParams()
-        self.status = SkillStatus.RUNNING
-
-    def reset(self) -> None:
-        self.status = SkillStatus.RUNNING
-
-
-class GoToBallBaseline(_SkillBase):
+class GoToBallBaseline(GoToBallSkill):
     """The paper's existing go-to-ball: move in a straight line to the ball while
     turning to face it; slow down to touch it with the dribbler.
 
@@ -65,12 +51,8 @@ class GoToBallBaseline(_SkillBase):
         super().__init__(field, robot, ball)
         self.turn_gain, self.touch_speed = turn_gain, touch_speed
 
-    def act(self, world: WorldState, robot: int) -> np.ndarray:
+    def approach(self, world: WorldState, robot: int) -> np.ndarray:
         pos, h, _ = _pose(world, robot)
-        if bool(world.team(world.frame).ball_on_dribbler[robot]):
-            self.status = SkillStatus.SUCCEEDED
-            return make_action(dribble=True)
-        self.status = SkillStatus.RUNNING
         rp = self.rp
         reach = rp.front_distance + self.bp.radius
         d_ball = world.ball_pos - pos
@@ -92,7 +74,7 @@ class GoToBallBaseline(_SkillBase):
         return velocity_command(world, robot, v, omega, rp, dribble=True)
 
 
-class AimToShootBaseline(_SkillBase):
+class AimToShootBaseline(AimToShootSkill):
     """The paper's existing aim-to-shoot: turn towards the goal with the dribbler on
     and shoot at full strength at the first opportunity, i.e. as soon as the heading
     lies between the posts. Turns at most ``max_turn_rate`` (rad/s), slow enough to
@@ -105,31 +87,17 @@ class AimToShootBaseline(_SkillBase):
                  post_margin: float = 0.0):
         super().__init__(field, robot, ball)
         self.max_turn_rate, self.turn_gain, self.post_margin = max_turn_rate, turn_gain, post_margin
-        self._kicked = False
 
-    def reset(self) -> None:
-        super().reset()
-        self._kicked = False
-
-    def act(self, world: WorldState, robot: int) -> np.ndarray:
-        if self._kicked:
-            self.status = SkillStatus.SUCCEEDED
-            return make_action()
-        if dribbler_ball_distance(world, robot, self.rp, self.bp) > 0.05:
-            self.status = SkillStatus.FAILED
-            return make_action()
+    def aim(self, world: WorldState, robot: int) -> tuple[np.ndarray, bool]:
         al, ar = goal_post_angles(world, robot, self.field)
         if al - self.post_margin > 0.0 > ar + self.post_margin and bool(world.team(world.frame).kick_ready[robot]):
-            self._kicked = True
-            self.status = SkillStatus.SUCCEEDED
-            return make_action(dribble=True, kick=1.0)
+            return make_action(dribble=True, kick=1.0), True
         err = float(wrap_angle((al + ar) / 2.0)) if abs(al - ar) < math.pi else al
         omega = float(np.clip(self.turn_gain * err, -self.max_turn_rate, self.max_turn_rate))
-        self.status = SkillStatus.RUNNING
-        return make_action(omega=omega / self.rp.max_omega, dribble=True)
+        return make_action(omega=omega / self.rp.max_omega, dribble=True), False
 
 
-class DriveForward(_SkillBase):
+class DriveForward(SkillBase):
     """The paper's fixed skill: dribbler on, drive forward for ``duration_s`` (1 s) at
     ``speed`` (m/s). Succeeds when the time is up. The speed ramps down linearly over the
     last ``ramp_s`` (0.3 s) so that the robot is nearly at rest when the next skill
@@ -157,7 +125,7 @@ class DriveForward(_SkillBase):
         return make_action(vx=self.speed * ramp / self.rp.max_speed, dribble=True)
 
 
-class MoveToPoint(_SkillBase):
+class MoveToPoint(SkillBase):
     """Move to ``target`` (team frame, m) and face ``facing`` (rad, or None to keep the
     heading): straight line with a stopping-distance speed profile and a proportional
     heading controller. Succeeds within ``tolerance`` m and 0.05 rad, nearly stopped.

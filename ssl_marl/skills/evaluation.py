@@ -99,7 +99,9 @@ def evaluate_skill(task: str, policy: str = "baseline", episodes: int = 1000, se
             results += res
             bar.update(len(res))
     else:
-        ctx = mp.get_context("fork" if sys.platform.startswith("linux") else "spawn")
+        # spawn, not fork: forking a process whose torch has started its thread pool (a
+        # learned skill loaded earlier in the same process) can deadlock the workers
+        ctx = mp.get_context("spawn")
         with ctx.Pool(workers) as pool:
             for res in pool.imap_unordered(_run_episodes, jobs):
                 results += res

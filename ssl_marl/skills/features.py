@@ -19,6 +19,7 @@ from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState, wrap_angle
 
 GO_TO_BALL_SPEC = "go_to_ball/v1"
+BALL_LOST_DISTANCE = 0.05  # m: d_{d-b} beyond which a held ball counts as lost (aim-to-shoot, clearing)
 AIM_TO_SHOOT_SPEC = "aim_to_shoot/v1"
 
 GO_TO_BALL_NAMES = ("ball_x", "ball_y", "robot_vx", "robot_vy", "robot_omega", "dist_robot_ball",

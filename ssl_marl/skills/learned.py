@@ -15,9 +15,8 @@ import numpy as np
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState
-from .base import SkillStatus, make_action
-from .features import (AIM_TO_SHOOT_SPEC, GO_TO_BALL_SPEC, aim_to_shoot_features, dribbler_ball_distance,
-                       go_to_ball_features)
+from .base import AimToShootSkill, GoToBallSkill
+from .features import AIM_TO_SHOOT_SPEC, GO_TO_BALL_SPEC, aim_to_shoot_features, go_to_ball_features
 from .wrappers import expand_task_action
 
 PRETRAINED_DIR = Path(__file__).resolve().parent / "pretrained"
@@ -70,68 +69,31 @@ def load_policy(skill: str, checkpoint: str | Path | None = None) -> tuple[Numpy
     return NumpyActor(actor), meta
 
 
-class LearnedGoToBall:
+class LearnedGoToBall(GoToBallSkill):
     """Learned go-to-ball (paper's DDPG skill). Succeeds when the ball is on the dribbler."""
-
-    name = "go_to_ball"
 
     def __init__(self, field: FieldGeometry, robot: RobotParams | None = None, ball: BallParams | None = None,
                  checkpoint: str | Path | None = None, policy: NumpyActor | None = None) -> None:
-        self.field = field
-        self.rp, self.bp = robot or RobotParams(), ball or BallParams()
+        super().__init__(field, robot, ball)
         self.policy = policy if policy is not None else load_policy("go_to_ball", checkpoint)[0]
-        self.status = SkillStatus.RUNNING
 
-    def reset(self) -> None:
-        self.status = SkillStatus.RUNNING
-
-    def act(self, world: WorldState, robot: int) -> np.ndarray:
-        if bool(world.team(world.frame).ball_on_dribbler[robot]):
-            self.status = SkillStatus.SUCCEEDED
-            return make_action(dribble=True)
-        self.status = SkillStatus.RUNNING
+    def approach(self, world: WorldState, robot: int) -> np.ndarray:
         return expand_task_action("go-to-ball", self.policy(go_to_ball_features(world, robot, self.field)))
 
 
-class LearnedAimToShoot:
+class LearnedAimToShoot(AimToShootSkill):
     """Learned aim-to-shoot (paper's DDPG skill). Succeeds when it kicks; fails if the
-    ball leaves the dribbler (> 0.05 m) before the kick, or after ``max_time_s`` (1.6 s,
-    its training episode length) without a kick: beyond that horizon the policy was never
+    ball leaves the dribbler before the kick, or after ``max_time_s`` (1.6 s, its
+    training episode length) without a kick: beyond that horizon the policy was never
     trained, and a tactic should try something else (e.g. drive closer and aim again)."""
-
-    name = "aim_to_shoot"
 
     def __init__(self, field: FieldGeometry, robot: RobotParams | None = None, ball: BallParams | None = None,
                  checkpoint: str | Path | None = None, policy: NumpyActor | None = None,
                  max_time_s: float | None = 1.6) -> None:
-        self.field = field
-        self.rp, self.bp = robot or RobotParams(), ball or BallParams()
+        super().__init__(field, robot, ball, max_time_s)
         self.policy = policy if policy is not None else load_policy("aim_to_shoot", checkpoint)[0]
-        self.max_time_s = max_time_s
-        self.status = SkillStatus.RUNNING
-        self._kicked = False
-        self._t0: float | None = None
 
-    def reset(self) -> None:
-        self.status = SkillStatus.RUNNING
-        self._kicked = False
-        self._t0 = None
-
-    def act(self, world: WorldState, robot: int) -> np.ndarray:
-        if self._kicked:
-            self.status = SkillStatus.SUCCEEDED
-            return make_action()
-        if self._t0 is None:
-            self._t0 = world.t
-        timed_out = self.max_time_s is not None and world.t - self._t0 > self.max_time_s
-        if timed_out or dribbler_ball_distance(world, robot, self.rp, self.bp) > 0.05:
-            self.status = SkillStatus.FAILED
-            return make_action(dribble=True)
+    def aim(self, world: WorldState, robot: int) -> tuple[np.ndarray, bool]:
         a = expand_task_action("aim-to-shoot", self.policy(aim_to_shoot_features(world, robot, self.field)))
         team = world.team(world.frame)
-        if a[4] > 0 and bool(team.kick_ready[robot]) and bool(team.ball_on_dribbler[robot]):
-            self._kicked = True
-            self.status = SkillStatus.SUCCEEDED
-        else:
-            self.status = SkillStatus.RUNNING
-        return a
+        return a, bool(a[4] > 0 and team.kick_ready[robot] and team.ball_on_dribbler[robot])

@@ -22,8 +22,9 @@ from ..envs.ssl_env import SSLParallelEnv
 from ..physics.field import FieldGeometry
 from ..physics.state import WorldState, to_team_frame
 from .base import make_action
-from .features import (AIM_TO_SHOOT_SPEC, GO_TO_BALL_SPEC, ORIENTATION_FORMS, aim_to_shoot_features,
-                       aim_to_shoot_reward, go_to_ball_features, go_to_ball_reward)
+from .features import (AIM_TO_SHOOT_SPEC, BALL_LOST_DISTANCE, GO_TO_BALL_SPEC, ORIENTATION_FORMS,
+                       aim_to_shoot_features, aim_to_shoot_reward, dribbler_ball_distance, go_to_ball_features,
+                       go_to_ball_reward)
 
 AGENT = "blue_0"
 
@@ -52,9 +53,14 @@ class _SkillEnv(gymnasium.Env, EzPickle):
         self.n_opponents = n_opponents
         self.opponent_policy = opponent_policy
         self._opponent_skills: list = []
-        self.t = 0.0
 
     # --- helpers --------------------------------------------------------------
+    @property
+    def t(self) -> float:
+        """Simulated time since the episode started (s), from the world itself (in real-time
+        mode one step can cover several control ticks)."""
+        return self.env.world_state().t
+
     def seen(self) -> WorldState:
         """What the controlled robot sees, in its team frame."""
         return self.env.vision_state("blue")
@@ -84,7 +90,6 @@ class _SkillEnv(gymnasium.Env, EzPickle):
 
             self._opponent_skills = [GoToBallBaseline(self.field, self.robot_params, self.ball_params)
                                      for _ in range(self.n_opponents)]
-        self.t = 0.0
 
     def _free_spot(self, taken: list[np.ndarray], min_dist: float, margin: float = 0.2) -> np.ndarray:
         return self.field.random_free_point(self.np_random, margin, taken, min_dist)
@@ -93,7 +98,6 @@ class _SkillEnv(gymnasium.Env, EzPickle):
         acts = {AGENT: action5}
         acts.update(self._opponent_actions())
         _, _, _, _, infos = self.env.step(acts)
-        self.t += self.dt
         return infos[AGENT]
 
     @staticmethod
@@ -152,8 +156,7 @@ class GoToBallEnv(_SkillEnv):
         f = self.field
         ball = options.get("ball_pos")
         if ball is None:
-            ball = self.np_random.uniform([-f.half_length + 0.1, -f.half_width + 0.1],
-                                          [f.half_length - 0.1, f.half_width - 0.1])
+            ball = f.random_free_point(self.np_random, margin=0.1)
         pose = options.get("robot_pose")
         if pose is None:
             xy = self._free_spot([np.asarray(ball)], 0.3, margin=0.1)
@@ -165,8 +168,7 @@ class GoToBallEnv(_SkillEnv):
         return go_to_ball_features(self.seen(), 0, f), {"reward_terms": {}}
 
     def step(self, action):
-        a = self._check_action(action, 3)
-        self._step_inner(make_action(a[0], a[1], a[2], dribble=True))
+        self._step_inner(expand_task_action("go-to-ball", self._check_action(action, 3)))
         truth = self.truth()
         terms = go_to_ball_reward(truth, 0, self.orientation_form)
         success = bool(truth.blue.ball_on_dribbler[0])
@@ -215,7 +217,7 @@ class AimToShootEnv(_SkillEnv):
 
     spec_version = AIM_TO_SHOOT_SPEC
 
-    def __init__(self, max_time_s: float = 1.6, post_kick_time_s: float = 2.0, lost_distance: float = 0.05,
+    def __init__(self, max_time_s: float = 1.6, post_kick_time_s: float = 2.0, lost_distance: float = BALL_LOST_DISTANCE,
                  spawn_x: tuple[float, float] | None = None, reward_form: str = "paper", success_bonus: float = 0.0,
                  **kwargs: Any) -> None:
         super().__init__(**kwargs)
@@ -252,11 +254,7 @@ class AimToShootEnv(_SkillEnv):
 
     def step(self, action):
         a = self._check_action(action, 3)
-        if self._kick_t is None:
-            act = make_action(0.0, 0.0, a[0], dribble=a[1] > 0, kick=float(a[2]))
-        else:
-            act = make_action()
-        info = self._step_inner(act)
+        info = self._step_inner(expand_task_action("aim-to-shoot", a) if self._kick_t is None else make_action())
         truth = self.truth()
         if self._kick_t is None and any(ev["type"] == "kick" and ev["agent"] == AGENT for ev in info["events"]):
             self._kick_t = self.t
@@ -275,8 +273,6 @@ class AimToShootEnv(_SkillEnv):
     def _outcome(self, truth: WorldState) -> tuple[bool, bool, bool, str | None]:
         f, br = self.field, self.ball_params.radius
         if self._kick_t is None:
-            from .features import dribbler_ball_distance
-
             if dribbler_ball_distance(truth, 0, self.robot_params, self.ball_params) > self.lost_distance:
                 return True, False, False, "ball_lost"
             if self.t >= self.max_time_s - 1e-9:
