@@ -10,6 +10,8 @@ Measures updates/s (replay sampling included) of:
   ``backward()``, per-parameter soft-update loop, ``.item()`` every update),
   to show what the choices buy;
 * ``ours_bf16`` (with ``--bf16``): ours with bfloat16 autocast;
+* ``ours_compile`` and ``ours_bf16_compile`` (with ``--compile``): the same with the
+  loss functions compiled by ``torch.compile`` (compilation time reported apart);
 * ``sb3``: Stable-Baselines3 ``DDPG.train(gradient_steps, batch_size)`` when
   ``stable_baselines3`` is importable (not a dependency). SB3's MLP has no
   layer norm, so it does a little less work per update.
@@ -54,9 +56,9 @@ def filled_buffer(batch: int) -> ReplayBuffer:
     return buf
 
 
-def ours(batch: int, bf16: bool = False) -> Callable[[], None]:
+def ours(batch: int, bf16: bool = False, compiled: bool = False) -> Callable[[], None]:
     torch.manual_seed(0)
-    cfg = DDPGConfig(actor_hidden=HIDDEN, critic_hidden=HIDDEN, batch_size=batch, autocast_bf16=bf16)
+    cfg = DDPGConfig(actor_hidden=HIDDEN, critic_hidden=HIDDEN, batch_size=batch, autocast_bf16=bf16, compile=compiled)
     agent, buf = DDPG(OBS_DIM, ACT_DIM, cfg), filled_buffer(batch)
 
     def step() -> None:
@@ -143,12 +145,22 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--rounds", type=int, default=3)
     p.add_argument("--threads", default="1,2", help="comma-separated torch thread counts")
     p.add_argument("--bf16", action="store_true", help="also measure ours with bfloat16 autocast")
+    p.add_argument("--compile", action="store_true",
+                   help="also measure ours with torch.compile (fp32 and, with --bf16, bf16)")
     p.add_argument("--no-naive", action="store_true")
     args = p.parse_args(argv)
 
     fns: dict[str, Callable[[], None]] = {"ours": ours(args.batch)}
     if args.bf16:
         fns["ours_bf16"] = ours(args.batch, bf16=True)
+    compile_s: dict[str, float] = {}
+    if args.compile:
+        variants = [("ours_compile", False)] + ([("ours_bf16_compile", True)] if args.bf16 else [])
+        for name, bf16 in variants:
+            t0 = time.perf_counter()
+            fns[name] = ours(args.batch, bf16=bf16, compiled=True)
+            fns[name]()  # first call compiles
+            compile_s[name] = round(time.perf_counter() - t0, 1)
     if not args.no_naive:
         fns["naive"] = naive(args.batch)
     sb = sb3(args.batch)
@@ -161,6 +173,7 @@ def main(argv: list[str] | None = None) -> int:
         "benchmark": "DDPG updates/s (actor+critic step incl. replay sampling)",
         "sizes": {"obs": OBS_DIM, "act": ACT_DIM, "actor": list(HIDDEN), "critic": list(HIDDEN), "batch": args.batch},
         "updates_per_s": results,
+        "compile_seconds": compile_s,
         "notes": ["ours and naive use layer norm after each hidden layer (paper)",
                   "sb3: stable_baselines3 DDPG has no layer norm" if sb is not None else
                   "sb3: stable_baselines3 not importable, not measured"],

@@ -1,7 +1,7 @@
 """End-to-end DDPG training throughput on the real go-to-ball env; prints JSON.
 
     python benchmarks/bench_training.py [--steps 2000] [--warmup 1000] [--rounds 1] [--threads 1] [--seed 0]
-                                        [--no-sb3]
+                                        [--no-sb3] [--fast]
 
 Three configurations on ``ssl_marl/GoToBall-v0`` (obs 14, action Box(-1, 1, (3,))),
 one env, run one after the other in each round (``--rounds`` rounds; the median
@@ -59,9 +59,10 @@ ENV_ID = "ssl_marl/GoToBall-v0"
 BUFFER = 100_000
 
 
-def bench_config(steps: int, warmup: int, threads: int) -> DDPGConfig:
-    """The shipped go-to-ball config, without demos, evaluations or intermediate checkpoints."""
-    return DDPGConfig(**{**default_config("go-to-ball").to_dict(),
+def bench_config(steps: int, warmup: int, threads: int, fast: bool = False) -> DDPGConfig:
+    """The shipped go-to-ball config, without demos, evaluations or intermediate checkpoints
+    (``fast``: with ``autocast_bf16`` and ``compile``)."""
+    return DDPGConfig(**{**default_config("go-to-ball").to_dict(), "autocast_bf16": fast, "compile": fast,
                          "demo_steps": 0, "eval_interval": 0, "eval_episodes": 1, "checkpoint_interval": 10**12,
                          "buffer_size": BUFFER, "warmup_samples": warmup, "total_samples": warmup + steps,
                          "num_envs": 1, "batch_size": 256, "updates_per_sample": 1.0, "torch_threads": threads})
@@ -91,8 +92,8 @@ def _rates(samples: int, updates: int, seconds: float) -> dict[str, float]:
             "seconds": round(seconds, 3), "samples": samples, "updates": updates}
 
 
-def run_ours(steps: int, warmup: int, threads: int, seed: int) -> dict[str, float]:
-    cfg = bench_config(steps, warmup, threads)
+def run_ours(steps: int, warmup: int, threads: int, seed: int, fast: bool = False) -> dict[str, float]:
+    cfg = bench_config(steps, warmup, threads, fast)
     with tempfile.TemporaryDirectory(prefix="bench_training_") as out:
         tr = TimedTrainer(cfg, seed, out, progress=False)
         tr.run()
@@ -164,12 +165,16 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--threads", type=int, default=1, help="torch.set_num_threads")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--no-sb3", action="store_true", help="skip stable-baselines3 even when installed")
+    p.add_argument("--fast", action="store_true",
+                   help="also run ours with autocast_bf16 + compile (compilation happens in the untimed warm-up)")
     args = p.parse_args(argv)
     if args.steps <= 0 or args.warmup < 256 or args.rounds <= 0 or args.threads <= 0:
         p.error("need --steps > 0, --warmup >= 256 (batch size), --rounds > 0, --threads > 0")
 
     torch.set_num_threads(args.threads)
-    runners = {"env_only": run_env_only, "ours": run_ours}
+    runners: dict[str, Any] = {"env_only": run_env_only, "ours": run_ours}
+    if args.fast:
+        runners["ours_fast"] = lambda *a: run_ours(*a, fast=True)
     have_sb3 = not args.no_sb3 and sb3_available()
     if have_sb3:
         runners["sb3"] = run_sb3
@@ -190,6 +195,9 @@ def main(argv: list[str] | None = None) -> int:
     if "sb3" in results:
         results["ours_over_sb3_samples_per_s"] = round(
             results["ours"]["samples_per_s"] / results["sb3"]["samples_per_s"], 2)
+        if "ours_fast" in results:
+            results["ours_fast_over_sb3_samples_per_s"] = round(
+                results["ours_fast"]["samples_per_s"] / results["sb3"]["samples_per_s"], 2)
     cpu = next((ln.split(":", 1)[1].strip() for ln in Path("/proc/cpuinfo").read_text().splitlines()
                 if ln.startswith("model name")), platform.processor()) if Path("/proc/cpuinfo").exists() else ""
     versions = {"torch": torch.__version__, "gymnasium": gym.__version__, "numpy": np.__version__}
@@ -210,6 +218,7 @@ def main(argv: list[str] | None = None) -> int:
             "env_only: bare gym.make env with uniform-random actions, no learning (reference ceiling)",
             ("ours: train.loop.Trainer (progress.csv logging included; demos, evaluations, checkpoints off), "
              "layer norm after each hidden layer (paper)"),
+            "ours_fast (--fast): ours with autocast_bf16 and compile (bf16 matrix products, compiled losses)",
             ("sb3: stable_baselines3 DDPG learn(), MlpPolicy WITHOUT layer norm (a little less work per update), "
              "single learning rate, Monitor + DummyVecEnv wrappers; not a project dependency")
             if have_sb3 else "sb3: not measured (stable_baselines3 not importable or --no-sb3)",

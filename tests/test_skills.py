@@ -276,3 +276,17 @@ def test_aim_to_shoot_baseline_demos_show_turning_and_succeed():
     ends = [t for t in trans if t.terminated or t.truncated]
     assert ends and all(t.info["is_success"] for t in ends)
     assert any(abs(t.action[0]) > 0.1 for t in trans)  # omega used: the robot turns
+
+
+@pytest.mark.parametrize("kick_action, speed_fraction", [("strength", 0.2), ("full", 1.0)])
+def test_aim_to_shoot_kick_action(kick_action, speed_fraction):
+    """A kick action of 0.2 kicks at 20 % ("strength", the paper's) or 100 % ("full")."""
+    env = AimToShootEnv(kick_action=kick_action)
+    assert env.spec_version == {"strength": "aim_to_shoot/v1", "full": "aim_to_shoot/v2"}[kick_action]
+    env.reset(seed=0)
+    env.step(np.array([0.0, 1.0, -1.0], np.float32))  # let the kicker see the ball
+    env.step(np.array([0.0, 1.0, 0.2], np.float32))
+    speed = float(np.hypot(*env.truth().ball_vel))
+    assert speed == pytest.approx(speed_fraction * RobotParams().kick_speed_max, rel=0.05)
+    with pytest.raises(ValueError, match="kick_action"):
+        AimToShootEnv(kick_action="soft")

@@ -108,3 +108,22 @@ def test_skill_and_spec_mismatch(tmp_path) -> None:
         load_actor(path, expected_skill="aim_to_shoot")
     with pytest.raises(ValueError, match=r"expected 'go_to_ball/v2', found 'go_to_ball/v1'"):
         load_actor(path, expected_skill="go_to_ball", expected_spec="go_to_ball/v2")
+
+
+def test_select_picks_among_exported_actors(tmp_path) -> None:
+    import json
+
+    from ssl_marl.skills.checkpoint import save_actor
+    from ssl_marl.skills.features import AIM_TO_SHOOT_SPECS
+    from ssl_marl.skills.networks import Actor
+    from train.select import select
+
+    for samples in (1000, 2000):
+        torch.manual_seed(samples)
+        save_actor(tmp_path / "actors" / f"actor-{samples:09d}.pt", Actor(10, 3, (8,)),
+                   {"skill": "aim_to_shoot", "obs_spec": AIM_TO_SHOOT_SPECS["full"], "samples": samples})
+    out = select(tmp_path, episodes=3, seed=5, min_samples=1500, progress=False)
+    assert [c["samples"] for c in out["candidates"]] == [2000]
+    assert json.loads((tmp_path / "selection.json").read_text())["best"]["samples"] == 2000
+    with pytest.raises(FileNotFoundError, match="actors"):
+        select(tmp_path / "empty", episodes=1)

@@ -117,3 +117,44 @@ def test_behaviour_cloning_term_pulls_the_actor_to_the_demonstrations() -> None:
         agent.update(_batch(), demo)
     after = float(((agent.actor(demo.obs) - demo.act) ** 2).mean())
     assert after < 0.1 * before
+
+
+def test_actor_step_does_not_touch_the_critic() -> None:
+    """The actor step freezes the critic (no weight gradients) and unfreezes it afterwards."""
+    torch.manual_seed(0)
+    agent = DDPG(4, 2, DDPGConfig(actor_hidden=(8,), critic_hidden=(8,), batch_size=16))
+    b = _batch()
+    crit = agent.critic_loss(b)
+    crit.backward()
+    expected = [p.grad.clone() for p in agent.critic.parameters()]
+    torch.manual_seed(0)
+    agent2 = DDPG(4, 2, DDPGConfig(actor_hidden=(8,), critic_hidden=(8,), batch_size=16))
+    agent2.update(b)  # critic grads left by update() must be the critic loss's alone
+    for p, g in zip(agent2.critic.parameters(), expected):
+        assert p.requires_grad
+        torch.testing.assert_close(p.grad, g)
+
+
+def test_bf16_autocast_update_tracks_float32() -> None:
+    losses = {}
+    for bf16 in (False, True):
+        torch.manual_seed(0)
+        agent = DDPG(4, 2, DDPGConfig(actor_hidden=(32, 32), critic_hidden=(32, 32), batch_size=16, autocast_bf16=bf16))
+        for _ in range(20):
+            agent.update(_batch())
+        losses[bf16] = agent.read_losses()
+    assert np.allclose(losses[True], losses[False], rtol=0.05, atol=1e-3), losses
+
+
+@pytest.mark.slow
+def test_compiled_update_matches_eager() -> None:
+    """``compile=True`` runs the same maths (float32, up to kernel rounding)."""
+    states = []
+    for compiled in (False, True):
+        torch.manual_seed(0)
+        agent = DDPG(4, 2, DDPGConfig(actor_hidden=(16,), critic_hidden=(16,), batch_size=16, compile=compiled))
+        for _ in range(5):
+            agent.update(_batch())
+        states.append(agent.actor.state_dict())
+    for k in states[0]:
+        torch.testing.assert_close(states[1][k], states[0][k], rtol=1e-4, atol=1e-5)

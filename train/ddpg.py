@@ -7,11 +7,15 @@ One update, all of it in :meth:`DDPG.update`::
     L_actor  = -mean(Q(s, mu(s))) [+ w_bc * mean((mu(s_d) - a_d)^2)]  # Adam step on the actor only
     theta'   <- theta' + tau * (theta - theta')                    # Polyak, both targets
 
-Speed (measured, see benchmarks/bench_ddpg.py): fused Adam, the actor loss
-back-propagated only into the actor's parameters (``backward(inputs=...)``
-skips the critic's weight gradients), one ``torch._foreach_lerp_`` for the soft
-update, losses accumulated as tensors and read out every ``log_interval``
-updates (no ``.item()`` sync per update). ``torch.compile`` was slower here.
+Speed (measured, see benchmarks/bench_ddpg.py and docs/BENCHMARKS.md): fused
+Adam; the critic's parameters frozen during the actor step (no critic weight
+gradients); one ``torch._foreach_lerp_`` for the soft update; losses accumulated
+as tensors and read out every ``log_interval`` updates (no ``.item()`` sync per
+update). Options: ``autocast_bf16`` runs the matrix products in bfloat16 (on CPUs
+with AMX, e.g. Sapphire Rapids, a 256x300 @ 300x400 product is ~5x faster than in
+float32); ``compile`` hands the two loss functions (forward and backward) to
+``torch.compile``, which fuses the layer-norm / ReLU / cast kernels around them
+(~30 s of compilation at start-up). Alone, ``compile`` does not pay in float32 here.
 """
 
 from __future__ import annotations
@@ -61,39 +65,57 @@ class DDPG:
         self.critic_target = copy.deepcopy(self.critic).requires_grad_(False)
         self.actor_opt = _adam(self.actor.parameters(), cfg.actor_lr)
         self.critic_opt = _adam(self.critic.parameters(), cfg.critic_lr, cfg.critic_weight_decay)
-        self._actor_params = list(self.actor.parameters())
-        self._online = self._actor_params + list(self.critic.parameters())
+        self._critic_params = list(self.critic.parameters())
+        self._online = list(self.actor.parameters()) + self._critic_params
         self._target = list(self.actor_target.parameters()) + list(self.critic_target.parameters())
         self._autocast = (lambda: torch.autocast("cpu", dtype=torch.bfloat16)) if cfg.autocast_bf16 \
             else contextlib.nullcontext
+        self._critic_loss, self._actor_loss = self.critic_loss, self.actor_loss
+        if cfg.compile:  # shapes are fixed (batch sizes), so no dynamic-shape graphs
+            self._critic_loss = torch.compile(self.critic_loss, dynamic=False)
+            self._actor_loss = torch.compile(self.actor_loss, dynamic=False)
         self.updates = 0
         self._loss_sum = torch.zeros(2)  # (critic, actor) summed since the last read-out
         self._loss_count = 0
+
+    def critic_loss(self, b: Batch) -> torch.Tensor:
+        """mean((Q(s, a) - y)^2) with y from the target networks (no gradient through y)."""
+        with torch.no_grad(), self._autocast():
+            next_q = self.critic_target(b.next_obs, self.actor_target(b.next_obs)).float().squeeze(-1)
+            y = td_target(b.rew, b.terminated, next_q, self.cfg.gamma)
+        with self._autocast():
+            q = self.critic(b.obs, b.act).float().squeeze(-1)
+        return F.mse_loss(q, y)
+
+    def actor_loss(self, b: Batch, demo: Batch | None = None) -> torch.Tensor:
+        """-mean(Q(s, mu(s))) [+ bc_weight * mean((mu(s_d) - a_d)^2) on demonstration rows]."""
+        with self._autocast():
+            loss = -self.critic(b.obs, self.actor(b.obs)).float().mean()
+            if demo is not None:
+                loss = loss + self.cfg.bc_weight * F.mse_loss(self.actor(demo.obs).float(), demo.act)
+        return loss
 
     def update(self, b: Batch, demo: Batch | None = None) -> None:
         """One DDPG update from batch ``b`` (see the module docstring); with ``demo`` and
         ``cfg.bc_weight`` > 0 the actor also regresses onto the demonstrated actions
         (behaviour cloning as in DDPGfD / TD3+BC)."""
-        cfg, ac = self.cfg, self._autocast
-        with torch.no_grad(), ac():
-            next_q = self.critic_target(b.next_obs, self.actor_target(b.next_obs)).float().squeeze(-1)
-            y = td_target(b.rew, b.terminated, next_q, cfg.gamma)
-        with ac():
-            q = self.critic(b.obs, b.act).float().squeeze(-1)
-        critic_loss = F.mse_loss(q, y)
+        critic_loss = self._critic_loss(b)
         self.critic_opt.zero_grad(set_to_none=True)
         critic_loss.backward()
         self.critic_opt.step()
 
-        with ac():
-            actor_loss = -self.critic(b.obs, self.actor(b.obs)).float().mean()
-            if demo is not None and cfg.bc_weight > 0:
-                actor_loss = actor_loss + cfg.bc_weight * F.mse_loss(self.actor(demo.obs).float(), demo.act)
-        self.actor_opt.zero_grad(set_to_none=True)
-        actor_loss.backward(inputs=self._actor_params)  # no critic weight grads needed
+        for p in self._critic_params:  # the actor step needs dQ/da only, not the critic's weight gradients
+            p.requires_grad_(False)
+        try:
+            actor_loss = self._actor_loss(b, demo if demo is not None and self.cfg.bc_weight > 0 else None)
+            self.actor_opt.zero_grad(set_to_none=True)
+            actor_loss.backward()
+        finally:
+            for p in self._critic_params:
+                p.requires_grad_(True)
         self.actor_opt.step()
 
-        soft_update(self._target, self._online, cfg.tau)
+        soft_update(self._target, self._online, self.cfg.tau)
         self._loss_sum += torch.stack((critic_loss.detach(), actor_loss.detach()))
         self._loss_count += 1
         self.updates += 1

@@ -16,6 +16,7 @@ deterministic envs and the same thread count.
 
 Output folder: ``progress.csv`` (one row per episode, demo episodes flagged
 ``phase=demo``), ``eval.csv``, ``checkpoint.pt`` + ``replay-*.npz``,
+``actors/actor-<samples>.pt`` (the actor at each checkpoint, for model selection),
 ``config.json``, ``actor.pt`` (export), ``eval.json`` (final evaluation),
 ``learning_curve.png``, and ``tb/`` when TensorBoard is installed.
 """
@@ -384,6 +385,7 @@ class Trainer:
             "csv_rows": {"progress": self.log.rows, "eval": self.eval_log.rows}, "replay_file": replay_name,
         }
         atomic_torch_save(state, self.out / CHECKPOINT)
+        self.export_actor(self.out / "actors" / f"actor-{self.samples:09d}.pt")
         for old in self.out.glob("replay-*.npz"):
             if old.name != replay_name:
                 old.unlink(missing_ok=True)

@@ -3,7 +3,8 @@
     python -m train.report [--results results] [--out docs/results_tables.md]
 
 Reads every ``results/*/results.json`` written by ``ssl-marl eval-skill`` and
-``ssl-marl eval-tactic`` (and ``results/match_*.json`` series from ``ssl-marl match --json``)
+``ssl-marl eval-tactic`` (and ``results/match_*.json`` series from ``ssl-marl match --json``,
+``results/training/*/selection.json`` from ``python -m train.select``)
 and writes markdown tables, printing them too.
 """
 
@@ -61,6 +62,18 @@ def match_rows(results: Path) -> list[str]:
     return rows
 
 
+def selection_rows(results: Path) -> list[str]:
+    """One row per ``results/training/<run>/selection.json`` written by ``python -m train.select``."""
+    rows = ["| run | validation seed x episodes | success per checkpoint (samples: rate) | chosen |",
+            "|---|---|---|---|"]
+    for f in sorted(results.glob("training/*/selection.json")):
+        s = json.loads(f.read_text())
+        cands = ", ".join(f"{c['samples'] // 1000}k: {c['success_rate']:.3f}" for c in s["candidates"])
+        rows.append(f"| `{f.parent.name}` | {s['validation_seed']} x {s['episodes']} | {cands} | "
+                    f"{s['best']['samples'] // 1000}k |")
+    return rows
+
+
 def main(argv: list[str] | None = None) -> str:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--results", default="results", help="folder of evaluation outputs (default results)")
@@ -70,7 +83,8 @@ def main(argv: list[str] | None = None) -> str:
     text = "\n".join(["### Skills (ssl-marl eval-skill)", "", *skill_rows(res), "",
                       "### Tactic (ssl-marl eval-tactic)", "", *tactic_rows(res), "",
                       "### Match series (ssl-marl match --matches K --json results/match_NAME.json)", "",
-                      *match_rows(res), ""])
+                      *match_rows(res), "",
+                      "### Checkpoint selection (python -m train.select RUN)", "", *selection_rows(res), ""])
     print(text)
     if a.out:
         atomic_write_bytes(a.out, text.encode())

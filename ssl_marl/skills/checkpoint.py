@@ -117,12 +117,12 @@ def save_actor(path: str | os.PathLike[str], actor: Actor, metadata: Mapping[str
 
 
 def load_actor(path: str | os.PathLike[str], expected_skill: str | None = None,
-               expected_spec: str | None = None) -> tuple[Actor, dict[str, Any]]:
+               expected_spec: str | tuple[str, ...] | None = None) -> tuple[Actor, dict[str, Any]]:
     """Load an actor saved by :func:`save_actor`; return ``(actor in eval mode, metadata)``.
 
     Raises FileNotFoundError if ``path`` is missing; ValueError if the file is not
     a valid ssl_marl checkpoint, or its ``skill`` / ``obs_spec`` differ from the
-    expected ones (when given).
+    expected ones (when given; ``expected_spec`` may be a tuple of accepted specs).
     """
     blob = safe_torch_load(path)
     bad = f"{path} is not a valid ssl_marl checkpoint"
@@ -135,8 +135,9 @@ def load_actor(path: str | os.PathLike[str], expected_skill: str | None = None,
         raise ValueError(f"{bad} (metadata or state_dict missing)")
     if expected_skill is not None and meta.get("skill") != expected_skill:
         raise ValueError(f"{path}: skill mismatch: expected {expected_skill!r}, found {meta.get('skill')!r}")
-    if expected_spec is not None and meta.get("obs_spec") != expected_spec:
-        raise ValueError(f"{path}: observation spec mismatch: expected {expected_spec!r}, "
+    accepted = (expected_spec,) if isinstance(expected_spec, str) else expected_spec
+    if accepted is not None and meta.get("obs_spec") not in accepted:
+        raise ValueError(f"{path}: observation spec mismatch: expected {' or '.join(map(repr, accepted))}, "
                          f"found {meta.get('obs_spec')!r}")
     try:
         actor = Actor(int(meta["obs_dim"]), int(meta["act_dim"]), tuple(int(h) for h in meta["hidden"]),

@@ -116,7 +116,7 @@ def evaluate_skill(task: str, policy: str = "baseline", episodes: int = 1000, se
     if kind == "learned":
         from .learned import load_policy
 
-        meta = load_policy(_skill_name(task), checkpoint)[1].get("metadata", {})
+        meta = dict(load_policy(_skill_name(task), checkpoint)[1])
     summary = {
         "skill": task, "policy": policy, "kind": kind, "checkpoint": checkpoint, "episodes": episodes, "seed": seed,
         "success_rate": n_succ / episodes, "success_ci95": [lo, hi], "successes": n_succ,

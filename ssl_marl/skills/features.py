@@ -21,6 +21,11 @@ from ..physics.state import WorldState, wrap_angle
 GO_TO_BALL_SPEC = "go_to_ball/v1"
 BALL_LOST_DISTANCE = 0.05  # m: d_{d-b} beyond which a held ball counts as lost (aim-to-shoot, clearing)
 AIM_TO_SHOOT_SPEC = "aim_to_shoot/v1"
+#: aim-to-shoot spec per kick-action mapping (same observation, different meaning of the kick
+#: action): v1 = the paper's "kick strength" (kick at strength a_k when a_k > 0), v2 = any
+#: a_k > 0 kicks at full strength. A learned actor stores the spec it was trained on.
+AIM_TO_SHOOT_SPECS = {"strength": "aim_to_shoot/v1", "full": "aim_to_shoot/v2"}
+KICK_ACTIONS = tuple(AIM_TO_SHOOT_SPECS)
 
 GO_TO_BALL_NAMES = ("ball_x", "ball_y", "robot_vx", "robot_vy", "robot_omega", "dist_robot_ball",
                     "top_x", "top_y", "bottom_x", "bottom_y", "left_x", "left_y", "right_x", "right_y")

@@ -16,7 +16,7 @@ from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState
 from .base import AimToShootSkill, GoToBallSkill
-from .features import AIM_TO_SHOOT_SPEC, GO_TO_BALL_SPEC, aim_to_shoot_features, go_to_ball_features
+from .features import AIM_TO_SHOOT_SPECS, GO_TO_BALL_SPEC, aim_to_shoot_features, go_to_ball_features
 from .wrappers import expand_task_action
 
 PRETRAINED_DIR = Path(__file__).resolve().parent / "pretrained"
@@ -64,7 +64,7 @@ def load_policy(skill: str, checkpoint: str | Path | None = None) -> tuple[Numpy
     if skill not in PRETRAINED:
         raise ValueError(f"unknown learned skill {skill!r}; expected one of {sorted(PRETRAINED)}")
     path = Path(checkpoint) if checkpoint is not None else PRETRAINED[skill]
-    spec = GO_TO_BALL_SPEC if skill == "go_to_ball" else AIM_TO_SHOOT_SPEC
+    spec = GO_TO_BALL_SPEC if skill == "go_to_ball" else tuple(AIM_TO_SHOOT_SPECS.values())
     actor, meta = load_actor(path, expected_skill=skill, expected_spec=spec)
     return NumpyActor(actor), meta
 
@@ -85,15 +85,22 @@ class LearnedAimToShoot(AimToShootSkill):
     """Learned aim-to-shoot (paper's DDPG skill). Succeeds when it kicks; fails if the
     ball leaves the dribbler before the kick, or after ``max_time_s`` (1.6 s, its
     training episode length) without a kick: beyond that horizon the policy was never
-    trained, and a tactic should try something else (e.g. drive closer and aim again)."""
+    trained, and a tactic should try something else (e.g. drive closer and aim again).
+    The kick action means what it meant in training: the checkpoint's spec
+    (``aim_to_shoot/v1``: kick strength, ``v2``: full-strength kick) picks the mapping;
+    with ``policy`` given directly, ``kick_action`` does."""
 
     def __init__(self, field: FieldGeometry, robot: RobotParams | None = None, ball: BallParams | None = None,
                  checkpoint: str | Path | None = None, policy: NumpyActor | None = None,
-                 max_time_s: float | None = 1.6) -> None:
+                 max_time_s: float | None = 1.6, kick_action: str = "strength") -> None:
         super().__init__(field, robot, ball, max_time_s)
-        self.policy = policy if policy is not None else load_policy("aim_to_shoot", checkpoint)[0]
+        if policy is None:
+            policy, meta = load_policy("aim_to_shoot", checkpoint)
+            kick_action = {v: k for k, v in AIM_TO_SHOOT_SPECS.items()}[meta["obs_spec"]]
+        self.policy, self.kick_action = policy, kick_action
 
     def aim(self, world: WorldState, robot: int) -> tuple[np.ndarray, bool]:
-        a = expand_task_action("aim-to-shoot", self.policy(aim_to_shoot_features(world, robot, self.field)))
+        a = expand_task_action("aim-to-shoot", self.policy(aim_to_shoot_features(world, robot, self.field)),
+                               self.kick_action)
         team = world.team(world.frame)
         return a, bool(a[4] > 0 and team.kick_ready[robot] and team.ball_on_dribbler[robot])

@@ -22,9 +22,9 @@ from ..envs.ssl_env import SSLParallelEnv
 from ..physics.field import FieldGeometry
 from ..physics.state import WorldState, to_team_frame
 from .base import make_action
-from .features import (AIM_TO_SHOOT_SPEC, BALL_LOST_DISTANCE, GO_TO_BALL_SPEC, ORIENTATION_FORMS,
-                       aim_to_shoot_features, aim_to_shoot_reward, dribbler_ball_distance, go_to_ball_features,
-                       go_to_ball_reward)
+from .features import (AIM_TO_SHOOT_SPEC, AIM_TO_SHOOT_SPECS, BALL_LOST_DISTANCE, GO_TO_BALL_SPEC, KICK_ACTIONS,
+                       ORIENTATION_FORMS, aim_to_shoot_features, aim_to_shoot_reward, dribbler_ball_distance,
+                       go_to_ball_features, go_to_ball_reward)
 
 AGENT = "blue_0"
 
@@ -191,8 +191,12 @@ class AimToShootEnv(_SkillEnv):
         :func:`ssl_marl.skills.features.aim_to_shoot_features`.
     Action
         ``Box(-1, 1, (3,), float32)``: (omega, dribble, kick): angular velocity as a
-        fraction of max_omega; dribbler on when > 0; kick with strength = value when > 0.
-        The robot does not translate.
+        fraction of max_omega; dribbler on when > 0; kick when > 0, with strength = value
+        (``kick_action="strength"``, the paper's, spec ``aim_to_shoot/v1``) or at full
+        strength (``kick_action="full"``, spec ``aim_to_shoot/v2``). With "strength" a
+        policy whose kick output rises smoothly through 0 fires a weak kick first that
+        stops short of the goal; the paper's demonstrations and reward favour full-speed
+        kicks anyway. The robot does not translate.
     Reward
         0.05 (alpha - beta) |V_B| if alpha > beta else (alpha - beta) |V_B|, every step
         (:func:`ssl_marl.skills.features.aim_to_shoot_reward`), ``reward_form="paper"``.
@@ -219,13 +223,17 @@ class AimToShootEnv(_SkillEnv):
 
     def __init__(self, max_time_s: float = 1.6, post_kick_time_s: float = 2.0, lost_distance: float = BALL_LOST_DISTANCE,
                  spawn_x: tuple[float, float] | None = None, reward_form: str = "paper", success_bonus: float = 0.0,
-                 **kwargs: Any) -> None:
+                 kick_action: str = "strength", **kwargs: Any) -> None:
+        if kick_action not in KICK_ACTIONS:
+            raise ValueError(f"kick_action must be one of {KICK_ACTIONS}, got {kick_action!r}")
         super().__init__(**kwargs)
         EzPickle.__init__(self, max_time_s=max_time_s, post_kick_time_s=post_kick_time_s,
                           lost_distance=lost_distance, spawn_x=spawn_x, reward_form=reward_form,
-                          success_bonus=success_bonus, **kwargs)
+                          success_bonus=success_bonus, kick_action=kick_action, **kwargs)
         if reward_form not in ("paper", "kick_only"):
             raise ValueError(f"reward_form must be 'paper' or 'kick_only', got {reward_form!r}")
+        self.kick_action = kick_action
+        self.spec_version = AIM_TO_SHOOT_SPECS[kick_action]
         if not math.isfinite(success_bonus):
             raise ValueError(f"success_bonus must be finite, got {success_bonus!r}")
         self.reward_form, self.success_bonus = reward_form, float(success_bonus)
@@ -254,7 +262,8 @@ class AimToShootEnv(_SkillEnv):
 
     def step(self, action):
         a = self._check_action(action, 3)
-        info = self._step_inner(expand_task_action("aim-to-shoot", a) if self._kick_t is None else make_action())
+        action5 = expand_task_action("aim-to-shoot", a, self.kick_action) if self._kick_t is None else make_action()
+        info = self._step_inner(action5)
         truth = self.truth()
         if self._kick_t is None and any(ev["type"] == "kick" and ev["agent"] == AGENT for ev in info["events"]):
             self._kick_t = self.t
@@ -301,12 +310,17 @@ def task_action(task: str, action5: np.ndarray) -> np.ndarray:
     raise ValueError(f"unknown skill task {task!r}; expected 'go-to-ball' or 'aim-to-shoot'")
 
 
-def expand_task_action(task: str, action3: np.ndarray) -> np.ndarray:
+def expand_task_action(task: str, action3: np.ndarray, kick_action: str = "strength") -> np.ndarray:
     """Inverse of :func:`task_action` as the wrappers apply it: a task's (3,) action
-    as a full (5,) env action (go-to-ball: dribbler on; aim-to-shoot: no translation)."""
+    as a full (5,) env action (go-to-ball: dribbler on; aim-to-shoot: no translation).
+    aim-to-shoot's kick: no kick when a_k <= 0; otherwise strength a_k (``kick_action``
+    "strength", the paper's) or full strength ("full")."""
     a = np.clip(np.asarray(action3, dtype=np.float64), -1.0, 1.0)
     if task == "go-to-ball":
         return make_action(a[0], a[1], a[2], dribble=True)
     if task == "aim-to-shoot":
-        return make_action(0.0, 0.0, a[0], dribble=a[1] > 0, kick=float(a[2]))
+        if kick_action not in KICK_ACTIONS:
+            raise ValueError(f"kick_action must be one of {KICK_ACTIONS}, got {kick_action!r}")
+        kick = float(a[2]) if kick_action == "strength" or a[2] <= 0 else 1.0
+        return make_action(0.0, 0.0, a[0], dribble=a[1] > 0, kick=kick)
     raise ValueError(f"unknown skill task {task!r}; expected 'go-to-ball' or 'aim-to-shoot'")
