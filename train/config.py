@@ -95,7 +95,7 @@ class DDPGConfig:
     # --- speed -------------------------------------------------------------
     torch_threads: int = 1  #: torch.set_num_threads; 0 leaves torch's default
     autocast_bf16: bool = False  #: bfloat16 autocast of the forward passes (matrix products in bf16; less precise)
-    compile: bool = False  #: torch.compile the loss functions (~30 s start-up; with autocast_bf16 ~1.5x updates/s here, see BENCHMARKS.md)
+    compile: bool = False  #: torch.compile the loss functions (~30 s start-up; with autocast_bf16 see BENCHMARKS.md)
 
     def __post_init__(self) -> None:
         for f in dataclasses.fields(self):  # JSON / --set give 2e4 for ints, 1 for floats, ...

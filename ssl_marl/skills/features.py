@@ -20,12 +20,28 @@ from ..physics.state import WorldState, wrap_angle
 
 GO_TO_BALL_SPEC = "go_to_ball/v1"
 BALL_LOST_DISTANCE = 0.05  # m: d_{d-b} beyond which a held ball counts as lost (aim-to-shoot, clearing)
-AIM_TO_SHOOT_SPEC = "aim_to_shoot/v1"
 #: aim-to-shoot spec per kick-action mapping (same observation, different meaning of the kick
 #: action): v1 = the paper's "kick strength" (kick at strength a_k when a_k > 0), v2 = any
 #: a_k > 0 kicks at full strength. A learned actor stores the spec it was trained on.
 AIM_TO_SHOOT_SPECS = {"strength": "aim_to_shoot/v1", "full": "aim_to_shoot/v2"}
 KICK_ACTIONS = tuple(AIM_TO_SHOOT_SPECS)
+AIM_TO_SHOOT_SPEC = AIM_TO_SHOOT_SPECS["strength"]  #: the default (the paper's) mapping
+
+
+def aim_to_shoot_spec(kick_action: str) -> str:
+    """The aim-to-shoot spec string of a kick-action mapping; ValueError for an unknown one."""
+    try:
+        return AIM_TO_SHOOT_SPECS[kick_action]
+    except (KeyError, TypeError):
+        raise ValueError(f"kick_action must be one of {KICK_ACTIONS}, got {kick_action!r}") from None
+
+
+def kick_action_of_spec(spec: str) -> str:
+    """Inverse of :func:`aim_to_shoot_spec`: the kick-action mapping a spec string names."""
+    for kick_action, s in AIM_TO_SHOOT_SPECS.items():
+        if s == spec:
+            return kick_action
+    raise ValueError(f"unknown aim-to-shoot spec {spec!r}; expected one of {tuple(AIM_TO_SHOOT_SPECS.values())}")
 
 GO_TO_BALL_NAMES = ("ball_x", "ball_y", "robot_vx", "robot_vy", "robot_omega", "dist_robot_ball",
                     "top_x", "top_y", "bottom_x", "bottom_y", "left_x", "left_y", "right_x", "right_y")

@@ -16,7 +16,13 @@ from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState
 from .base import AimToShootSkill, GoToBallSkill
-from .features import AIM_TO_SHOOT_SPECS, GO_TO_BALL_SPEC, aim_to_shoot_features, go_to_ball_features
+from .features import (
+    AIM_TO_SHOOT_SPECS,
+    GO_TO_BALL_SPEC,
+    aim_to_shoot_features,
+    go_to_ball_features,
+    kick_action_of_spec,
+)
 from .wrappers import expand_task_action
 
 PRETRAINED_DIR = Path(__file__).resolve().parent / "pretrained"
@@ -96,7 +102,7 @@ class LearnedAimToShoot(AimToShootSkill):
         super().__init__(field, robot, ball, max_time_s)
         if policy is None:
             policy, meta = load_policy("aim_to_shoot", checkpoint)
-            kick_action = {v: k for k, v in AIM_TO_SHOOT_SPECS.items()}[meta["obs_spec"]]
+            kick_action = kick_action_of_spec(meta["obs_spec"])
         self.policy, self.kick_action = policy, kick_action
 
     def aim(self, world: WorldState, robot: int) -> tuple[np.ndarray, bool]:

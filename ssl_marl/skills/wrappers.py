@@ -22,8 +22,8 @@ from ..envs.ssl_env import SSLParallelEnv
 from ..physics.field import FieldGeometry
 from ..physics.state import WorldState, to_team_frame
 from .base import make_action
-from .features import (AIM_TO_SHOOT_SPEC, AIM_TO_SHOOT_SPECS, BALL_LOST_DISTANCE, GO_TO_BALL_SPEC, KICK_ACTIONS,
-                       ORIENTATION_FORMS, aim_to_shoot_features, aim_to_shoot_reward, dribbler_ball_distance,
+from .features import (AIM_TO_SHOOT_SPEC, BALL_LOST_DISTANCE, GO_TO_BALL_SPEC, ORIENTATION_FORMS,
+                       aim_to_shoot_features, aim_to_shoot_reward, aim_to_shoot_spec, dribbler_ball_distance,
                        go_to_ball_features, go_to_ball_reward)
 
 AGENT = "blue_0"
@@ -224,16 +224,14 @@ class AimToShootEnv(_SkillEnv):
     def __init__(self, max_time_s: float = 1.6, post_kick_time_s: float = 2.0, lost_distance: float = BALL_LOST_DISTANCE,
                  spawn_x: tuple[float, float] | None = None, reward_form: str = "paper", success_bonus: float = 0.0,
                  kick_action: str = "strength", **kwargs: Any) -> None:
-        if kick_action not in KICK_ACTIONS:
-            raise ValueError(f"kick_action must be one of {KICK_ACTIONS}, got {kick_action!r}")
+        spec = aim_to_shoot_spec(kick_action)  # validates kick_action before the world is built
         super().__init__(**kwargs)
         EzPickle.__init__(self, max_time_s=max_time_s, post_kick_time_s=post_kick_time_s,
                           lost_distance=lost_distance, spawn_x=spawn_x, reward_form=reward_form,
                           success_bonus=success_bonus, kick_action=kick_action, **kwargs)
         if reward_form not in ("paper", "kick_only"):
             raise ValueError(f"reward_form must be 'paper' or 'kick_only', got {reward_form!r}")
-        self.kick_action = kick_action
-        self.spec_version = AIM_TO_SHOOT_SPECS[kick_action]
+        self.kick_action, self.spec_version = kick_action, spec
         if not math.isfinite(success_bonus):
             raise ValueError(f"success_bonus must be finite, got {success_bonus!r}")
         self.reward_form, self.success_bonus = reward_form, float(success_bonus)
@@ -319,8 +317,7 @@ def expand_task_action(task: str, action3: np.ndarray, kick_action: str = "stren
     if task == "go-to-ball":
         return make_action(a[0], a[1], a[2], dribble=True)
     if task == "aim-to-shoot":
-        if kick_action not in KICK_ACTIONS:
-            raise ValueError(f"kick_action must be one of {KICK_ACTIONS}, got {kick_action!r}")
+        aim_to_shoot_spec(kick_action)  # validates
         kick = float(a[2]) if kick_action == "strength" or a[2] <= 0 else 1.0
         return make_action(0.0, 0.0, a[0], dribble=a[1] > 0, kick=kick)
     raise ValueError(f"unknown skill task {task!r}; expected 'go-to-ball' or 'aim-to-shoot'")
