@@ -127,3 +127,17 @@ def test_select_picks_among_exported_actors(tmp_path) -> None:
     assert json.loads((tmp_path / "selection.json").read_text())["best"]["samples"] == 2000
     with pytest.raises(FileNotFoundError, match="actors"):
         select(tmp_path / "empty", episodes=1)
+
+
+def test_diagnose_kicks_reports_failures_and_kick_strengths(tmp_path) -> None:
+    from ssl_marl.skills.checkpoint import save_actor
+    from ssl_marl.skills.features import AIM_TO_SHOOT_SPECS
+    from ssl_marl.skills.networks import Actor
+    from train.diagnose_kicks import diagnose
+
+    torch.manual_seed(0)
+    save_actor(tmp_path / "a.pt", Actor(10, 3, (8,)), {"skill": "aim_to_shoot", "obs_spec": AIM_TO_SHOOT_SPECS["full"]})
+    out = diagnose(str(tmp_path / "a.pt"), episodes=3, seed=1)
+    assert out["kick_action"] == "full"  # taken from the checkpoint's spec
+    assert out["success_rate"] * 3 + sum(out["failure_reasons"].values()) == pytest.approx(3)
+    assert all(k == 1.0 for k in out["failed_kick_strengths"])
