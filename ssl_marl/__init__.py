@@ -1,8 +1,8 @@
 """ssl_marl: RoboCup Small Size League full-field simulator (Box2D, PettingZoo),
 the paper's skills as Gymnasium tasks, learned and hand-coded skills, and STP.
 
-Importing the package registers ``ssl_marl/GoToBall-v0`` and ``ssl_marl/AimToShoot-v0``
-with Gymnasium.
+Importing the package registers the task of every registered skill with Gymnasium
+(``ssl_marl/GoToBall-v0``, ``ssl_marl/AimToShoot-v0``; see :mod:`ssl_marl.skills.registry`).
 """
 
 from __future__ import annotations
@@ -13,11 +13,11 @@ __version__ = "0.1.0"
 
 
 def _register() -> None:
-    ids = {"ssl_marl/GoToBall-v0": "ssl_marl.skills.wrappers:GoToBallEnv",
-           "ssl_marl/AimToShoot-v0": "ssl_marl.skills.wrappers:AimToShootEnv"}
-    for env_id, entry in ids.items():
-        if env_id not in gymnasium.registry:
-            gymnasium.register(id=env_id, entry_point=entry, disable_env_checker=True)
+    from .skills.registry import task_skills
+
+    for skill in task_skills():
+        if skill.task.env_id not in gymnasium.registry:
+            gymnasium.register(id=skill.task.env_id, entry_point=skill.task.entry_point, disable_env_checker=True)
 
 
 _register()

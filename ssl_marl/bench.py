@@ -47,7 +47,7 @@ def bench_skill_inference(calls: int = 2000) -> dict:
     """Per-call time of the learned skills' act() (features + numpy actor)."""
     from .envs import parallel_env
     from .skills import make_skill
-    from .skills.learned import PRETRAINED
+    from .skills.registry import get_skill
 
     out = {}
     env = parallel_env(n_blue=1, n_yellow=0)
@@ -56,7 +56,7 @@ def bench_skill_inference(calls: int = 2000) -> dict:
         ball = (2.0, 1.0) if name == "go_to_ball" else (2.0 + reach, 0.0)  # aim-to-shoot: ball on the dribbler
         env.reset(options={"robots": {"blue_0": (2.0, 0.0, 0.0)}, "ball": {"pos": ball}})
         ws = env.vision_state("blue")
-        if not PRETRAINED[name].exists():
+        if not get_skill(name).actor.exists():
             out[name] = None
             continue
         skill = make_skill(name, "learned", env.field)

@@ -16,9 +16,22 @@ from typing import Any
 
 CONFIG_DIR = Path(__file__).resolve().parent / "configs"
 
+#: configs that belong to no registered skill (the toy check)
+EXTRA_CONFIGS = {"pendulum": "pendulum.json"}
+
+
+def _skill_configs() -> dict[str, str]:
+    """CLI skill name -> default config file in :data:`CONFIG_DIR`: every registered skill
+    whose task names a training config (``SkillTaskDef.train_config``), plus the toy ones."""
+    from ssl_marl.skills.registry import task_skills
+
+    out = {s.cli_name: f"{s.task.train_config}.json" for s in task_skills() if s.task.train_config}
+    out.update(EXTRA_CONFIGS)
+    return out
+
+
 #: CLI skill name -> default config file in :data:`CONFIG_DIR`.
-SKILL_CONFIGS = {"go-to-ball": "go_to_ball.json", "aim-to-shoot": "aim_to_shoot.json",
-                 "pendulum": "pendulum.json"}
+SKILL_CONFIGS = _skill_configs()
 
 
 @dataclass

@@ -24,6 +24,13 @@ from ..physics.params import RobotParams
 ACTION_DIM = 5
 
 
+def make_action(vx: float = 0.0, vy: float = 0.0, omega: float = 0.0, dribble: bool = False,
+                kick: float = 0.0) -> np.ndarray:
+    """Build a normalised (5,) action, clipping each entry to [-1, 1]."""
+    a = np.array([vx, vy, omega, 1.0 if dribble else -1.0, kick if kick > 0 else -1.0], dtype=np.float32)
+    return np.clip(a, -1.0, 1.0)
+
+
 def validate_actions(actions: np.ndarray, names: list[str]) -> None:
     """Raise ValueError naming the agent whose action row is not finite."""
     bad = ~np.isfinite(actions).all(axis=1)

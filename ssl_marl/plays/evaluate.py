@@ -146,10 +146,10 @@ def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0,
     if not isinstance(workers, int) or workers < 1:
         raise ValueError(f"workers must be a positive integer, got {workers!r}")
     from ..physics.field import FieldGeometry
-    from .skillset import SWAPPABLE, make_tactic_skill, skill_kind, validate_skills
+    from .skillset import make_tactic_skill, skill_kind, swappable_skills, validate_skills
 
     validate_skills(skills)
-    for name in SWAPPABLE:  # fail here (e.g. a missing checkpoint), not in every worker
+    for name in swappable_skills():  # fail here (e.g. a missing checkpoint), not in every worker
         if skill_kind(skills, name) == "learned":
             make_tactic_skill(name, skills, FieldGeometry.from_name(field))
     t0 = time.perf_counter()

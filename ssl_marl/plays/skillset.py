@@ -1,18 +1,18 @@
 """Which skill implementation a tactic uses: the one switch between learned and baseline.
 
-Tactics never import a skill class directly. They ask :func:`make_tactic_skill` for
-``"go_to_ball"`` or ``"aim_to_shoot"`` and get an object with the
+Tactics never import a skill class directly. They ask :func:`make_tactic_skill` for a
+registered skill (``"go_to_ball"``, ``"aim_to_shoot"``, ...) and get an object with the
 :class:`ssl_marl.skills.base.Skill` protocol. ``skills`` selects the kind:
 
 * ``"baseline"`` or ``"learned"`` for every skill, or
 * a mapping ``{"go_to_ball": "learned", "aim_to_shoot": "baseline"}`` to mix kinds
   (skills not named default to ``"baseline"``).
 
-Construction goes through the skills package factory
-``ssl_marl.skills.make_skill(name, kind, field, robot, ball)``, imported lazily so
-that this module (and the baseline path) keeps working if the learned runtime is
-missing or broken. For ``"baseline"`` the hand-coded classes are used directly when
-the factory cannot be imported.
+The swappable skills (those with a learned implementation) come from the skill
+registry (:func:`ssl_marl.skills.registry.learned_skills`).
+
+Construction goes through the registry record's ``build`` (what
+``ssl_marl.skills.make_skill`` calls).
 
 Learned skills load their actor from disk when built. Tactics are built often (a
 robot that changes role gets a fresh tactic), so a learned skill is built through
@@ -28,10 +28,20 @@ from typing import Any, Mapping, Union
 
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
+from ..skills.registry import SKILL_KINDS, get_skill, learned_skills
 
 SkillsSpec = Union[str, Mapping[str, str]]
-SKILL_KINDS = ("baseline", "learned")
-SWAPPABLE = ("go_to_ball", "aim_to_shoot")
+
+
+def swappable_skills() -> tuple[str, ...]:
+    """Skills a skill set can switch between learned and baseline (registry order)."""
+    return tuple(s.name for s in learned_skills())
+
+
+def __getattr__(name: str):
+    if name == "SWAPPABLE":  # kept for old imports; computed from the registry
+        return swappable_skills()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def validate_skills(skills: SkillsSpec) -> None:
@@ -43,8 +53,8 @@ def validate_skills(skills: SkillsSpec) -> None:
     if not isinstance(skills, Mapping):
         raise ValueError(f"skills must be one of {SKILL_KINDS} or a mapping, got {skills!r}")
     for name, kind in skills.items():
-        if name not in SWAPPABLE:
-            raise ValueError(f"skills: unknown skill {name!r}; expected some of {SWAPPABLE}")
+        if name not in swappable_skills():
+            raise ValueError(f"skills: unknown skill {name!r}; expected some of {swappable_skills()}")
         if kind not in SKILL_KINDS:
             raise ValueError(f"skills[{name!r}] must be one of {SKILL_KINDS}, got {kind!r}")
 
@@ -59,9 +69,9 @@ def skill_kind(skills: SkillsSpec, name: str) -> str:
 
 def make_tactic_skill(name: str, skills: SkillsSpec, field: FieldGeometry, robot: RobotParams | None = None,
                       ball: BallParams | None = None):
-    """Build skill ``name`` ("go_to_ball" or "aim_to_shoot") of the kind ``skills`` selects."""
-    if name not in SWAPPABLE:
-        raise ValueError(f"make_tactic_skill: unknown skill {name!r}; expected one of {SWAPPABLE}")
+    """Build swappable skill ``name`` ("go_to_ball", "aim_to_shoot", ...) of the kind ``skills`` selects."""
+    if name not in swappable_skills():
+        raise ValueError(f"make_tactic_skill: unknown skill {name!r}; expected one of {swappable_skills()}")
     kind = skill_kind(skills, name)
     if kind == "learned":
         key = (name, field, robot or RobotParams(), ball or BallParams())
@@ -83,14 +93,4 @@ def clear_skill_cache() -> None:
 
 
 def _build(name: str, kind: str, field: FieldGeometry, robot: RobotParams | None, ball: BallParams | None):
-    try:
-        from ..skills import make_skill  # lazy: the learned runtime may pull in torch
-    except ImportError as exc:  # pragma: no cover - only without the factory
-        if kind != "baseline":
-            raise RuntimeError("learned skills need ssl_marl.skills.make_skill, which could not be "
-                               f"imported ({exc}); use skills='baseline'") from exc
-        from ..skills.baseline import AimToShootBaseline, GoToBallBaseline
-
-        cls = GoToBallBaseline if name == "go_to_ball" else AimToShootBaseline
-        return cls(field, robot, ball)
-    return make_skill(name, kind, field, robot, ball)
+    return get_skill(name).build(kind, field, robot, ball)

@@ -30,7 +30,7 @@ from ..physics.state import TEAMS, WorldState, to_team_frame
 from ..skills.base import make_action
 from .assignment import Assignment, RoleSlot, assign
 from .play import Play, PlayContext, PlaySelector, RoleDef, make_context, standard_plays
-from .skillset import SWAPPABLE, SkillsSpec, make_tactic_skill, skill_kind, validate_skills
+from .skillset import SkillsSpec, make_tactic_skill, skill_kind, swappable_skills, validate_skills
 from .tactic_base import Tactic
 
 
@@ -67,7 +67,7 @@ class TeamController:
         self.selector = PlaySelector(plays if plays is not None else standard_plays(), min_hold_s=min_hold_s,
                                      adaptive=adaptive, seed=seed)
         self.agents = [f"{team}_{i}" for i in range(n_robots)]
-        for name in SWAPPABLE:  # fail now (e.g. a missing checkpoint), not in the first tick
+        for name in swappable_skills():  # fail now (e.g. a missing checkpoint), not in the first tick
             if skill_kind(skills, name) == "learned":
                 make_tactic_skill(name, skills, self.field, self.rp, self.bp)
         self.reset()

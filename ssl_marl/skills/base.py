@@ -22,6 +22,7 @@ import numpy as np
 
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
+from ..envs.actions import make_action
 from ..physics.state import WorldState
 from .features import BALL_LOST_DISTANCE, dribbler_ball_distance
 
@@ -44,13 +45,6 @@ class Skill(Protocol):
 
     def act(self, world: WorldState, robot: int) -> np.ndarray:
         """Return a (5,) float32 action for ``robot`` (index in team ``world.frame``)."""
-
-
-def make_action(vx: float = 0.0, vy: float = 0.0, omega: float = 0.0, dribble: bool = False,
-                kick: float = 0.0) -> np.ndarray:
-    """Build a normalised (5,) action, clipping each entry to [-1, 1]."""
-    a = np.array([vx, vy, omega, 1.0 if dribble else -1.0, kick if kick > 0 else -1.0], dtype=np.float32)
-    return np.clip(a, -1.0, 1.0)
 
 
 class SkillBase:

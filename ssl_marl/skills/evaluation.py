@@ -18,24 +18,25 @@ import numpy as np
 
 from ..io import atomic_savefig, atomic_write_json, episode_seed, time_summary, wilson_interval
 
-TASKS = ("go-to-ball", "aim-to-shoot")
-PAPER = {"go-to-ball": {"baseline": 1.0, "learned": 0.999}, "aim-to-shoot": {"baseline": 0.71, "learned": 0.772}}
-
 
 def _skill_name(task: str) -> str:
-    return task.replace("-", "_")
+    from .registry import get_skill, get_task
+
+    get_task(task)  # ValueError for a skill without a task
+    return get_skill(task).name
 
 
 def resolve_policy(task: str, policy: str) -> tuple[str, str | None]:
     """("baseline"|"learned", checkpoint path or None); raises clear errors."""
-    if task not in TASKS:
-        raise ValueError(f"unknown skill {task!r}; expected one of {TASKS}")
+    from .registry import cli_choices, get_skill
+
+    if task not in cli_choices():
+        raise ValueError(f"unknown skill {task!r}; expected one of {cli_choices()}")
     if policy in ("baseline", "learned"):
         if policy == "learned":
-            from .learned import PRETRAINED
-
-            if not PRETRAINED[_skill_name(task)].exists():
-                raise FileNotFoundError(f"no shipped learned actor for {task} at {PRETRAINED[_skill_name(task)]}")
+            actor = get_skill(task).actor
+            if actor is None or not actor.exists():
+                raise FileNotFoundError(f"no shipped learned actor for {task} at {actor}")
         return policy, None
     path = Path(policy)
     if not path.exists():
@@ -44,17 +45,18 @@ def resolve_policy(task: str, policy: str) -> tuple[str, str | None]:
 
 
 def _make_env(task: str, env_kwargs: dict):
-    from .wrappers import AimToShootEnv, GoToBallEnv
+    from .registry import get_task, resolve_ref
 
-    return GoToBallEnv(**env_kwargs) if task == "go-to-ball" else AimToShootEnv(**env_kwargs)
+    return resolve_ref(get_task(task).entry_point)(**env_kwargs)
 
 
 def _run_episodes(args: tuple) -> list[dict]:
     task, kind, checkpoint, env_kwargs, seed, indices = args
     from . import make_skill
-    from .wrappers import task_action
+    from .registry import get_task
 
     env = _make_env(task, env_kwargs)
+    task_action = get_task(task).to_task_action
     skill = make_skill(_skill_name(task), kind, env.field, env.robot_params, env.ball_params, checkpoint=checkpoint)
     out = []
     for i in indices:
@@ -62,7 +64,7 @@ def _run_episodes(args: tuple) -> list[dict]:
         skill.reset()
         ret, steps = 0.0, 0
         while True:
-            a = task_action(task, skill.act(env.seen(), 0))
+            a = task_action(skill.act(env.seen(), 0))
             _, r, term, trunc, info = env.step(a)
             ret += r
             steps += 1
@@ -123,7 +125,7 @@ def evaluate_skill(task: str, policy: str = "baseline", episodes: int = 1000, se
         "time_to_success_s": time_summary(times),
         "failure_reasons": dict(Counter(r["failure_reason"] for r in results if not r["success"])),
         "mean_return": float(np.mean([r["return"] for r in results])),
-        "paper_success_rate": PAPER[task][kind],
+        "paper_success_rate": _reference(task, kind),
         "config": env_kwargs, "wall_time_s": wall, "workers": workers, "checkpoint_metadata": _jsonable(meta),
         "episodes_detail": results,
     }
@@ -133,6 +135,12 @@ def evaluate_skill(task: str, policy: str = "baseline", episodes: int = 1000, se
         plot_time_histogram(times, out / "time_hist.png",
                             title=f"{task}, {policy}: time to success ({n_succ}/{episodes} succeeded)")
     return summary
+
+
+def _reference(task: str, kind: str) -> float | None:
+    from .registry import get_skill
+
+    return get_skill(task).reference.get(kind)
 
 
 def _jsonable(d: Any) -> Any:

@@ -14,6 +14,7 @@ import math
 
 import numpy as np
 
+from ..envs.actions import make_action
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState, wrap_angle
@@ -43,6 +44,8 @@ def kick_action_of_spec(spec: str) -> str:
             return kick_action
     raise ValueError(f"unknown aim-to-shoot spec {spec!r}; expected one of {tuple(AIM_TO_SHOOT_SPECS.values())}")
 
+GO_TO_BALL_ACTIONS = ("vx", "vy", "omega")
+AIM_TO_SHOOT_ACTIONS = ("omega", "dribble", "kick")
 GO_TO_BALL_NAMES = ("ball_x", "ball_y", "robot_vx", "robot_vy", "robot_omega", "dist_robot_ball",
                     "top_x", "top_y", "bottom_x", "bottom_y", "left_x", "left_y", "right_x", "right_y")
 AIM_TO_SHOOT_NAMES = ("ball_x", "ball_y", "ball_vx", "ball_vy", "robot_omega", "dist_robot_goal",
@@ -181,3 +184,34 @@ def aim_to_shoot_reward(world: WorldState, robot: int, field: FieldGeometry) -> 
     speed = float(np.hypot(*world.ball_vel))
     diff = alpha - beta
     return {"aim": (0.05 * diff if diff > 0 else diff) * speed}
+
+
+# ------------------------------------------------------------ action mappings
+def go_to_ball_task_action(action5: np.ndarray) -> np.ndarray:
+    """A skill's full (5,) env action -> go-to-ball's (3,) task action (vx, vy, omega)."""
+    return np.asarray(action5, dtype=np.float32)[[0, 1, 2]]
+
+
+def go_to_ball_env_action(action3: np.ndarray, mapping: str | None = None) -> np.ndarray:
+    """go-to-ball's (3,) task action (clipped to [-1, 1]) -> the full (5,) env action,
+    dribbler on. ``mapping``: only "default" (or None) exists."""
+    if mapping not in (None, "default"):
+        raise ValueError(f"go-to-ball has one action mapping, 'default'; got {mapping!r}")
+    a = np.clip(np.asarray(action3, dtype=np.float64), -1.0, 1.0)
+    return make_action(a[0], a[1], a[2], dribble=True)
+
+
+def aim_to_shoot_task_action(action5: np.ndarray) -> np.ndarray:
+    """A skill's full (5,) env action -> aim-to-shoot's (3,) task action (omega, dribble, kick)."""
+    return np.asarray(action5, dtype=np.float32)[[2, 3, 4]]
+
+
+def aim_to_shoot_env_action(action3: np.ndarray, kick_action: str | None = "strength") -> np.ndarray:
+    """aim-to-shoot's (3,) task action (clipped to [-1, 1]) -> the full (5,) env action,
+    no translation. Kick: none when a_k <= 0; otherwise strength a_k (``kick_action``
+    "strength", the paper's, spec v1) or full strength ("full", spec v2)."""
+    kick_action = "strength" if kick_action is None else kick_action
+    aim_to_shoot_spec(kick_action)  # validates
+    a = np.clip(np.asarray(action3, dtype=np.float64), -1.0, 1.0)
+    kick = float(a[2]) if kick_action == "strength" or a[2] <= 0 else 1.0
+    return make_action(0.0, 0.0, a[0], dribble=a[1] > 0, kick=kick)

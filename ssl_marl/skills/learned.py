@@ -16,17 +16,14 @@ from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState
 from .base import AimToShootSkill, GoToBallSkill
-from .features import (
-    AIM_TO_SHOOT_SPECS,
-    GO_TO_BALL_SPEC,
-    aim_to_shoot_features,
-    go_to_ball_features,
-    kick_action_of_spec,
-)
-from .wrappers import expand_task_action
+from .features import aim_to_shoot_env_action, aim_to_shoot_features, go_to_ball_env_action, go_to_ball_features
+from .registry import PRETRAINED_DIR, get_skill, learned_skills
 
-PRETRAINED_DIR = Path(__file__).resolve().parent / "pretrained"
-PRETRAINED = {"go_to_ball": PRETRAINED_DIR / "go_to_ball.pt", "aim_to_shoot": PRETRAINED_DIR / "aim_to_shoot.pt"}
+
+def __getattr__(name: str):
+    if name == "PRETRAINED":  # skill -> shipped actor path, from the registry (kept for old imports)
+        return {s.name: s.actor for s in learned_skills() if s.actor is not None}
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 class NumpyActor:
@@ -63,15 +60,20 @@ class NumpyActor:
 
 
 def load_policy(skill: str, checkpoint: str | Path | None = None) -> tuple[NumpyActor, dict]:
-    """Load a checkpoint (default: the shipped actor) for ``skill`` ("go_to_ball" or
-    "aim_to_shoot"), checking its skill name and observation spec."""
+    """Load a checkpoint (default: the shipped actor) for registered learned ``skill``
+    ("go_to_ball", "aim_to_shoot", ...), checking its skill name and observation spec
+    against every spec version the skill's task accepts."""
     from .checkpoint import load_actor
 
-    if skill not in PRETRAINED:
-        raise ValueError(f"unknown learned skill {skill!r}; expected one of {sorted(PRETRAINED)}")
-    path = Path(checkpoint) if checkpoint is not None else PRETRAINED[skill]
-    spec = GO_TO_BALL_SPEC if skill == "go_to_ball" else tuple(AIM_TO_SHOOT_SPECS.values())
-    actor, meta = load_actor(path, expected_skill=skill, expected_spec=spec)
+    known = {s.name: s for s in learned_skills() if s.task is not None}
+    if skill not in known:
+        raise ValueError(f"unknown learned skill {skill!r}; expected one of {sorted(known)}")
+    entry = known[skill]
+    if checkpoint is None and entry.actor is None:
+        raise FileNotFoundError(f"skill {skill!r} ships no learned actor; pass a checkpoint")
+    path = Path(checkpoint) if checkpoint is not None else entry.actor
+    specs = entry.task.specs
+    actor, meta = load_actor(path, expected_skill=skill, expected_spec=specs[0] if len(specs) == 1 else specs)
     return NumpyActor(actor), meta
 
 
@@ -84,7 +86,7 @@ class LearnedGoToBall(GoToBallSkill):
         self.policy = policy if policy is not None else load_policy("go_to_ball", checkpoint)[0]
 
     def approach(self, world: WorldState, robot: int) -> np.ndarray:
-        return expand_task_action("go-to-ball", self.policy(go_to_ball_features(world, robot, self.field)))
+        return go_to_ball_env_action(self.policy(go_to_ball_features(world, robot, self.field)))
 
 
 class LearnedAimToShoot(AimToShootSkill):
@@ -102,11 +104,10 @@ class LearnedAimToShoot(AimToShootSkill):
         super().__init__(field, robot, ball, max_time_s)
         if policy is None:
             policy, meta = load_policy("aim_to_shoot", checkpoint)
-            kick_action = kick_action_of_spec(meta["obs_spec"])
+            kick_action = get_skill("aim_to_shoot").task.mapping_of(meta["obs_spec"])
         self.policy, self.kick_action = policy, kick_action
 
     def aim(self, world: WorldState, robot: int) -> tuple[np.ndarray, bool]:
-        a = expand_task_action("aim-to-shoot", self.policy(aim_to_shoot_features(world, robot, self.field)),
-                               self.kick_action)
+        a = aim_to_shoot_env_action(self.policy(aim_to_shoot_features(world, robot, self.field)), self.kick_action)
         team = world.team(world.frame)
         return a, bool(a[4] > 0 and team.kick_ready[robot] and team.ball_on_dribbler[robot])

@@ -22,6 +22,7 @@ from ..envs.ssl_env import SSLParallelEnv
 from ..physics.field import FieldGeometry
 from ..physics.state import WorldState, to_team_frame
 from .base import make_action
+from .registry import get_task
 from .features import (AIM_TO_SHOOT_SPEC, BALL_LOST_DISTANCE, GO_TO_BALL_SPEC, ORIENTATION_FORMS,
                        aim_to_shoot_features, aim_to_shoot_reward, aim_to_shoot_spec, dribbler_ball_distance,
                        go_to_ball_features, go_to_ball_reward)
@@ -298,26 +299,14 @@ class AimToShootEnv(_SkillEnv):
 
 
 def task_action(task: str, action5: np.ndarray) -> np.ndarray:
-    """Project a skill's full (5,) action onto a task's (3,) action space:
-    go-to-ball keeps (vx, vy, omega); aim-to-shoot keeps (omega, dribble, kick)."""
-    a = np.asarray(action5, dtype=np.float32)
-    if task == "go-to-ball":
-        return a[[0, 1, 2]]
-    if task == "aim-to-shoot":
-        return a[[2, 3, 4]]
-    raise ValueError(f"unknown skill task {task!r}; expected 'go-to-ball' or 'aim-to-shoot'")
+    """Project a skill's full (5,) action onto skill ``task``'s action space (the
+    registry's mapping: go-to-ball keeps (vx, vy, omega); aim-to-shoot keeps
+    (omega, dribble, kick))."""
+    return get_task(task).to_task_action(action5)
 
 
-def expand_task_action(task: str, action3: np.ndarray, kick_action: str = "strength") -> np.ndarray:
-    """Inverse of :func:`task_action` as the wrappers apply it: a task's (3,) action
-    as a full (5,) env action (go-to-ball: dribbler on; aim-to-shoot: no translation).
-    aim-to-shoot's kick: no kick when a_k <= 0; otherwise strength a_k (``kick_action``
-    "strength", the paper's) or full strength ("full")."""
-    a = np.clip(np.asarray(action3, dtype=np.float64), -1.0, 1.0)
-    if task == "go-to-ball":
-        return make_action(a[0], a[1], a[2], dribble=True)
-    if task == "aim-to-shoot":
-        aim_to_shoot_spec(kick_action)  # validates
-        kick = float(a[2]) if kick_action == "strength" or a[2] <= 0 else 1.0
-        return make_action(0.0, 0.0, a[0], dribble=a[1] > 0, kick=kick)
-    raise ValueError(f"unknown skill task {task!r}; expected 'go-to-ball' or 'aim-to-shoot'")
+def expand_task_action(task: str, action3: np.ndarray, mapping: str | None = None) -> np.ndarray:
+    """Inverse of :func:`task_action` as the wrappers apply it: a task's action as a
+    full (5,) env action under action mapping ``mapping`` (aim-to-shoot: the kick
+    action, "strength" or "full"; None = the task's default)."""
+    return get_task(task).to_env_action(action3, mapping)

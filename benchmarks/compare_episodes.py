@@ -1,0 +1,83 @@
+"""Behaviour-unchanged check for refactors: run the first episodes of every skill and
+tactic evaluation and one match series with the code on ``PYTHONPATH``, and compare
+them with the same runs of another checkout, episode by episode.
+
+Usage::
+
+    # 1. record with the old code (a clean export of the old commit):
+    git archive OLD | tar -x -C /tmp/old
+    PYTHONPATH=/tmp/old python benchmarks/compare_episodes.py record /tmp/before
+    # 2. record with the new code and compare:
+    PYTHONPATH=$PWD python benchmarks/compare_episodes.py record /tmp/after
+    python benchmarks/compare_episodes.py compare /tmp/before /tmp/after
+
+Compared: every field of ``episodes_detail`` (skill and tactic evaluations: success,
+times, failure reasons, returns, steps, spawns) and, for the match series, every
+field of every match except wall-clock times. Exact equality (floats included).
+Exit status 0 when all are identical.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+EPISODES = 50
+RUNS = {  # name -> ssl-marl arguments (output path appended)
+    **{f"{skill}-{policy}{'-realistic' if real else ''}":
+       ["eval-skill", skill, "--policy", policy, "--episodes", str(EPISODES), "--seed", "10000", "--workers", "1"]
+       + (["--realism", "realistic"] if real else []) + ["--quiet", "--out"]
+       for skill in ("go-to-ball", "aim-to-shoot") for policy in ("baseline", "learned") for real in (False, True)},
+    **{f"tactic-{skills}": ["eval-tactic", "--skills", skills, "--episodes", str(EPISODES), "--seed", "20000",
+                            "--workers", "1", "--quiet", "--out"] for skills in ("baseline", "learned")},
+    "tactic-learned-realistic": ["eval-tactic", "--skills", "learned", "--episodes", str(EPISODES), "--seed", "20000",
+                                 "--workers", "1", "--realism", "realistic", "--quiet", "--out"],
+    "series.json": ["match", "--matches", "2", "--seed", "30000", "--workers", "1", "--quiet", "--json"],
+    "series90.json": ["match", "--blue", "learned", "--yellow", "baseline", "--robots", "6", "--seconds", "90",
+                      "--matches", "2", "--seed", "30000", "--workers", "1", "--quiet", "--json"],
+}
+WALL = ("wall_time_s", "act_time_ms", "wall_time_s_total")
+
+
+def record(out: Path) -> None:
+    out.mkdir(parents=True, exist_ok=True)
+    for name, args in RUNS.items():
+        cmd = [sys.executable, "-m", "ssl_marl.cli", *args, str(out / name)]
+        print("+", " ".join(cmd[2:]), flush=True)
+        subprocess.run(cmd, check=True)
+
+
+def _load(path: Path) -> object:
+    if path.suffix == ".json":
+        data = json.loads(path.read_text())
+        return [{k: v for k, v in m.items() if k not in WALL} for m in data["matches"]]
+    return json.loads((path / "results.json").read_text())["episodes_detail"]
+
+
+def compare(before: Path, after: Path) -> int:
+    bad = 0
+    for name in RUNS:
+        a, b = _load(before / name), _load(after / name)
+        same = a == b
+        bad += not same
+        diff = "" if same else next(f" (first difference: episode {i})" for i, (x, y) in
+                                    enumerate(zip(a, b)) if x != y) if len(a) == len(b) else " (lengths differ)"
+        print(f"{name:36s} {len(a):3d} episodes/matches  {'identical' if same else 'DIFFERENT' + diff}")
+    print("all identical" if not bad else f"{bad} run(s) differ")
+    return 1 if bad else 0
+
+
+def main(argv: list[str]) -> int:
+    if len(argv) == 2 and argv[0] == "record":
+        record(Path(argv[1]))
+        return 0
+    if len(argv) == 3 and argv[0] == "compare":
+        return compare(Path(argv[1]), Path(argv[2]))
+    print(__doc__)
+    return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
