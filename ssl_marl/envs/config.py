@@ -92,9 +92,14 @@ class EnvConfig:
             control deadline misses its step (the paper's evaluation mode).
         obs_max_teammates, obs_max_opponents: observation slots (padded with a mask);
             with fewer slots than robots, each agent sees the nearest ones.
+        task: what an episode is about: a name ("match", the default; "free_play": no
+            rules, rewards or end) or a :class:`ssl_marl.envs.tasks.Task` object (see
+            :mod:`ssl_marl.envs.tasks`). ``max_time_s``, ``after_goal``,
+            ``reward_scales``, ``randomize_reset`` and ``referee`` are the match task's
+            parameters.
         randomize_reset: True: robots and ball at random on reset; False: kickoff formation.
-        referee: False switches goal / out-of-play handling off (single-robot skill
-            tasks judge their own episodes; the walls still hold everything in).
+        referee: False switches goal / out-of-play handling off (the walls still hold
+            everything in).
         render_mode: None, "rgb_array" or "human".
         render_trails: draw trajectories (the paper's Fig. 7).
         render_width_px: frame width in pixels.
@@ -115,6 +120,7 @@ class EnvConfig:
     realtime: bool = False
     obs_max_teammates: int = 10
     obs_max_opponents: int = 11
+    task: Any = "match"
     randomize_reset: bool = False
     referee: bool = True
     enforce_division_limit: bool = False
@@ -123,6 +129,10 @@ class EnvConfig:
     render_width_px: int = 960
 
     def __post_init__(self) -> None:
+        from .tasks import TASKS, Task
+
+        if not (isinstance(self.task, Task) or (isinstance(self.task, str) and self.task in TASKS)):
+            raise ValueError(f"task must be one of {tuple(TASKS)} or a Task object, got {self.task!r}")
         geom = FieldGeometry.from_name(self.field)
         object.__setattr__(self, "field", geom)
         if isinstance(self.realism, str):

@@ -16,18 +16,21 @@ Action
     this step (zero action). NaN/inf, a wrong shape or an unknown agent raise
     ``ValueError`` naming the agent.
 
-Reward
-    Shared by a team: sum over named terms x ``reward_scales``. ``goal``: +1 when
-    the team scores, -1 when it concedes (default scale 1). ``ball_progress``:
+Task
+    What an episode is about (start, rules, rewards, end) is the env's task
+    (``task=``, :mod:`ssl_marl.envs.tasks`): by default the full-field match
+    (:class:`~ssl_marl.envs.tasks.match.MatchTask`):
+
+    Reward: shared by a team: sum over named terms x ``reward_scales``. ``goal``: +1
+    when the team scores, -1 when it concedes (default scale 1). ``ball_progress``:
     ball displacement towards the opponent goal / (L/2) (default scale 0).
     ``possession``: +dt while a robot of the team holds the ball on its dribbler
     (default 0). Scaled per-term values are in ``infos[agent]["reward_terms"]``.
 
-Termination / truncation
-    Truncation for every agent when simulated time reaches ``max_time_s``.
-    Termination after a goal if ``after_goal == "terminate"``; otherwise the
-    kickoff formation is placed and play goes on. Ball out of play -> ball placed
-    inside the field. Events ("goal", "ball_out", "kick") are listed in
+    Termination / truncation: truncation for every agent when simulated time reaches
+    ``max_time_s``. Termination after a goal if ``after_goal == "terminate"``;
+    otherwise the kickoff formation is placed and play goes on. Ball out of play ->
+    ball placed inside the field. Events ("goal", "ball_out", "kick") are listed in
     ``infos[agent]["events"]``; the score in ``infos[agent]["score"]``.
 
 Reset options
@@ -52,7 +55,7 @@ from .actions import ACTION_DIM, scale_actions, validate_actions
 from .config import EnvConfig, make_config
 from .observation import all_observations, obs_dim, state_dim, state_vector
 from .realism import Radio, Vision
-from .referee import clear_robots_from, judge, kickoff_poses
+from .tasks import Task, make_task
 
 
 class SSLParallelEnv(ParallelEnv, EzPickle):
@@ -91,6 +94,8 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         self._next_tick = 0.0
         self._renderer = None
         self._team_of = {a: a.split("_")[0] for a in self.possible_agents}
+        self.task: Task = make_task(cfg.task)
+        self.task.bind(self)
 
     # ------------------------------------------------------------------ spaces
     def observation_space(self, agent: str) -> gymnasium.spaces.Box:
@@ -113,15 +118,15 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
             self.np_random = np.random.default_rng(seed)
         self._noise_rng = np.random.default_rng(self.np_random.integers(2 ** 63))
         options = dict(options or {})
-        pose, ball_pos, ball_vel = self._initial_scene(options)
-        self.physics.reset(pose, ball_pos, ball_vel)
+        scene = self.task.reset_scene(self, options)
+        self.physics.reset(scene.robot_pose, scene.ball_pos, scene.ball_vel)
         self.agents = list(self.possible_agents)
         self.score = {"blue": 0, "yellow": 0}
         self._prev_cmd = np.zeros((self.n, ACTION_DIM))
         self.radio.reset()
         self._truth = self.physics.snapshot()
         self._seen = self.vision.reset(self._truth, self._noise_rng)
-        self._prev_ball_x = float(self._truth.ball_pos[0])
+        self.task.start(self)
         if self._renderer is not None:
             self._renderer.reset_trails()
         self._next_tick = time.perf_counter() + self.config.dt
@@ -130,53 +135,6 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         if self.render_mode == "human":
             self.render()
         return obs, infos
-
-    def _initial_scene(self, options: dict) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        cfg, f = self.config, self.field
-        known = {"ball", "robots", "formation"}
-        unknown = set(options) - known
-        if unknown:  # tolerated (PettingZoo's API test passes arbitrary options), but said
-            gymnasium.logger.warn(f"reset options: ignoring unknown key(s) {sorted(unknown)}; known: {sorted(known)}")
-        formation = options.get("formation", "random" if cfg.randomize_reset else "kickoff")
-        if formation not in ("kickoff", "random"):
-            raise ValueError(f"reset options: formation must be 'kickoff' or 'random', got {formation!r}")
-        ball = options.get("ball", {})
-        if not isinstance(ball, dict):
-            raise ValueError("reset options: 'ball' must be a dict with 'pos' and/or 'vel'")
-        robots = options.get("robots", {})
-        for name in robots:
-            self._check_agent(name)
-        ball_pos = self._vec(ball.get("pos"), 2, "ball.pos")
-        ball_vel = self._vec(ball.get("vel", (0.0, 0.0)), 2, "ball.vel")
-        fixed = {name: self._vec(p, 3, f"robots.{name}") for name, p in robots.items()}
-        pose = np.zeros((self.n, 3))
-        if formation == "kickoff":
-            if ball_pos is None:
-                ball_pos = np.zeros(2)
-            pose = kickoff_poses(f, cfg.n_blue, cfg.n_yellow)
-        placed: list[np.ndarray] = [p[:2] for p in fixed.values()]
-        if ball_pos is None:
-            ball_pos = self._free_spot(placed, 0.15, margin=0.1)
-        for i, name in enumerate(self.possible_agents):
-            if name in fixed:
-                pose[i] = fixed[name]
-            elif formation == "random":
-                xy = self._free_spot(placed + [ball_pos], 0.25, margin=0.1)
-                placed.append(xy)
-                pose[i] = (xy[0], xy[1], self.np_random.uniform(-np.pi, np.pi))
-        return pose, ball_pos, ball_vel
-
-    def _free_spot(self, taken: list[np.ndarray], min_dist: float, margin: float = 0.2) -> np.ndarray:
-        return self.field.random_free_point(self.np_random, margin, taken, min_dist)
-
-    @staticmethod
-    def _vec(v: Any, n: int, name: str) -> np.ndarray | None:
-        if v is None:
-            return None
-        a = np.asarray(v, dtype=float)
-        if a.shape != (n,) or not np.isfinite(a).all():
-            raise ValueError(f"reset options: {name} must be {n} finite numbers, got {v!r}")
-        return a
 
     # -------------------------------------------------------------------- step
     def _action_array(self, actions: dict) -> np.ndarray:
@@ -204,64 +162,64 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
             n_ticks = self._wait_for_tick()
             if n_ticks > 1:
                 events.append({"type": "missed_deadline", "steps": n_ticks - 1})
-        goal_for = None
+        self.task.begin_step(self)
         for tick in range(n_ticks):
             sent = self._prev_cmd if tick < n_ticks - 1 else cmd
-            goal_for = self._physics_tick(sent, events)
-            if goal_for is not None:
+            self._physics_tick(sent, events)
+            if self.task.after_tick(self, events):
                 break
         self._prev_cmd = cmd
-        rewards, terms = self._rewards(goal_for)
-        t = self._truth.t
-        terminated = goal_for is not None and self.config.after_goal == "terminate"
-        truncated = (t >= self.config.max_time_s - 1e-9) and not terminated
-        if goal_for is not None and not terminated:
-            self._kickoff()
+        rewards, terms = self.task.rewards(self)
+        terminated, truncated = self.task.end(self)
+        self.task.after_step(self, terminated, truncated)
         self._seen = self.vision.observe(self._truth, self._noise_rng)
         obs = self._observations()
         term = {a: bool(terminated) for a in self.agents}
         trunc = {a: bool(truncated) for a in self.agents}
         infos = {}
         for a in self.agents:
-            infos[a] = {"events": events, "score": dict(self.score), "reward_terms": terms[self._team_of[a]]}
+            infos[a] = {"events": events, "score": dict(self.score), "reward_terms": terms.get(self._team_of[a], {})}
         if terminated or truncated:
             self.agents = []
         if self.render_mode == "human":
             self.render()
         return obs, rewards, term, trunc, infos
 
-    def _physics_tick(self, cmd: np.ndarray, events: list[dict]) -> str | None:
+    def _physics_tick(self, cmd: np.ndarray, events: list[dict]) -> None:
         executed = self.radio.transmit(cmd, self._noise_rng)
         v, w, drib, kick = scale_actions(executed, self.config.robot)
         self.physics.step(v, w, drib, kick)
         for i, speed in self.physics.kicks_this_step:
             events.append({"type": "kick", "agent": self.possible_agents[i], "speed": speed})
         self._truth = self.physics.snapshot()
-        if not self.config.referee:
-            return None
-        call = judge(self._truth, self.field, self.config.ball.radius)
-        if call.goal_for is not None:
-            self.score[call.goal_for] += 1
-            events.append({"type": "goal", "team": call.goal_for, "t": self._truth.t})
-            return call.goal_for
-        if call.ball_out:
-            events.append({"type": "ball_out", "t": self._truth.t, "placement": call.placement.tolist()})
-            new_pos = clear_robots_from(call.placement, self.physics.pos, self.field)
-            moved = np.flatnonzero(np.any(new_pos != self.physics.pos, axis=1))
-            if moved.size:
-                pose = np.column_stack([self.physics.pos, self.physics.heading])
-                pose[moved, 0:2] = new_pos[moved]
-                self.physics.set_robots(pose, only=moved)
-            self.physics.set_ball(call.placement)
-            self._truth = self.physics.snapshot()
-            self._prev_ball_x = float(self._truth.ball_pos[0])
-        return None
 
-    def _kickoff(self) -> None:
-        self.physics.set_robots(kickoff_poses(self.field, self.config.n_blue, self.config.n_yellow))
-        self.physics.set_ball(np.zeros(2))
+    # ------------------------------------------------- services for the task
+    def agent_index(self, agent: str) -> int:
+        """Row of ``agent`` in pose arrays (blue first); ValueError for an unknown agent."""
+        return self._check_agent(agent)
+
+    def team_of(self, agent: str) -> str:
+        """"blue" or "yellow"."""
+        return self._team_of[agent]
+
+    def robot_poses(self) -> np.ndarray:
+        """(n, 3) field-frame poses (x, y m; heading rad), blue rows first (a copy)."""
+        return np.column_stack([self.physics.pos, self.physics.heading])
+
+    def place_robots(self, pose: np.ndarray, only: np.ndarray | None = None) -> None:
+        """Teleport robots (all, or the rows ``only``) to field-frame ``pose`` (n, 3), at rest."""
+        self.physics.set_robots(pose, only=only)
         self._truth = self.physics.snapshot()
-        self._prev_ball_x = 0.0
+
+    def place_ball(self, pos: np.ndarray, vel: np.ndarray | None = None) -> None:
+        """Teleport the ball to field-frame ``pos`` (m) with velocity ``vel`` (m/s, default at rest)."""
+        self.physics.set_ball(pos, vel)
+        self._truth = self.physics.snapshot()
+
+    def award_goal(self, team: str, events: list[dict]) -> None:
+        """Count a goal for ``team`` and record the ``goal`` event."""
+        self.score[team] += 1
+        events.append({"type": "goal", "team": team, "t": self._truth.t})
 
     def _wait_for_tick(self) -> int:
         """Real-time mode: sleep until the next control tick; return how many ticks
@@ -275,23 +233,6 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         missed = int((now - self._next_tick) // dt) + 1
         self._next_tick += (missed + 1) * dt
         return missed + 1
-
-    def _rewards(self, goal_for: str | None) -> tuple[dict, dict]:
-        scales = self.config.reward_scales
-        bx = float(self._truth.ball_pos[0])
-        progress = (bx - self._prev_ball_x) / self.field.half_length
-        self._prev_ball_x = bx
-        possess = {"blue": bool(self._truth.blue.ball_on_dribbler.any()),
-                   "yellow": bool(self._truth.yellow.ball_on_dribbler.any())}
-        terms = {}
-        for team, sgn in (("blue", 1.0), ("yellow", -1.0)):
-            goal = 0.0 if goal_for is None else (1.0 if goal_for == team else -1.0)
-            terms[team] = {"goal": scales["goal"] * goal,
-                           "ball_progress": scales["ball_progress"] * sgn * progress,
-                           "possession": scales["possession"] * (self.config.dt if possess[team] else 0.0)}
-        team_reward = {team: float(sum(t.values())) for team, t in terms.items()}
-        rewards = {a: team_reward[self._team_of[a]] for a in self.agents}
-        return rewards, terms
 
     # ------------------------------------------------------------ observations
     def _observations(self) -> dict[str, np.ndarray]:

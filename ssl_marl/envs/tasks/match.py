@@ -1,0 +1,137 @@
+"""The full-field match: SSL referee, kickoffs, team rewards (the env's default task).
+
+Start
+    Kickoff formation with the ball on the centre mark (``randomize_reset``: robots and
+    ball at random); reset options override (see :mod:`ssl_marl.envs.tasks.scene`).
+Rules, after every control tick (``referee``, see :mod:`ssl_marl.envs.referee`)
+    Goal: the scoring team's score + 1, event ``goal``; the step's remaining ticks are
+    skipped. Ball out of play: event ``ball_out``; the ball is placed 0.2 m inside the
+    field and robots within 0.5 m of it are moved out.
+Reward
+    Shared by a team: sum over named terms x ``reward_scales``. ``goal``: +1 when the
+    team scores, -1 when it concedes. ``ball_progress``: ball displacement towards the
+    opponent goal / (L/2). ``possession``: +dt while a robot of the team holds the ball.
+End
+    Truncation when simulated time reaches ``max_time_s``; termination after a goal if
+    ``after_goal == "terminate"``, otherwise the kickoff formation is placed and play
+    goes on.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Mapping
+
+import numpy as np
+
+from ..config import AFTER_GOAL, EnvConfig
+from ..referee import clear_robots_from, judge, kickoff_poses
+from .base import Scene, Task
+from .scene import scene_from_options
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..ssl_env import SSLParallelEnv
+
+
+@dataclass(frozen=True)
+class MatchRules:
+    """Parameters of :class:`MatchTask` (taken from the env config by default).
+
+    Attributes:
+        referee: goals and out-of-play are called (False: the walls hold everything in).
+        after_goal: "kickoff" or "terminate".
+        max_time_s: truncation time (s of simulated time).
+        reward_scales: scale per reward term ("goal", "ball_progress", "possession").
+        randomize_reset: random robots and ball on reset (False: kickoff formation).
+    """
+
+    referee: bool = True
+    after_goal: str = "kickoff"
+    max_time_s: float = 300.0
+    reward_scales: Mapping[str, float] = field(default_factory=lambda: {"goal": 1.0, "ball_progress": 0.0,
+                                                                        "possession": 0.0})
+    randomize_reset: bool = False
+
+    def __post_init__(self) -> None:
+        if self.after_goal not in AFTER_GOAL:
+            raise ValueError(f"after_goal must be one of {AFTER_GOAL}, got {self.after_goal!r}")
+
+    @staticmethod
+    def from_config(cfg: EnvConfig) -> "MatchRules":
+        return MatchRules(referee=cfg.referee, after_goal=cfg.after_goal, max_time_s=cfg.max_time_s,
+                          reward_scales=dict(cfg.reward_scales), randomize_reset=cfg.randomize_reset)
+
+
+class MatchTask(Task):
+    """The full-field match (see the module docstring)."""
+
+    name = "match"
+
+    def __init__(self, rules: MatchRules | None = None) -> None:
+        super().__init__()
+        self.rules = rules
+        self.goal_for: str | None = None  #: team that scored in the current step
+        self._prev_ball_x = 0.0
+
+    def bind(self, env: "SSLParallelEnv") -> None:
+        super().bind(env)
+        if self.rules is None:
+            self.rules = MatchRules.from_config(env.config)
+
+    def reset_scene(self, env: "SSLParallelEnv", options: dict) -> Scene:
+        return scene_from_options(env, options, "random" if self.rules.randomize_reset else "kickoff")
+
+    def start(self, env: "SSLParallelEnv") -> None:
+        self.goal_for = None
+        self._prev_ball_x = float(env.world_state().ball_pos[0])
+
+    def begin_step(self, env: "SSLParallelEnv") -> None:
+        self.goal_for = None
+
+    def after_tick(self, env: "SSLParallelEnv", events: list[dict]) -> bool:
+        if not self.rules.referee:
+            return False
+        truth, f = env.world_state(), env.field
+        call = judge(truth, f, env.config.ball.radius)
+        if call.goal_for is not None:
+            env.award_goal(call.goal_for, events)
+            self.goal_for = call.goal_for
+            return True
+        if call.ball_out:
+            events.append({"type": "ball_out", "t": truth.t, "placement": call.placement.tolist()})
+            pose = env.robot_poses()
+            new_pos = clear_robots_from(call.placement, pose[:, 0:2], f)
+            moved = np.flatnonzero(np.any(new_pos != pose[:, 0:2], axis=1))
+            if moved.size:
+                pose[moved, 0:2] = new_pos[moved]
+                env.place_robots(pose, only=moved)
+            env.place_ball(call.placement)
+            self._prev_ball_x = float(env.world_state().ball_pos[0])
+        return False
+
+    def rewards(self, env: "SSLParallelEnv") -> tuple[dict[str, float], dict[str, dict[str, float]]]:
+        scales = self.rules.reward_scales
+        truth = env.world_state()
+        bx = float(truth.ball_pos[0])
+        progress = (bx - self._prev_ball_x) / env.field.half_length
+        self._prev_ball_x = bx
+        possess = {"blue": bool(truth.blue.ball_on_dribbler.any()), "yellow": bool(truth.yellow.ball_on_dribbler.any())}
+        terms = {}
+        for team, sgn in (("blue", 1.0), ("yellow", -1.0)):
+            goal = 0.0 if self.goal_for is None else (1.0 if self.goal_for == team else -1.0)
+            terms[team] = {"goal": scales["goal"] * goal,
+                           "ball_progress": scales["ball_progress"] * sgn * progress,
+                           "possession": scales["possession"] * (env.config.dt if possess[team] else 0.0)}
+        team_reward = {team: float(sum(t.values())) for team, t in terms.items()}
+        return {a: team_reward[env.team_of(a)] for a in env.agents}, terms
+
+    def end(self, env: "SSLParallelEnv") -> tuple[bool, bool]:
+        terminated = self.goal_for is not None and self.rules.after_goal == "terminate"
+        truncated = (env.world_state().t >= self.rules.max_time_s - 1e-9) and not terminated
+        return terminated, truncated
+
+    def after_step(self, env: "SSLParallelEnv", terminated: bool, truncated: bool) -> None:
+        if self.goal_for is not None and not terminated:  # kickoff
+            env.place_robots(kickoff_poses(env.field, env.config.n_blue, env.config.n_yellow))
+            env.place_ball(np.zeros(2))
+            self._prev_ball_x = 0.0
