@@ -1,10 +1,13 @@
-"""Single-robot Gymnasium tasks for the paper's skills, over the full-field env.
+"""The paper's skills as single-robot Gymnasium tasks.
 
-Both wrap :class:`ssl_marl.envs.ssl_env.SSLParallelEnv` with one controlled robot
-(``blue_0``, whose team frame is the field frame) and, by default, no other robot.
-Other robots can be added as yellow opponents, ``static`` or driven by the
-baseline go-to-ball skill (``chase``). The full-field referee is off: the task
-judges its own episodes. Noise / latency options of the simulator pass through
+:class:`GoToBallTask` and :class:`AimToShootTask` are the tasks (start, observation,
+action mapping, reward, outcome; all in the controlled robot's team frame), so they
+run on any robot of any env through :class:`~ssl_marl.skills.robot_env.RobotSkillEnv`.
+:class:`GoToBallEnv` / :class:`AimToShootEnv` (``ssl_marl/GoToBall-v0``,
+``ssl_marl/AimToShoot-v0``) are those tasks over a one-robot env
+(:class:`~ssl_marl.skills.robot_env.OneRobotSkillEnv`): ``blue_0`` and, by default, no
+other robot; yellow opponents can be added, ``static`` or driven by the baseline
+go-to-ball skill (``chase``). Noise / latency options of the simulator pass through
 (``realism=...``): features are computed from what the robot *sees*
 (``env.vision_state``), rewards and outcomes from the ground truth.
 """
@@ -18,106 +21,18 @@ import gymnasium
 import numpy as np
 from gymnasium.utils import EzPickle
 
-from ..envs.ssl_env import SSLParallelEnv
-from ..physics.field import FieldGeometry
-from ..physics.state import WorldState, to_team_frame
+from ..physics.state import WorldState
 from .base import make_action
-from .registry import get_task
-from .features import (AIM_TO_SHOOT_SPEC, BALL_LOST_DISTANCE, GO_TO_BALL_SPEC, ORIENTATION_FORMS,
+from .features import (BALL_LOST_DISTANCE, GO_TO_BALL_SPEC, ORIENTATION_FORMS, aim_to_shoot_env_action,
                        aim_to_shoot_features, aim_to_shoot_reward, aim_to_shoot_spec, dribbler_ball_distance,
-                       go_to_ball_features, go_to_ball_reward)
+                       go_to_ball_env_action, go_to_ball_features, go_to_ball_reward)
+from .registry import get_task
+from .robot_env import Judgement, OneRobotSkillEnv, SkillTask, Start
 
 AGENT = "blue_0"
 
 
-class _SkillEnv(gymnasium.Env, EzPickle):
-    """Shared plumbing: the inner parallel env, other robots, info bookkeeping."""
-
-    metadata = {"render_modes": ["rgb_array", "human"], "render_fps": 60}
-    spec_version = ""
-
-    def __init__(self, field: str = "div_b", n_opponents: int = 0, opponent_policy: str = "static",
-                 realism: Any = "none", realtime: bool = False, render_mode: str | None = None,
-                 **env_kwargs: Any) -> None:
-        EzPickle.__init__(self, field=field, n_opponents=n_opponents, opponent_policy=opponent_policy,
-                          realism=realism, realtime=realtime, render_mode=render_mode, **env_kwargs)
-        if opponent_policy not in ("static", "chase"):
-            raise ValueError(f"opponent_policy must be 'static' or 'chase', got {opponent_policy!r}")
-        self.render_mode = render_mode
-        self.env = SSLParallelEnv(n_blue=1, n_yellow=n_opponents, field=field, realism=realism, realtime=realtime,
-                                  referee=False, max_time_s=1e9, render_mode=render_mode,
-                                  obs_max_teammates=0, obs_max_opponents=max(n_opponents, 0), **env_kwargs)
-        self.field: FieldGeometry = self.env.field
-        self.robot_params = self.env.config.robot
-        self.ball_params = self.env.config.ball
-        self.dt = self.env.config.dt
-        self.n_opponents = n_opponents
-        self.opponent_policy = opponent_policy
-        self._opponent_skills: list = []
-
-    # --- helpers --------------------------------------------------------------
-    @property
-    def t(self) -> float:
-        """Simulated time since the episode started (s), from the world itself (in real-time
-        mode one step can cover several control ticks)."""
-        return self.env.world_state().t
-
-    def seen(self) -> WorldState:
-        """What the controlled robot sees, in its team frame."""
-        return self.env.vision_state("blue")
-
-    def truth(self) -> WorldState:
-        return to_team_frame(self.env.world_state(), "blue")
-
-    def _opponent_actions(self) -> dict[str, np.ndarray]:
-        if self.n_opponents == 0 or self.opponent_policy == "static":
-            return {}
-        ws = self.env.vision_state("yellow")
-        return {f"yellow_{k}": sk.act(ws, k) for k, sk in enumerate(self._opponent_skills)}
-
-    def _reset_inner(self, seed: int | None, robot_pose: np.ndarray, ball_pos: np.ndarray,
-                     ball_vel: np.ndarray | None = None) -> None:
-        robots = {AGENT: tuple(robot_pose)}
-        taken = [np.asarray(robot_pose[:2]), np.asarray(ball_pos)]
-        for k in range(self.n_opponents):
-            p = self._free_spot(taken, 0.3)
-            taken.append(p)
-            robots[f"yellow_{k}"] = (p[0], p[1], self.np_random.uniform(-math.pi, math.pi))
-        opts = {"robots": robots, "ball": {"pos": tuple(ball_pos),
-                                           "vel": tuple(np.zeros(2) if ball_vel is None else ball_vel)}}
-        self.env.reset(seed=None if seed is None else int(self.np_random.integers(2 ** 31)), options=opts)
-        if self.n_opponents and self.opponent_policy == "chase":
-            from .baseline import GoToBallBaseline
-
-            self._opponent_skills = [GoToBallBaseline(self.field, self.robot_params, self.ball_params)
-                                     for _ in range(self.n_opponents)]
-
-    def _free_spot(self, taken: list[np.ndarray], min_dist: float, margin: float = 0.2) -> np.ndarray:
-        return self.field.random_free_point(self.np_random, margin, taken, min_dist)
-
-    def _step_inner(self, action5: np.ndarray) -> dict:
-        acts = {AGENT: action5}
-        acts.update(self._opponent_actions())
-        _, _, _, _, infos = self.env.step(acts)
-        return infos[AGENT]
-
-    @staticmethod
-    def _check_action(action: Any, dim: int) -> np.ndarray:
-        a = np.asarray(action, dtype=np.float64)
-        if a.shape != (dim,):
-            raise ValueError(f"action must have shape ({dim},), got {a.shape}")
-        if not np.isfinite(a).all():
-            raise ValueError(f"action contains NaN or inf: {a.tolist()}")
-        return np.clip(a, -1.0, 1.0)
-
-    def render(self):
-        return self.env.render()
-
-    def close(self) -> None:
-        self.env.close()
-
-
-class GoToBallEnv(_SkillEnv):
+class GoToBallTask(SkillTask):
     """go-to-ball: drive to the ball and get it on the dribbler (paper, section 4.3).
 
     Observation
@@ -134,14 +49,13 @@ class GoToBallEnv(_SkillEnv):
         Success (terminated, ``info["is_success"] = True``) when the ball is on the
         dribbler. Failure (truncated, ``failure_reason = "timeout"``) at ``max_time_s``
         (10 s). Spawn: ball uniformly on the field (0.1 m inside the lines), robot at a
-        uniformly random position and heading at least 0.3 m from the ball.
+        uniformly random position and heading at least 0.3 m from the ball. Reset
+        options (team frame): ``ball_pos``, ``robot_pose``, ``face_ball``.
     """
 
     spec_version = GO_TO_BALL_SPEC
 
-    def __init__(self, max_time_s: float = 10.0, orientation_form: str = "gaussian", **kwargs: Any) -> None:
-        super().__init__(**kwargs)
-        EzPickle.__init__(self, max_time_s=max_time_s, orientation_form=orientation_form, **kwargs)
+    def __init__(self, max_time_s: float = 10.0, orientation_form: str = "gaussian") -> None:
         if orientation_form not in ORIENTATION_FORMS:
             raise ValueError(f"orientation_form must be one of {ORIENTATION_FORMS}, got {orientation_form!r}")
         if not (math.isfinite(max_time_s) and max_time_s > 0):
@@ -151,39 +65,35 @@ class GoToBallEnv(_SkillEnv):
         self.observation_space = gymnasium.spaces.Box(-np.inf, np.inf, (14,), np.float32)
         self.action_space = gymnasium.spaces.Box(-1.0, 1.0, (3,), np.float32)
 
-    def reset(self, *, seed: int | None = None, options: dict | None = None):
-        super().reset(seed=seed)
-        options = options or {}
+    def sample_start(self, rng: np.random.Generator, options: dict) -> Start:
         f = self.field
         ball = options.get("ball_pos")
         if ball is None:
-            ball = f.random_free_point(self.np_random, margin=0.1)
+            ball = f.random_free_point(rng, margin=0.1)
         pose = options.get("robot_pose")
         if pose is None:
-            xy = self._free_spot([np.asarray(ball)], 0.3, margin=0.1)
-            heading = self.np_random.uniform(-math.pi, math.pi)
+            xy = f.random_free_point(rng, 0.1, [np.asarray(ball)], 0.3)
+            heading = rng.uniform(-math.pi, math.pi)
             if options.get("face_ball"):
                 heading = math.atan2(ball[1] - xy[1], ball[0] - xy[0])
             pose = (xy[0], xy[1], heading)
-        self._reset_inner(seed, np.asarray(pose, float), np.asarray(ball, float))
-        return go_to_ball_features(self.seen(), 0, f), {"reward_terms": {}}
+        return Start(np.asarray(pose, float), np.asarray(ball, float))
 
-    def step(self, action):
-        self._step_inner(expand_task_action("go-to-ball", self._check_action(action, 3)))
-        truth = self.truth()
-        terms = go_to_ball_reward(truth, 0, self.orientation_form)
-        success = bool(truth.blue.ball_on_dribbler[0])
-        timeout = (not success) and self.t >= self.max_time_s - 1e-9
-        info: dict[str, Any] = {"reward_terms": terms, "t": self.t}
-        if success or timeout:
-            info["is_success"] = success
-            info["failure_reason"] = None if success else "timeout"
-            info["time_s"] = self.t
-        obs = go_to_ball_features(self.seen(), 0, self.field)
-        return obs, float(sum(terms.values())), success, timeout, info
+    def observe(self, seen: WorldState, robot: int) -> np.ndarray:
+        return go_to_ball_features(seen, robot, self.field)
+
+    def env_action(self, action: np.ndarray) -> np.ndarray:
+        return go_to_ball_env_action(action)
+
+    def judge(self, truth: WorldState, robot: int, events: list[dict], t: float) -> Judgement:
+        terms = go_to_ball_reward(truth, robot, self.orientation_form)
+        success = bool(truth.team(truth.frame).ball_on_dribbler[robot])
+        timeout = (not success) and t >= self.max_time_s - 1e-9
+        return Judgement(terms, terminated=success, truncated=timeout, success=success,
+                         failure_reason=None if success else "timeout")
 
 
-class AimToShootEnv(_SkillEnv):
+class AimToShootTask(SkillTask):
     """aim-to-shoot: with the ball on the dribbler, turn towards the goal and score
     (paper, section 4.3).
 
@@ -215,87 +125,109 @@ class AimToShootEnv(_SkillEnv):
         "timeout" (truncated) if no kick within ``max_time_s`` (1.6 s).
         After the kick the robot's actions no longer matter and the episode resolves
         with the ball: success (terminated, ``is_success``) when it has fully crossed
-        the goal line inside the goal; failure "missed" (terminated) when it leaves
-        the field elsewhere, stops or moves away from the goal line, or after
+        the goal line inside the goal (or a referee of the surrounding env called a
+        goal for the robot's team); failure "missed" (terminated) when it leaves the
+        field elsewhere, stops or moves away from the goal line, or after
         ``post_kick_time_s`` (2 s). Time to score = time of the goal.
     """
 
-    spec_version = AIM_TO_SHOOT_SPEC
-
     def __init__(self, max_time_s: float = 1.6, post_kick_time_s: float = 2.0, lost_distance: float = BALL_LOST_DISTANCE,
                  spawn_x: tuple[float, float] | None = None, reward_form: str = "paper", success_bonus: float = 0.0,
-                 kick_action: str = "strength", **kwargs: Any) -> None:
-        spec = aim_to_shoot_spec(kick_action)  # validates kick_action before the world is built
-        super().__init__(**kwargs)
-        EzPickle.__init__(self, max_time_s=max_time_s, post_kick_time_s=post_kick_time_s,
-                          lost_distance=lost_distance, spawn_x=spawn_x, reward_form=reward_form,
-                          success_bonus=success_bonus, kick_action=kick_action, **kwargs)
+                 kick_action: str = "strength") -> None:
+        self.spec_version = aim_to_shoot_spec(kick_action)  # validates kick_action
         if reward_form not in ("paper", "kick_only"):
             raise ValueError(f"reward_form must be 'paper' or 'kick_only', got {reward_form!r}")
-        self.kick_action, self.spec_version = kick_action, spec
         if not math.isfinite(success_bonus):
             raise ValueError(f"success_bonus must be finite, got {success_bonus!r}")
+        self.kick_action = kick_action
         self.reward_form, self.success_bonus = reward_form, float(success_bonus)
         self.max_time_s, self.post_kick_time_s, self.lost_distance = max_time_s, post_kick_time_s, lost_distance
-        f = self.field
-        self.spawn_x = spawn_x or (0.5, f.half_length - 0.5)
+        self._spawn_x = spawn_x
         self.observation_space = gymnasium.spaces.Box(-np.inf, np.inf, (10,), np.float32)
         self.action_space = gymnasium.spaces.Box(-1.0, 1.0, (3,), np.float32)
-        self._kick_t: float | None = None
+        self.kick_t: float | None = None
 
-    def reset(self, *, seed: int | None = None, options: dict | None = None):
-        super().reset(seed=seed)
-        options = options or {}
+    def bind(self, field, robot, ball, dt) -> None:
+        super().bind(field, robot, ball, dt)
+        self.spawn_x = self._spawn_x or (0.5, field.half_length - 0.5)
+
+    def sample_start(self, rng: np.random.Generator, options: dict) -> Start:
         f = self.field
         pose = options.get("robot_pose")
         if pose is None:
-            x = self.np_random.uniform(*self.spawn_x)
-            y = self.np_random.uniform(-f.half_width + 0.3, f.half_width - 0.3)
-            pose = (x, y, self.np_random.uniform(-math.pi, math.pi))
+            x = rng.uniform(*self.spawn_x)
+            y = rng.uniform(-f.half_width + 0.3, f.half_width - 0.3)
+            pose = (x, y, rng.uniform(-math.pi, math.pi))
         pose = np.asarray(pose, float)
         reach = self.robot_params.front_distance + self.ball_params.radius
         ball = pose[:2] + reach * np.array([math.cos(pose[2]), math.sin(pose[2])])
-        self._reset_inner(seed, pose, ball)
-        self._kick_t = None
-        return aim_to_shoot_features(self.seen(), 0, f), {"reward_terms": {}}
+        return Start(pose, ball)
 
-    def step(self, action):
-        a = self._check_action(action, 3)
-        action5 = expand_task_action("aim-to-shoot", a, self.kick_action) if self._kick_t is None else make_action()
-        info = self._step_inner(action5)
-        truth = self.truth()
-        if self._kick_t is None and any(ev["type"] == "kick" and ev["agent"] == AGENT for ev in info["events"]):
-            self._kick_t = self.t
-        terms = aim_to_shoot_reward(truth, 0, self.field)
-        if self.reward_form == "kick_only" and self._kick_t is None:
+    def begin(self) -> None:
+        self.kick_t = None
+
+    def observe(self, seen: WorldState, robot: int) -> np.ndarray:
+        return aim_to_shoot_features(seen, robot, self.field)
+
+    def env_action(self, action: np.ndarray) -> np.ndarray:
+        return aim_to_shoot_env_action(action, self.kick_action) if self.kick_t is None else make_action()
+
+    def judge(self, truth: WorldState, robot: int, events: list[dict], t: float) -> Judgement:
+        agent = f"{truth.frame}_{robot}"
+        if self.kick_t is None and any(ev["type"] == "kick" and ev["agent"] == agent for ev in events):
+            self.kick_t = t
+        terms = aim_to_shoot_reward(truth, robot, self.field)
+        if self.reward_form == "kick_only" and self.kick_t is None:
             terms = {"aim": 0.0}
-        terminated, truncated, success, reason = self._outcome(truth)
+        terminated, truncated, success, reason = self._outcome(truth, robot, events, t)
         if self.success_bonus:
             terms["success_bonus"] = self.success_bonus if success else 0.0
-        out: dict[str, Any] = {"reward_terms": terms, "t": self.t, "kicked": self._kick_t is not None}
-        if terminated or truncated:
-            out.update(is_success=success, failure_reason=reason, time_s=self.t)
-        obs = aim_to_shoot_features(self.seen(), 0, self.field)
-        return obs, float(sum(terms.values())), terminated, truncated, out
+        return Judgement(terms, terminated, truncated, success, reason, {"kicked": self.kick_t is not None})
 
-    def _outcome(self, truth: WorldState) -> tuple[bool, bool, bool, str | None]:
+    def _outcome(self, truth: WorldState, robot: int, events: list[dict], t: float) -> tuple[bool, bool, bool, str | None]:
         f, br = self.field, self.ball_params.radius
-        if self._kick_t is None:
-            if dribbler_ball_distance(truth, 0, self.robot_params, self.ball_params) > self.lost_distance:
+        if self.kick_t is None:
+            if dribbler_ball_distance(truth, robot, self.robot_params, self.ball_params) > self.lost_distance:
                 return True, False, False, "ball_lost"
-            if self.t >= self.max_time_s - 1e-9:
+            if t >= self.max_time_s - 1e-9:
                 return False, True, False, "timeout"
             return False, False, False, None
+        goals = [ev["team"] for ev in events if ev["type"] == "goal"]  # a surrounding referee moved the ball
         side = f.in_goal(truth.ball_pos, br)
-        if side == 1:
+        if side == 1 or truth.frame in goals:
             return True, False, True, None
         bx, by = truth.ball_pos
         vx = truth.ball_vel[0]
         out = abs(by) >= f.half_width + br or (abs(bx) >= f.half_length + br and side == 0)
         stopped = float(np.hypot(*truth.ball_vel)) < 0.05
-        if out or side == -1 or stopped or vx <= 0 or self.t - self._kick_t >= self.post_kick_time_s:
+        if out or side == -1 or goals or stopped or vx <= 0 or t - self.kick_t >= self.post_kick_time_s:
             return True, False, False, "missed"
         return False, False, False, None
+
+
+class GoToBallEnv(OneRobotSkillEnv):
+    """``ssl_marl/GoToBall-v0``: :class:`GoToBallTask` over a one-robot env (see
+    :class:`~ssl_marl.skills.robot_env.OneRobotSkillEnv` for the env options)."""
+
+    def __init__(self, max_time_s: float = 10.0, orientation_form: str = "gaussian", **kwargs: Any) -> None:
+        task = GoToBallTask(max_time_s, orientation_form)
+        super().__init__(task, **kwargs)
+        EzPickle.__init__(self, max_time_s=max_time_s, orientation_form=orientation_form, **kwargs)
+
+
+class AimToShootEnv(OneRobotSkillEnv):
+    """``ssl_marl/AimToShoot-v0``: :class:`AimToShootTask` over a one-robot env (see
+    :class:`~ssl_marl.skills.robot_env.OneRobotSkillEnv` for the env options)."""
+
+    def __init__(self, max_time_s: float = 1.6, post_kick_time_s: float = 2.0, lost_distance: float = BALL_LOST_DISTANCE,
+                 spawn_x: tuple[float, float] | None = None, reward_form: str = "paper", success_bonus: float = 0.0,
+                 kick_action: str = "strength", **kwargs: Any) -> None:
+        task = AimToShootTask(max_time_s, post_kick_time_s, lost_distance, spawn_x, reward_form, success_bonus,
+                              kick_action)  # validates before the world is built
+        super().__init__(task, **kwargs)
+        EzPickle.__init__(self, max_time_s=max_time_s, post_kick_time_s=post_kick_time_s,
+                          lost_distance=lost_distance, spawn_x=spawn_x, reward_form=reward_form,
+                          success_bonus=success_bonus, kick_action=kick_action, **kwargs)
 
 
 def task_action(task: str, action5: np.ndarray) -> np.ndarray:
