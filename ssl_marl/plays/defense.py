@@ -26,7 +26,6 @@ from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance
 from .navigation import NavigateToPoint, NavParams, defense_rect, facing_towards, push_out_of_rect
 from .tactic_base import NEAR_BALL_M, Tactic
 
-LOST_BALL_M = BALL_LOST_DISTANCE  # d_{d-b} above which a ball being cleared counts as lost (hysteresis over 35 mm)
 
 
 # ----------------------------------------------------------------- geometry
@@ -184,7 +183,7 @@ class Goalie(Tactic):
         if state is S.CLEAR_KICK:
             if inputs.kicked:
                 return S.GUARD
-            if inputs.d_db > LOST_BALL_M:
+            if inputs.d_db > BALL_LOST_DISTANCE:
                 return S.CLEAR_APPROACH if inputs.ball_near_area else S.GUARD
             return S.CLEAR_KICK
         raise ValueError(f"unknown state {state!r}")
@@ -293,7 +292,7 @@ class Defender(Tactic):
         if state is S.CLEAR_KICK:
             if inputs.kicked or inputs.ball_in_own_defense:
                 return S.BLOCK
-            return S.CLEAR_APPROACH if inputs.d_db > LOST_BALL_M else S.CLEAR_KICK
+            return S.CLEAR_APPROACH if inputs.d_db > BALL_LOST_DISTANCE else S.CLEAR_KICK
         raise ValueError(f"unknown state {state!r}")
 
     def on_enter(self, state: DefenderState) -> None:

@@ -340,6 +340,10 @@ class PlaySelector:
         self._last_t: float | None = None
         self.rng = np.random.default_rng(self.seed)
 
+    def new_episode(self) -> None:
+        """Drop the running play (a new episode starts); keep weights, statistics and the RNG."""
+        self.current, self.since, self._last_t = None, 0.0, None
+
     def _pick(self, candidates: list[Play]) -> Play:
         top = max(p.priority for p in candidates)
         cands = [p for p in candidates if p.priority == top]

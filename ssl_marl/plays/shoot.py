@@ -219,11 +219,5 @@ def free_distance_ahead(point: np.ndarray, heading: float, field) -> float:
     return float(t)
 
 
-def time_to_ball(pos: np.ndarray, ball_pos: np.ndarray, max_speed: float) -> np.ndarray:
-    """Estimated time (s) for robots at ``pos`` (n, 2) to reach the ball at ``max_speed`` (m/s)."""
-    d = np.asarray(pos, float) - np.asarray(ball_pos, float)
-    return np.hypot(d[..., 0], d[..., 1]) / max(max_speed, 1e-9)
-
-
-__all__ = ["ShootState", "ShootParams", "ShootInputs", "GoToBallAndShoot", "Attacker", "time_to_ball",
+__all__ = ["ShootState", "ShootParams", "ShootInputs", "GoToBallAndShoot", "Attacker",
            "free_distance_ahead"]

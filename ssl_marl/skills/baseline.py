@@ -125,34 +125,9 @@ class DriveForward(SkillBase):
         return make_action(vx=self.speed * ramp / self.rp.max_speed, dribble=True)
 
 
-class MoveToPoint(SkillBase):
-    """Move to ``target`` (team frame, m) and face ``facing`` (rad, or None to keep the
-    heading): straight line with a stopping-distance speed profile and a proportional
-    heading controller. Succeeds within ``tolerance`` m and 0.05 rad, nearly stopped.
-    Tactics set ``target``/``facing`` every tick; ``dribble`` keeps the dribbler on."""
+def __getattr__(name: str):
+    if name == "MoveToPoint":  # the one move-to-point behaviour lives in navigation (which imports this module)
+        from .navigation import MoveToPoint
 
-    name = "move_to_point"
-
-    def __init__(self, field, robot=None, ball=None, target=(0.0, 0.0), facing: float | None = None,
-                 tolerance: float = 0.03, turn_gain: float = 6.0, max_speed: float | None = None,
-                 dribble: bool = False):
-        super().__init__(field, robot, ball)
-        self.target = np.asarray(target, float)
-        self.facing = facing
-        self.tolerance, self.turn_gain = tolerance, turn_gain
-        self.max_speed = max_speed
-        self.dribble = dribble
-
-    def act(self, world: WorldState, robot: int) -> np.ndarray:
-        pos, h, vel = _pose(world, robot)
-        rp = self.rp
-        d = np.asarray(self.target, float) - pos
-        dist = float(np.hypot(*d))
-        vmax = rp.max_speed if self.max_speed is None else min(self.max_speed, rp.max_speed)
-        speed = min(approach_speed(dist, rp, decel=0.6 * rp.max_brake), vmax)
-        v = d / max(dist, 1e-9) * speed if dist > 1e-3 else np.zeros(2)
-        face_err = 0.0 if self.facing is None else float(wrap_angle(self.facing - h))
-        omega = float(np.clip(self.turn_gain * face_err, -rp.max_omega, rp.max_omega))
-        done = dist <= self.tolerance and abs(face_err) <= 0.05 and float(np.hypot(*vel)) < 0.2
-        self.status = SkillStatus.SUCCEEDED if done else SkillStatus.RUNNING
-        return velocity_command(world, robot, v, omega, rp, dribble=self.dribble)
+        return MoveToPoint
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
