@@ -59,12 +59,16 @@ def _load(path: Path) -> object:
 def compare(before: Path, after: Path) -> int:
     bad = 0
     for name in RUNS:
+        if not (before / name).exists() or not (after / name).exists():
+            bad += 1
+            print(f"{name:36s} MISSING in {before if not (before / name).exists() else after}")
+            continue
         a, b = _load(before / name), _load(after / name)
         same = a == b
         bad += not same
         diff = "" if same else next(f" (first difference: episode {i})" for i, (x, y) in
                                     enumerate(zip(a, b)) if x != y) if len(a) == len(b) else " (lengths differ)"
-        print(f"{name:36s} {len(a):3d} episodes/matches  {'identical' if same else 'DIFFERENT' + diff}")
+        print(f"{name:36s} {len(a):3d} episodes/matches  {'identical' if same else 'DIFFERENT' + diff}", flush=True)
     print("all identical" if not bad else f"{bad} run(s) differ")
     return 1 if bad else 0
 

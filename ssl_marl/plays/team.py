@@ -181,3 +181,12 @@ class TeamController:
                 role.update(tactic, ctx, assignment)
             actions[self.agents[i]] = tactic.act(world, i)
         return actions
+
+
+def stp_traffic(env: Any, skills: SkillsSpec = "baseline") -> list[TeamController]:
+    """Drivers for :class:`~ssl_marl.skills.robot_env.RobotSkillEnv`: one STP team per
+    colour that has robots in ``env`` (skill-task traffic; name it in a training
+    config as ``"traffic": "ssl_marl.plays.team:stp_traffic"``)."""
+    cfg = env.config
+    return [TeamController(team, n, cfg.field, cfg.robot, cfg.ball, skills=skills, dt=cfg.dt)
+            for team, n in (("blue", cfg.n_blue), ("yellow", cfg.n_yellow)) if n > 0]

@@ -279,27 +279,37 @@ class RobotSkillEnv(gymnasium.Env):
 
 class OneRobotSkillEnv(RobotSkillEnv, EzPickle):
     """A skill task over its own small env: the controlled robot ``blue_0`` (whose team
-    frame is the field frame) and ``n_opponents`` yellow robots, ``static`` or driven by
-    the hand-coded go-to-ball (``chase``), placed at random free spots. The env's task is
-    free play (no referee, no time limit): the skill task judges its episodes.
-    Realism and real-time options pass through (``realism=...``, ``realtime=...``)."""
+    frame is the field frame), ``n_teammates`` more blue robots and ``n_opponents``
+    yellow robots, all placed at random free spots. The env's task is free play (no
+    referee, no time limit): the skill task judges its episodes. Realism and real-time
+    options pass through (``realism=...``, ``realtime=...``).
+
+    Traffic (what a training config names in ``env_kwargs``): other robots stand still,
+    except that ``opponent_policy="chase"`` drives the opponents with the hand-coded
+    go-to-ball, and ``traffic="module:function"`` adds drivers built by
+    ``function(env)`` (e.g. ``"ssl_marl.plays.team:stp_traffic"``: STP teams)."""
 
     def __init__(self, task: SkillTask, field: str = "div_b", n_opponents: int = 0, opponent_policy: str = "static",
-                 realism: Any = "none", realtime: bool = False, render_mode: str | None = None,
-                 **env_kwargs: Any) -> None:
+                 n_teammates: int = 0, traffic: str | None = None, realism: Any = "none", realtime: bool = False,
+                 render_mode: str | None = None, **env_kwargs: Any) -> None:
         if opponent_policy not in ("static", "chase"):
             raise ValueError(f"opponent_policy must be 'static' or 'chase', got {opponent_policy!r}")
-        env = SSLParallelEnv(n_blue=1, n_yellow=n_opponents, field=field, realism=realism, realtime=realtime,
-                             task="free_play", render_mode=render_mode, obs_max_teammates=0,
-                             obs_max_opponents=max(n_opponents, 0), **env_kwargs)
+        env = SSLParallelEnv(n_blue=1 + n_teammates, n_yellow=n_opponents, field=field, realism=realism,
+                             realtime=realtime, task="free_play", render_mode=render_mode,
+                             obs_max_teammates=max(n_teammates, 0), obs_max_opponents=max(n_opponents, 0),
+                             **env_kwargs)
         drivers: list[RobotDriver] = []
         if n_opponents and opponent_policy == "chase":
             from .baseline import GoToBallBaseline
 
             drivers.append(SkillDriver([f"yellow_{k}" for k in range(n_opponents)], GoToBallBaseline, env.field,
                                        env.config.robot, env.config.ball))
+        if traffic is not None:
+            from .registry import resolve_ref
+
+            drivers.extend(resolve_ref(traffic)(env))
         super().__init__(env, "blue_0", task, drivers, others_placement="free")
-        self.n_opponents, self.opponent_policy = n_opponents, opponent_policy
+        self.n_opponents, self.opponent_policy, self.n_teammates = n_opponents, opponent_policy, n_teammates
 
 
 __all__ = ["RobotSkillEnv", "OneRobotSkillEnv", "SkillTask", "Start", "Judgement", "RobotDriver", "StaticDriver",
