@@ -107,20 +107,25 @@ class _Indexed:
 
 def ray_init(address: str | None = None, num_cpus: int | None = None) -> None:
     """Start (``address=None``: a local instance with ``num_cpus``) or join a Ray
-    cluster, once per process; the driver's ``sys.path`` goes to local workers."""
+    cluster, once per process. Local workers import this checkout of ``ssl_marl``;
+    on a cluster every node needs it installed (``pip install -e .``)."""
     try:
         import ray
     except ImportError:
         raise ValueError("backend 'ray' needs Ray, which is not installed: pip install -e \".[ray]\"") from None
     if ray.is_initialized():
         return
-    kwargs: dict[str, Any] = dict(include_dashboard=False, log_to_driver=False, configure_logging=False)
+    kwargs: dict[str, Any] = dict(include_dashboard=False, log_to_driver=False)
     if address is None:
         import os
+        from pathlib import Path
 
-        # local workers import this package as the driver does (PYTHONPATH checkouts included)
-        path = os.pathsep.join(p for p in sys.path if p)
-        kwargs.update(num_cpus=num_cpus, runtime_env={"env_vars": {"PYTHONPATH": path}})
+        # local workers inherit this environment: let them import this very checkout
+        root = str(Path(__file__).resolve().parents[2])
+        paths = os.environ.get("PYTHONPATH", "").split(os.pathsep)
+        if root not in paths:
+            os.environ["PYTHONPATH"] = os.pathsep.join([root, *[p for p in paths if p]])
+        kwargs.update(num_cpus=num_cpus)
     else:
         kwargs.update(address=address)
     ray.init(**kwargs)
