@@ -10,7 +10,8 @@ import argparse
 import sys
 
 FIELDS = ("div_a", "div_b")
-TEAM_POLICIES = ("learned", "baseline", "random", "idle")
+TEAM_KINDS = ("learned", "baseline", "random", "idle")  # = ssl_marl.runners.controllers.TEAM_KINDS (test_cli checks)
+BACKENDS = ("local", "ray")  # = ssl_marl.runners.pool.BACKENDS
 
 
 def _positive_int(name: str):
@@ -47,13 +48,58 @@ def _positive_float(name: str):
     return parse
 
 
+def _team(text: str) -> str:
+    if text in TEAM_KINDS or text.lower().endswith(".json"):
+        return text
+    raise argparse.ArgumentTypeError(f"invalid choice: {text!r} (choose from {', '.join(TEAM_KINDS)}, "
+                                     "or a JSON team file ending in .json)")
+
+
+def _skill_source(text: str) -> tuple[str, str]:
+    from .runners.controllers import parse_skill_source
+
+    try:
+        return parse_skill_source(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+SKILL_SOURCE_HELP = ("SKILL=SOURCE: run SKILL (go-to-ball, aim-to-shoot) from SOURCE: baseline, learned (shipped "
+                     "actor) or an actor checkpoint path, e.g. go-to-ball=runs/gtb/actor.pt (repeatable)")
+
+
+def _add_backend(p: argparse.ArgumentParser, what: str) -> None:
+    p.add_argument("--backend", choices=BACKENDS, default="local",
+                   help=f"where {what} run: local (process pool of --workers, default) or ray (a Ray cluster; "
+                        "--workers = tasks in flight)")
+    p.add_argument("--address", default=None, metavar="ADDR",
+                   help="Ray cluster address (HOST:6379 or auto; default: start a local Ray instance); "
+                        "needs --backend ray")
+
+
+def _workers(args: argparse.Namespace) -> int | None:
+    """--workers, defaulting to 1 locally and to the whole cluster with Ray."""
+    return args.workers if args.workers is not None else (None if args.backend == "ray" else 1)
+
+
+def _resolve_team(team: str, value: str, sources: list[tuple[str, str]]):
+    """(kind, skills spec or None) for a team option and its skill sources."""
+    from .runners.controllers import load_team_file, team_skills
+
+    kind, own = (load_team_file(value) if value.lower().endswith(".json") else (value, {}))
+    merged = {**own, **dict(sources)}
+    if not merged:
+        return kind, None
+    return kind, team_skills(kind, merged, where=f"--{team}")
+
+
 # ---------------------------------------------------------------------- demo
 def cmd_demo(args: argparse.Namespace) -> int:
     """A real episode on the full field with scripted robots, written to a GIF."""
     from tqdm import tqdm
 
     from .envs import parallel_env
-    from .envs.render import write_animation
+    from .runners.video import VideoSink
     from .skills import SkillStatus, make_skill
 
     env = parallel_env(n_blue=args.robots, n_yellow=args.robots, field=args.field, max_time_s=args.seconds,
@@ -62,9 +108,10 @@ def cmd_demo(args: argparse.Namespace) -> int:
     skills = {a: (make_skill("go_to_ball", "baseline", env.field), make_skill("aim_to_shoot", "baseline", env.field))
               for a in env.possible_agents}
     aiming = {a: False for a in env.possible_agents}
-    frames, every = [], max(1, round(60 / args.fps))
+    every = max(1, round(60 / args.fps))
     steps = int(round(args.seconds * 60))
     kicks = 0
+    sink = VideoSink(args.out, args.fps)  # frames go to disk as they come (constant memory)
     for k in tqdm(range(steps), desc="demo", unit="step", disable=args.quiet):
         acts = {}
         for team in ("blue", "yellow"):
@@ -81,10 +128,10 @@ def cmd_demo(args: argparse.Namespace) -> int:
         _, _, _, _, infos = env.step(acts)
         kicks += sum(ev["type"] == "kick" for ev in next(iter(infos.values()), {}).get("events", []))
         if k % every == 0:
-            frames.append(env.render())
+            sink.add(env.render())
         if not env.agents:
             break
-    write_animation(frames, args.out, fps=args.fps)
+    sink.close()  # publish atomically; after an exception the sink deletes its partial file
     print(f"demo: {args.robots}v{args.robots} {args.field}, {env.world_state().t:.1f} s simulated, "
           f"score blue {env.score['blue']} - {env.score['yellow']} yellow, {kicks} kicks, GIF -> {args.out}")
     return 0
@@ -103,21 +150,27 @@ def _match_line(res) -> str:
 def cmd_match(args: argparse.Namespace) -> int:
     """Play one match (or a series) between two team controllers."""
     from .io import atomic_write_json
-    from .plays.match import play_match, play_series
+    from .runners.match import play_match
+    from .runners.series import play_series
 
+    if args.address is not None and args.backend != "ray":
+        raise ValueError("--address needs --backend ray")
+    blue, blue_skills = _resolve_team("blue", args.blue, args.skill + args.blue_skill)
+    yellow, yellow_skills = _resolve_team("yellow", args.yellow, args.skill + args.yellow_skill)
     common = dict(robots=args.robots, field=args.field, seconds=args.seconds, realism=args.realism,
-                  realtime=args.realtime)
+                  realtime=args.realtime, blue_skills=blue_skills, yellow_skills=yellow_skills)
     render = None if str(args.render).lower() == "none" else args.render
     if args.matches == 1:
-        res = play_match(blue=args.blue, yellow=args.yellow, seed=args.seed, render=render,
+        res = play_match(blue=blue, yellow=yellow, seed=args.seed, render=render,
                          render_fps=args.render_fps, render_width_px=args.render_width, progress=not args.quiet,
                          **common)
         print(_match_line(res) + (f"  | video -> {render}" if render else ""))
         if args.json:
             atomic_write_json(args.json, res.to_dict())
         return 0
-    results, summary = play_series(blue=args.blue, yellow=args.yellow, matches=args.matches, workers=args.workers,
-                                   seed=args.seed, progress=not args.quiet, **common)
+    results, summary = play_series(blue=blue, yellow=yellow, matches=args.matches, workers=_workers(args),
+                                   seed=args.seed, progress=not args.quiet, backend=args.backend,
+                                   address=args.address, **common)
     print(f"{'match':>5} {'seed':>6}  {'score':>7}  {'shots':>7}  possession")
     for i, r in enumerate(results):
         print(f"{i:>5} {r.seed:>6}  {r.score['blue']:>3}-{r.score['yellow']:<3}  {r.shots['blue']:>3}-{r.shots['yellow']:<3}"
@@ -132,11 +185,11 @@ def cmd_match(args: argparse.Namespace) -> int:
 
 # ---------------------------------------------------------------- eval-skill
 def cmd_eval_skill(args: argparse.Namespace) -> int:
-    from .skills.evaluation import evaluate_skill
+    from .runners.skill_eval import evaluate_skill
 
-    s = evaluate_skill(args.skill, args.policy, episodes=args.episodes, seed=args.seed, workers=args.workers,
+    s = evaluate_skill(args.skill, args.policy, episodes=args.episodes, seed=args.seed, workers=_workers(args),
                        out=args.out, realism=args.realism, field=args.field, progress=not args.quiet,
-                       realtime=args.realtime)
+                       realtime=args.realtime, backend=args.backend, address=args.address)
     t = s["time_to_success_s"]
     lo, hi = s["success_ci95"]
     mean = "n/a" if t["mean"] is None else f"{t['mean']:.2f} +/- {t['std']:.2f} s"
@@ -148,10 +201,13 @@ def cmd_eval_skill(args: argparse.Namespace) -> int:
 
 # --------------------------------------------------------------- eval-tactic
 def cmd_eval_tactic(args: argparse.Namespace) -> int:
-    from .plays.evaluate import evaluate_tactic
+    from .runners.controllers import team_skills
+    from .runners.tactic_eval import evaluate_tactic
 
-    s = evaluate_tactic(skills=args.skills, episodes=args.episodes, seed=args.seed, workers=args.workers,
-                        realism=args.realism, out=args.out, field=args.field, progress=not args.quiet)
+    skills = team_skills(args.skills, dict(args.skill), where="--skill") if args.skill else args.skills
+    s = evaluate_tactic(skills=skills, episodes=args.episodes, seed=args.seed, workers=_workers(args),
+                        realism=args.realism, out=args.out, field=args.field, progress=not args.quiet,
+                        backend=args.backend, address=args.address)
     t = s["time_s"]
     lo, hi = s["success_ci95"]
     mean = "n/a" if t["mean"] is None else f"{t['mean']:.2f} +/- {t['std']:.2f} s"
@@ -188,10 +244,18 @@ def build_parser() -> argparse.ArgumentParser:
     m = sub.add_parser("match", help="full-team match (or series) between two team controllers",
                        description="Play a full-team STP match in the parallel env: kickoffs, restarts after goals "
                                    "and out-of-play. Prints the score and stats; writes a GIF/MP4 with --render.")
-    m.add_argument("--blue", choices=TEAM_POLICIES, default="learned",
-                   help="blue team's skills: learned (shipped DDPG actors), baseline (hand-coded), random, idle "
+    m.add_argument("--blue", type=_team, default="learned", metavar="TEAM",
+                   help="blue team: learned (STP with the shipped DDPG actors), baseline (STP with hand-coded "
+                        "skills), random, idle, or a JSON team file {\"kind\": ..., \"skills\": {SKILL: SOURCE}} "
                         "(default learned)")
-    m.add_argument("--yellow", choices=TEAM_POLICIES, default="baseline", help="yellow team's skills (default baseline)")
+    m.add_argument("--yellow", type=_team, default="baseline", metavar="TEAM",
+                   help="yellow team, as --blue (default baseline)")
+    m.add_argument("--skill", type=_skill_source, action="append", default=[], metavar="SKILL=SOURCE",
+                   help="both STP teams: " + SKILL_SOURCE_HELP)
+    m.add_argument("--blue-skill", type=_skill_source, action="append", default=[], metavar="SKILL=SOURCE",
+                   help="blue only (wins over --skill): " + SKILL_SOURCE_HELP)
+    m.add_argument("--yellow-skill", type=_skill_source, action="append", default=[], metavar="SKILL=SOURCE",
+                   help="yellow only (wins over --skill): " + SKILL_SOURCE_HELP)
     m.add_argument("--robots", type=_robots, default=6, help="robots per team, 1-11 (default 6)")
     m.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")
     m.add_argument("--seconds", type=_positive_float("--seconds"), default=30.0,
@@ -209,8 +273,10 @@ def build_parser() -> argparse.ArgumentParser:
     m.add_argument("--render-width", type=_positive_int("--render-width"), default=480,
                    help="video width in pixels (default 480)")
     m.add_argument("--matches", type=_positive_int("--matches"), default=1, help="number of matches (default 1)")
-    m.add_argument("--workers", type=_positive_int("--workers"), default=1,
-                   help="parallel worker processes for a series (default 1)")
+    m.add_argument("--workers", type=_positive_int("--workers"), default=None,
+                   help="parallel worker processes for a series (default 1; with --backend ray: matches in flight, "
+                        "default the cluster's CPUs)")
+    _add_backend(m, "the matches of a series")
     m.add_argument("--json", default=None, metavar="PATH", help="also write the result as JSON to PATH")
     m.add_argument("--quiet", action="store_true", help="no progress bar")
     m.set_defaults(func=cmd_match)
@@ -225,12 +291,14 @@ def build_parser() -> argparse.ArgumentParser:
                    help="'baseline' (hand-coded), 'learned' (shipped actor) or a path to an actor checkpoint")
     e.add_argument("--episodes", type=_positive_int("--episodes"), default=1000, help="episodes (default 1000)")
     e.add_argument("--seed", type=int, default=10_000, help="evaluation seed (default 10000; training uses < 1000)")
-    e.add_argument("--workers", type=_positive_int("--workers"), default=1, help="worker processes (default 1)")
+    e.add_argument("--workers", type=_positive_int("--workers"), default=None,
+                   help="worker processes (default 1; with --backend ray: tasks in flight, default the cluster's CPUs)")
     e.add_argument("--out", default=None, help="output directory for results.json and time_hist.png")
     e.add_argument("--realism", choices=("none", "realistic"), default="none",
                    help="vision noise / latency preset (default none)")
     e.add_argument("--realtime", action="store_true", help="run in real-time mode (slow: 60 steps per second)")
     e.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")
+    _add_backend(e, "the episodes")
     e.add_argument("--quiet", action="store_true", help="no progress bar")
     e.set_defaults(func=cmd_eval_skill)
 
@@ -238,12 +306,16 @@ def build_parser() -> argparse.ArgumentParser:
                        description="One robot and the ball at random; run go-to-ball-and-shoot until a goal or "
                                    "15 s. Writes OUT/results.json and OUT/time_hist.png.")
     t.add_argument("--skills", choices=("learned", "baseline"), default="learned", help="skills inside the tactic")
+    t.add_argument("--skill", type=_skill_source, action="append", default=[], metavar="SKILL=SOURCE",
+                   help="replace one skill of --skills: " + SKILL_SOURCE_HELP)
     t.add_argument("--episodes", type=_positive_int("--episodes"), default=500, help="episodes (default 500)")
     t.add_argument("--seed", type=int, default=20_000, help="evaluation seed (default 20000)")
-    t.add_argument("--workers", type=_positive_int("--workers"), default=1, help="worker processes (default 1)")
+    t.add_argument("--workers", type=_positive_int("--workers"), default=None,
+                   help="worker processes (default 1; with --backend ray: tasks in flight, default the cluster's CPUs)")
     t.add_argument("--realism", choices=("none", "realistic"), default="none", help="noise / latency preset")
     t.add_argument("--out", default=None, help="output directory")
     t.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")
+    _add_backend(t, "the episodes")
     t.add_argument("--quiet", action="store_true", help="no progress bar")
     t.set_defaults(func=cmd_eval_tactic)
 

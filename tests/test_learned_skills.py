@@ -63,7 +63,7 @@ def test_mismatched_and_corrupt_checkpoints_raise(tmp_path):
 
 
 def _success(task, policy, episodes=50, seed=777):
-    from ssl_marl.skills.evaluation import evaluate_skill
+    from ssl_marl.runners.skill_eval import evaluate_skill
 
     return evaluate_skill(task, policy, episodes=episodes, seed=seed, workers=1, progress=False)
 

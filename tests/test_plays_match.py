@@ -7,8 +7,11 @@ import numpy as np
 import pytest
 
 from ssl_marl.envs import parallel_env
-from ssl_marl.plays.evaluate import episode_seed, evaluate_tactic, wilson_interval
-from ssl_marl.plays.match import MatchResult, play_match, play_series, summarize
+from ssl_marl.io import episode_seed, wilson_interval
+from ssl_marl.runners.tactic_eval import evaluate_tactic
+from ssl_marl.runners.match import play_match
+from ssl_marl.runners.result import MatchResult, summarize
+from ssl_marl.runners.series import play_series
 from ssl_marl.plays.team import TeamController
 
 

@@ -34,7 +34,7 @@ def test_names_and_spellings():
 def test_every_consumer_covers_every_registered_skill():
     from ssl_marl.cli import build_parser
     from ssl_marl.plays.skillset import make_tactic_skill, swappable_skills
-    from ssl_marl.skills.evaluation import _make_env, resolve_policy
+    from ssl_marl.runners.skill_eval import _make_env, resolve_policy
     from train.config import CONFIG_DIR, SKILL_CONFIGS, default_config
 
     sub = next(a for a in build_parser()._subparsers._group_actions)  # noqa: SLF001 (argparse has no API)
@@ -91,7 +91,7 @@ def test_adding_a_skill_is_one_record(monkeypatch):
 
 def test_ssl_marl_never_imports_train():
     code = ("import sys, ssl_marl, ssl_marl.cli, ssl_marl.skills.registry, ssl_marl.skills.catalog, "
-            "ssl_marl.skills.evaluation, ssl_marl.plays.skillset; "
+            "ssl_marl.runners.skill_eval, ssl_marl.plays.skillset; "
             "ssl_marl.cli.build_parser(); assert not any(m == 'train' or m.startswith('train.') for m in sys.modules)")
     subprocess.run([sys.executable, "-c", code], check=True)
 

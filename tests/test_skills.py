@@ -225,7 +225,7 @@ def test_bad_inputs_give_clear_errors(tmp_path):
         make_skill("go_to_ball", "magic", F)
     with pytest.raises(FileNotFoundError, match="nope.pt"):
         make_skill("go_to_ball", "learned", F, checkpoint=tmp_path / "nope.pt")
-    from ssl_marl.skills.evaluation import evaluate_skill
+    from ssl_marl.runners.skill_eval import evaluate_skill
 
     with pytest.raises(ValueError, match="unknown skill"):
         evaluate_skill("fly", "baseline", episodes=1)
@@ -240,7 +240,7 @@ def test_bad_inputs_give_clear_errors(tmp_path):
 
 
 def test_evaluation_is_deterministic_whatever_the_workers(tmp_path):
-    from ssl_marl.skills.evaluation import evaluate_skill
+    from ssl_marl.runners.skill_eval import evaluate_skill
 
     a = evaluate_skill("aim-to-shoot", "baseline", episodes=12, seed=5, workers=1, progress=False)
     b = evaluate_skill("aim-to-shoot", "baseline", episodes=12, seed=5, workers=2, progress=False, out=tmp_path)

@@ -3,7 +3,7 @@
     python -m train.select RUN_DIR [--episodes 500] [--seed 5000] [--workers 2] [--min-samples 0]
 
 The trainer writes ``RUN_DIR/actors/actor-<samples>.pt`` at each checkpoint. Each is
-evaluated with the skill protocol (:func:`ssl_marl.skills.evaluation.evaluate_skill`,
+evaluated with the skill protocol (:func:`ssl_marl.runners.skill_eval.evaluate_skill`,
 ideal conditions) on ``--episodes`` episodes from ``--seed``, a validation seed that
 is neither a training seed nor a reporting seed (this project reports skills on seed
 10000 and trains on 0 and its evaluation seed 1000). The best actor (highest success,
@@ -20,7 +20,7 @@ from typing import Any
 
 from ssl_marl.io import atomic_write_json
 from ssl_marl.skills.checkpoint import load_actor
-from ssl_marl.skills.evaluation import evaluate_skill
+from ssl_marl.runners.skill_eval import evaluate_skill
 
 
 def select(run: str | Path, episodes: int = 500, seed: int = 5000, workers: int = 1, min_samples: int = 0,

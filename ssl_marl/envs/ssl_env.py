@@ -41,7 +41,6 @@ Reset options
 
 from __future__ import annotations
 
-import time
 from typing import Any
 
 import gymnasium
@@ -53,6 +52,7 @@ from ..physics.state import WorldState, to_team_frame
 from ..physics.world import PhysicsWorld
 from .actions import ACTION_DIM, scale_actions, validate_actions
 from .config import EnvConfig, make_config
+from .deadline import ControlDeadline
 from .observation import all_observations, obs_dim, state_dim, state_vector
 from .realism import Radio, Vision
 from .tasks import Task, make_task
@@ -91,7 +91,7 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         self.np_random = np.random.default_rng()
         self.score = {"blue": 0, "yellow": 0}
         self._prev_cmd = np.zeros((self.n, ACTION_DIM))
-        self._next_tick = 0.0
+        self._deadline = ControlDeadline(self.config.dt)
         self._renderer = None
         self._team_of = {a: a.split("_")[0] for a in self.possible_agents}
         self.task: Task = make_task(cfg.task)
@@ -129,7 +129,7 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         self.task.start(self)
         if self._renderer is not None:
             self._renderer.reset_trails()
-        self._next_tick = time.perf_counter() + self.config.dt
+        self._deadline.start()
         obs = self._observations()
         infos = {a: {"events": [], "score": dict(self.score)} for a in self.agents}
         if self.render_mode == "human":
@@ -159,7 +159,7 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         events: list[dict] = []
         n_ticks = 1
         if self.config.realtime:
-            n_ticks = self._wait_for_tick()
+            n_ticks = self._deadline.wait_for_tick()
             if n_ticks > 1:
                 events.append({"type": "missed_deadline", "steps": n_ticks - 1})
         self.task.begin_step(self)
@@ -221,18 +221,6 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         self.score[team] += 1
         events.append({"type": "goal", "team": team, "t": self._truth.t})
 
-    def _wait_for_tick(self) -> int:
-        """Real-time mode: sleep until the next control tick; return how many ticks
-        elapsed (1 = on time; k > 1 = the command missed k - 1 ticks)."""
-        dt = self.config.dt
-        now = time.perf_counter()
-        if now <= self._next_tick:
-            time.sleep(self._next_tick - now)
-            self._next_tick += dt
-            return 1
-        missed = int((now - self._next_tick) // dt) + 1
-        self._next_tick += (missed + 1) * dt
-        return missed + 1
 
     # ------------------------------------------------------------ observations
     def _observations(self) -> dict[str, np.ndarray]:

@@ -6,7 +6,10 @@ registered skill (``"go_to_ball"``, ``"aim_to_shoot"``, ...) and get an object w
 
 * ``"baseline"`` or ``"learned"`` for every skill, or
 * a mapping ``{"go_to_ball": "learned", "aim_to_shoot": "baseline"}`` to mix kinds
-  (skills not named default to ``"baseline"``).
+  (skills not named default to ``"baseline"``). A value may also be the path of an
+  actor checkpoint (a freshly trained ``runs/NAME/actor.pt``): that skill is then
+  the learned skill running that actor. Keys may be spelled ``go_to_ball`` or
+  ``go-to-ball``.
 
 The swappable skills (those with a learned implementation) come from the skill
 registry (:func:`ssl_marl.skills.registry.learned_skills`).
@@ -24,13 +27,15 @@ per-run state lives in attributes that ``reset()`` rebinds).
 from __future__ import annotations
 
 import copy
+import os
+from pathlib import Path
 from typing import Any, Mapping, Union
 
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..skills.registry import SKILL_KINDS, get_skill, learned_skills
 
-SkillsSpec = Union[str, Mapping[str, str]]
+SkillsSpec = Union[str, Mapping[str, Union[str, os.PathLike]]]
 
 
 def swappable_skills() -> tuple[str, ...]:
@@ -44,27 +49,64 @@ def __getattr__(name: str):
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
+def _canonical(name: Any) -> Any:
+    return name.replace("-", "_") if isinstance(name, str) else name
+
+
+def _source(name: str, value: Any) -> tuple[str, str | None]:
+    """(kind, checkpoint path or None) for one skill's source; clear errors."""
+    if isinstance(value, str) and value in SKILL_KINDS:
+        return value, None
+    if isinstance(value, (str, os.PathLike)):
+        path = Path(value)
+        if path.is_file():
+            return "learned", str(path)
+        if isinstance(value, os.PathLike) or os.sep in str(value) or "/" in str(value) or path.suffix:
+            raise FileNotFoundError(f"skills[{name!r}]: checkpoint {str(value)!r} does not exist")
+    raise ValueError(f"skills[{name!r}] must be one of {SKILL_KINDS} or the path of an actor checkpoint, "
+                     f"got {value!r}")
+
+
 def validate_skills(skills: SkillsSpec) -> None:
-    """Raise ValueError if ``skills`` is not a kind name or a {skill: kind} mapping."""
+    """Raise ValueError if ``skills`` is not a kind name or a {skill: kind or
+    checkpoint path} mapping (FileNotFoundError for a checkpoint path that does not
+    exist; whether the file holds the right skill is checked when it is loaded)."""
     if isinstance(skills, str):
         if skills not in SKILL_KINDS:
             raise ValueError(f"skills must be one of {SKILL_KINDS} or a mapping, got {skills!r}")
         return
     if not isinstance(skills, Mapping):
         raise ValueError(f"skills must be one of {SKILL_KINDS} or a mapping, got {skills!r}")
-    for name, kind in skills.items():
-        if name not in swappable_skills():
+    for name, value in skills.items():
+        if _canonical(name) not in swappable_skills():
             raise ValueError(f"skills: unknown skill {name!r}; expected some of {swappable_skills()}")
-        if kind not in SKILL_KINDS:
-            raise ValueError(f"skills[{name!r}] must be one of {SKILL_KINDS}, got {kind!r}")
+        _source(_canonical(name), value)
+
+
+def skill_source(skills: SkillsSpec, name: str) -> tuple[str, str | None]:
+    """(kind, checkpoint) that ``skills`` selects for skill ``name``: kind is
+    "baseline" or "learned"; checkpoint is a path, or None for the shipped actor."""
+    validate_skills(skills)
+    if isinstance(skills, str):
+        return skills, None
+    for key, value in skills.items():
+        if _canonical(key) == name:
+            return _source(name, value)
+    return "baseline", None
 
 
 def skill_kind(skills: SkillsSpec, name: str) -> str:
     """The kind ("baseline"/"learned") that ``skills`` selects for skill ``name``."""
-    validate_skills(skills)
-    if isinstance(skills, str):
-        return skills
-    return skills.get(name, "baseline")
+    return skill_source(skills, name)[0]
+
+
+def check_skills(skills: SkillsSpec, field: FieldGeometry, robot: RobotParams | None = None,
+                 ball: BallParams | None = None) -> None:
+    """Build every learned skill ``skills`` names once, so that a missing or
+    wrong-skill checkpoint fails now (one clear error) rather than mid-run."""
+    for name in swappable_skills():
+        if skill_kind(skills, name) == "learned":
+            make_tactic_skill(name, skills, field, robot, ball)
 
 
 def make_tactic_skill(name: str, skills: SkillsSpec, field: FieldGeometry, robot: RobotParams | None = None,
@@ -72,12 +114,12 @@ def make_tactic_skill(name: str, skills: SkillsSpec, field: FieldGeometry, robot
     """Build swappable skill ``name`` ("go_to_ball", "aim_to_shoot", ...) of the kind ``skills`` selects."""
     if name not in swappable_skills():
         raise ValueError(f"make_tactic_skill: unknown skill {name!r}; expected one of {swappable_skills()}")
-    kind = skill_kind(skills, name)
+    kind, checkpoint = skill_source(skills, name)
     if kind == "learned":
-        key = (name, field, robot or RobotParams(), ball or BallParams())
+        key = (name, checkpoint, field, robot or RobotParams(), ball or BallParams())
         proto = _LEARNED_PROTOTYPES.get(key)
         if proto is None:
-            proto = _LEARNED_PROTOTYPES[key] = _build(name, kind, field, robot, ball)
+            proto = _LEARNED_PROTOTYPES[key] = _build(name, kind, field, robot, ball, checkpoint)
         skill = copy.copy(proto)
         skill.reset()
         return skill
@@ -92,5 +134,6 @@ def clear_skill_cache() -> None:
     _LEARNED_PROTOTYPES.clear()
 
 
-def _build(name: str, kind: str, field: FieldGeometry, robot: RobotParams | None, ball: BallParams | None):
-    return get_skill(name).build(kind, field, robot, ball)
+def _build(name: str, kind: str, field: FieldGeometry, robot: RobotParams | None, ball: BallParams | None,
+           checkpoint: str | None = None):
+    return get_skill(name).build(kind, field, robot, ball, checkpoint=checkpoint)

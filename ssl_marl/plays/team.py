@@ -30,7 +30,7 @@ from ..physics.state import TEAMS, WorldState, to_team_frame
 from ..skills.base import make_action
 from .assignment import Assignment, RoleSlot, assign
 from .play import Play, PlayContext, PlaySelector, RoleDef, make_context, standard_plays
-from .skillset import SkillsSpec, make_tactic_skill, skill_kind, swappable_skills, validate_skills
+from .skillset import SkillsSpec, check_skills, validate_skills
 from .tactic_base import Tactic
 
 
@@ -42,7 +42,8 @@ class TeamController:
         n_robots: robots in the team (1-11); agent names are ``f"{team}_{i}"``.
         field: "div_a", "div_b" or a :class:`FieldGeometry`.
         robot, ball: physical parameters (defaults when None).
-        skills: "baseline", "learned" or {skill: kind}, passed to every tactic.
+        skills: "baseline", "learned" or {skill: kind or actor checkpoint path},
+            passed to every tactic (see :mod:`~ssl_marl.plays.skillset`).
         plays: candidate plays (default :func:`~ssl_marl.plays.play.standard_plays`).
         min_hold_s: play hysteresis (s).
         adaptive: CMDragons-style weighted play selection with adapted weights.
@@ -67,9 +68,7 @@ class TeamController:
         self.selector = PlaySelector(plays if plays is not None else standard_plays(), min_hold_s=min_hold_s,
                                      adaptive=adaptive, seed=seed)
         self.agents = [f"{team}_{i}" for i in range(n_robots)]
-        for name in swappable_skills():  # fail now (e.g. a missing checkpoint), not in the first tick
-            if skill_kind(skills, name) == "learned":
-                make_tactic_skill(name, skills, self.field, self.rp, self.bp)
+        check_skills(skills, self.field, self.rp, self.bp)  # fail now (e.g. a bad checkpoint), not mid-match
         self.reset()
 
     def reset(self) -> None:

@@ -10,7 +10,8 @@ simulated time); an own goal or the time limit is a failure. The paper reports
 
 Scenes: episode i uses ``episode_seed(seed, i)`` (numpy ``SeedSequence([seed, i])``)
 for both the scene RNG and the env reset, so results depend only on ``seed`` and the
-episode count, never on the number of worker processes. Positions are uniform over
+episode count, never on the number of worker processes or the backend (local pool
+or Ray, :mod:`~ssl_marl.runners.pool`). Positions are uniform over
 the playing area shrunk by 0.1 m; the robot starts at least 0.3 m from the ball.
 
 Outputs in ``out``: ``results.json`` (written atomically) and ``time_hist.png``
@@ -28,9 +29,10 @@ from typing import Any
 
 import numpy as np
 
-from ..io import atomic_savefig, atomic_write_bytes, episode_seed, time_summary, wilson_interval
-
-from .match import run_pool
+from ..envs.deadline import ControlDeadline
+from ..io import atomic_write_bytes, episode_seed, time_summary, wilson_interval
+from .plots import write_time_histogram
+from .pool import chunk_indices, run_pool, validate_backend
 
 PAPER_RESULT = {"success_rate": 0.755, "time_mean_s": 7.49, "time_std_s": 3.87, "episodes": 500}
 SCENE_MARGIN_M = 0.1
@@ -67,7 +69,7 @@ def run_episode(index: int, seed: int, skills: Any = "baseline", realism: Any = 
                 max_time_s: float = 15.0, realtime: bool = False) -> dict:
     """One evaluation episode; returns a dict (index, seed, success, outcome, time_s,
     kicks, ball, robot, missed_deadlines)."""
-    from .shoot import GoToBallAndShoot
+    from ..plays.shoot import GoToBallAndShoot
 
     env = _env(field, realism, max_time_s)
     es = episode_seed(seed, index)
@@ -75,15 +77,14 @@ def run_episode(index: int, seed: int, skills: Any = "baseline", realism: Any = 
     ball, pose = sample_scene(rng, env.field)
     env.reset(seed=es, options={"ball": {"pos": ball.tolist()}, "robots": {"blue_0": pose.tolist()}})
     tactic = GoToBallAndShoot(env.field, env.config.robot, env.config.ball, skills=skills, dt=env.config.dt)
-    outcome, t_end, missed = "timeout", max_time_s, 0
-    prev = np.zeros(5, np.float32)
+    outcome, t_end = "timeout", max_time_s
+    deadline = ControlDeadline(env.config.dt)
+    a = np.zeros(5, np.float32)
     while env.agents:
-        t0 = time.perf_counter()
-        a = tactic.act(env.vision_state("blue"), 0)
-        if realtime and time.perf_counter() - t0 > env.config.dt:
-            missed += 1
-            a = prev
-        prev = a
+        if realtime:
+            a, _ = deadline.command(lambda: tactic.act(env.vision_state("blue"), 0), a)
+        else:
+            a = tactic.act(env.vision_state("blue"), 0)
         _, _, _, _, infos = env.step({"blue_0": a})
         for e in infos["blue_0"]["events"]:
             if e["type"] == "goal":
@@ -93,70 +94,50 @@ def run_episode(index: int, seed: int, skills: Any = "baseline", realism: Any = 
             t_end = float(env.world_state().t)
     return {"index": index, "seed": es, "success": outcome == "goal", "outcome": outcome, "time_s": t_end,
             "kicks": tactic.status.kicks, "ball": [float(v) for v in ball], "robot": [float(v) for v in pose],
-            "missed_deadlines": missed}
+            "missed_deadlines": deadline.missed}
 
 
-def _episode_worker(job: tuple) -> dict:
-    return run_episode(*job)
-
-
-def write_time_histogram(times: list[float], path: Path, title: str, max_time_s: float = 15.0) -> None:
-    """Histogram of success times (Agg canvas, no global backend change), written atomically."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-    from matplotlib.ticker import MaxNLocator
-
-    fig = Figure(figsize=(6.4, 4.0), dpi=100)
-    FigureCanvasAgg(fig)
-    ax = fig.add_subplot(1, 1, 1)
-    bins = np.linspace(0.0, max_time_s, int(max_time_s * 2) + 1)
-    ax.hist(times, bins=bins, color="#3070b0", edgecolor="white")
-    ax.set_xlabel("time to score (s)")
-    ax.set_ylabel("episodes")
-    ax.set_xlim(0.0, max_time_s)
-    ax.yaxis.set_major_locator(MaxNLocator(integer=True))
-    ax.set_title(title, fontsize=10)
-    fig.tight_layout()
-    atomic_savefig(fig, path)
+def _episodes_worker(job: tuple) -> list[dict]:
+    indices, rest = job[0], job[1:]
+    return [run_episode(i, *rest) for i in indices]
 
 
 def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0, workers: int = 1,
                     realism: Any = "none", out: str | os.PathLike | None = None, field: Any = "div_b",
                     max_time_s: float = 15.0, realtime: bool = False, progress: bool = True,
-                    start_method: str = "spawn") -> dict:
+                    backend: str = "local", address: str | None = None) -> dict:
     """Evaluate go-to-ball-and-shoot as in the paper's section 5.2 (see the module docstring).
 
     Args:
-        skills: "learned", "baseline" or {skill: kind}.
+        skills: "learned", "baseline" or {skill: kind or actor checkpoint path}
+            (:mod:`~ssl_marl.plays.skillset`).
         episodes: number of random scenes (paper: 500).
         seed: evaluation seed; episode i uses ``episode_seed(seed, i)``.
-        workers: worker processes (results do not depend on it).
+        workers: worker processes, or Ray tasks in flight (None with Ray: the
+            cluster's CPUs); results do not depend on it.
         realism: env realism preset / config.
         out: output directory for results.json and time_hist.png (None: no files).
         field: "div_b" (default), "div_a" or a FieldGeometry.
         max_time_s: per-episode limit (paper: 15 s).
         realtime: drop a command whose computation exceeds the 1/60 s deadline.
         progress: tqdm bar.
-        start_method: multiprocessing start method for workers > 1.
+        backend: "local" (process pool) or "ray"; ``address``: Ray cluster address
+            (None: a local Ray instance). See :mod:`~ssl_marl.runners.pool`.
 
     Returns: the results dict (also written to ``out/results.json``).
     """
     if not isinstance(episodes, int) or episodes < 1:
         raise ValueError(f"episodes must be a positive integer, got {episodes!r}")
-    if not isinstance(workers, int) or workers < 1:
-        raise ValueError(f"workers must be a positive integer, got {workers!r}")
+    validate_backend(backend, workers, address)
     from ..physics.field import FieldGeometry
-    from .skillset import make_tactic_skill, skill_kind, swappable_skills, validate_skills
+    from ..plays.skillset import check_skills
 
-    validate_skills(skills)
-    for name in swappable_skills():  # fail here (e.g. a missing checkpoint), not in every worker
-        if skill_kind(skills, name) == "learned":
-            make_tactic_skill(name, skills, FieldGeometry.from_name(field))
+    check_skills(skills, FieldGeometry.from_name(field))  # fail here (e.g. a bad checkpoint), not in every worker
     t0 = time.perf_counter()
-    jobs = [(i, seed, skills, realism, field, max_time_s, realtime) for i in range(episodes)]
-    eps = run_pool(_episode_worker, jobs, workers, f"eval go-to-ball-and-shoot ({skills})", progress,
-                   start_method, unit="ep")
-    eps.sort(key=lambda e: e["index"])
+    jobs = [(chunk, seed, skills, realism, field, max_time_s, realtime) for chunk in chunk_indices(episodes, workers)]
+    eps = [e for chunk in run_pool(_episodes_worker, jobs, workers, f"eval go-to-ball-and-shoot ({skills})",
+                                   progress, unit="ep", backend=backend, address=address, size=len, total=episodes)
+           for e in chunk]
     succ_times = [e["time_s"] for e in eps if e["success"]]
     k = len(succ_times)
     lo, hi = wilson_interval(k, episodes)
@@ -169,7 +150,7 @@ def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0,
         "skills": skills if isinstance(skills, str) else dict(skills),
         "episodes": episodes, "seed": seed,
         "config": {"field": field_name, "realism": realism if isinstance(realism, str) else repr(realism),
-                   "max_time_s": max_time_s, "realtime": realtime, "workers": workers,
+                   "max_time_s": max_time_s, "realtime": realtime, "workers": workers, "backend": backend,
                    "scene_margin_m": SCENE_MARGIN_M, "min_robot_ball_dist_m": MIN_ROBOT_BALL_DIST_M},
         "success_rate": k / episodes, "successes": k, "success_ci95": [lo, hi],
         "time_s": time_summary(succ_times), "failures": failures,
@@ -184,5 +165,5 @@ def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0,
         ts = results["time_s"]
         title = (f"go-to-ball-and-shoot ({results['skills']}), {field_name}: success {k}/{episodes} "
                  f"= {100 * k / episodes:.1f} %" + (f", {ts['mean']:.2f} \u00b1 {ts['std']:.2f} s" if k else ""))
-        write_time_histogram(succ_times, d / "time_hist.png", title, max_time_s)
+        write_time_histogram(succ_times, d / "time_hist.png", title, max_time_s, xlabel="time to score (s)")
     return results

@@ -2,13 +2,12 @@
 success rate, time to success, failure reasons; JSON + a time histogram.
 
 Each episode ``i`` is seeded with :func:`ssl_marl.io.episode_seed` (seed, i), so the
-result does not depend on the number of worker processes.
+result does not depend on the number of worker processes or the backend (local pool
+or Ray, :mod:`~ssl_marl.runners.pool`).
 """
 
 from __future__ import annotations
 
-import multiprocessing as mp
-import sys
 import time
 from collections import Counter
 from pathlib import Path
@@ -16,11 +15,13 @@ from typing import Any
 
 import numpy as np
 
-from ..io import atomic_savefig, atomic_write_json, episode_seed, time_summary, wilson_interval
+from ..io import atomic_write_json, episode_seed, time_summary, wilson_interval
+from .plots import write_time_histogram
+from .pool import chunk_indices, run_pool, validate_backend
 
 
 def _skill_name(task: str) -> str:
-    from .registry import get_skill, get_task
+    from ..skills.registry import get_skill, get_task
 
     get_task(task)  # ValueError for a skill without a task
     return get_skill(task).name
@@ -28,7 +29,7 @@ def _skill_name(task: str) -> str:
 
 def resolve_policy(task: str, policy: str) -> tuple[str, str | None]:
     """("baseline"|"learned", checkpoint path or None); raises clear errors."""
-    from .registry import cli_choices, get_skill
+    from ..skills.registry import cli_choices, get_skill
 
     if task not in cli_choices():
         raise ValueError(f"unknown skill {task!r}; expected one of {cli_choices()}")
@@ -45,15 +46,15 @@ def resolve_policy(task: str, policy: str) -> tuple[str, str | None]:
 
 
 def _make_env(task: str, env_kwargs: dict):
-    from .registry import get_task, resolve_ref
+    from ..skills.registry import get_task, resolve_ref
 
     return resolve_ref(get_task(task).entry_point)(**env_kwargs)
 
 
 def _run_episodes(args: tuple) -> list[dict]:
     task, kind, checkpoint, env_kwargs, seed, indices = args
-    from . import make_skill
-    from .registry import get_task
+    from ..skills import make_skill
+    from ..skills.registry import get_task
 
     env = _make_env(task, env_kwargs)
     task_action = get_task(task).to_task_action
@@ -78,47 +79,32 @@ def _run_episodes(args: tuple) -> list[dict]:
 
 def evaluate_skill(task: str, policy: str = "baseline", episodes: int = 1000, seed: int = 0, workers: int = 1,
                    out: str | Path | None = None, realism: str = "none", field: str = "div_b",
-                   progress: bool = True, realtime: bool = False) -> dict[str, Any]:
+                   progress: bool = True, realtime: bool = False, backend: str = "local",
+                   address: str | None = None) -> dict[str, Any]:
     """Run the protocol; returns the summary dict (and writes ``out/results.json`` and
-    ``out/time_hist.png`` when ``out`` is given)."""
+    ``out/time_hist.png`` when ``out`` is given).
+
+    ``workers`` processes (local) or Ray tasks in flight (``backend="ray"``, None: the
+    cluster's CPUs; ``address``: the cluster, None = a local Ray instance)."""
     kind, checkpoint = resolve_policy(task, policy)
     if not isinstance(episodes, int) or episodes < 1:
         raise ValueError(f"episodes must be a positive integer, got {episodes!r}")
-    if not isinstance(workers, int) or workers < 1:
-        raise ValueError(f"workers must be a positive integer, got {workers!r}")
-    env_kwargs = {"field": field, "realism": realism, "realtime": realtime}
-    chunk = max(1, min(25, episodes // (workers * 4) or 1))
-    jobs = [(task, kind, checkpoint, env_kwargs, seed, list(range(s, min(s + chunk, episodes))))
-            for s in range(0, episodes, chunk)]
-    t0 = time.perf_counter()
-    results: list[dict] = []
-    from tqdm import tqdm
+    validate_backend(backend, workers, address)
+    meta: dict[str, Any] = {}
+    if kind == "learned":  # a wrong-skill checkpoint fails here, not in every worker
+        from ..skills.learned import load_policy
 
-    bar = tqdm(total=episodes, desc=f"eval {task} ({policy})", disable=not progress, unit="ep", file=sys.stderr)
-    if workers == 1:
-        for job in jobs:
-            res = _run_episodes(job)
-            results += res
-            bar.update(len(res))
-    else:
-        # spawn, not fork: forking a process whose torch has started its thread pool (a
-        # learned skill loaded earlier in the same process) can deadlock the workers
-        ctx = mp.get_context("spawn")
-        with ctx.Pool(workers) as pool:
-            for res in pool.imap_unordered(_run_episodes, jobs):
-                results += res
-                bar.update(len(res))
-    bar.close()
-    results.sort(key=lambda r: r["episode"])
+        meta = dict(load_policy(_skill_name(task), checkpoint)[1])
+    env_kwargs = {"field": field, "realism": realism, "realtime": realtime}
+    jobs = [(task, kind, checkpoint, env_kwargs, seed, chunk) for chunk in chunk_indices(episodes, workers)]
+    t0 = time.perf_counter()
+    results = [r for chunk in run_pool(_run_episodes, jobs, workers, f"eval {task} ({policy})", progress, unit="ep",
+                                       backend=backend, address=address, size=len, total=episodes)
+               for r in chunk]
     wall = time.perf_counter() - t0
     n_succ = sum(r["success"] for r in results)
     times = [r["time_s"] for r in results if r["success"]]
     lo, hi = wilson_interval(n_succ, episodes)
-    meta: dict[str, Any] = {}
-    if kind == "learned":
-        from .learned import load_policy
-
-        meta = dict(load_policy(_skill_name(task), checkpoint)[1])
     summary = {
         "skill": task, "policy": policy, "kind": kind, "checkpoint": checkpoint, "episodes": episodes, "seed": seed,
         "success_rate": n_succ / episodes, "success_ci95": [lo, hi], "successes": n_succ,
@@ -126,19 +112,20 @@ def evaluate_skill(task: str, policy: str = "baseline", episodes: int = 1000, se
         "failure_reasons": dict(Counter(r["failure_reason"] for r in results if not r["success"])),
         "mean_return": float(np.mean([r["return"] for r in results])),
         "paper_success_rate": _reference(task, kind),
-        "config": env_kwargs, "wall_time_s": wall, "workers": workers, "checkpoint_metadata": _jsonable(meta),
+        "config": env_kwargs, "wall_time_s": wall, "workers": workers, "backend": backend,
+        "checkpoint_metadata": _jsonable(meta),
         "episodes_detail": results,
     }
     if out is not None:
         out = Path(out)
         atomic_write_json(out / "results.json", summary)
-        plot_time_histogram(times, out / "time_hist.png",
-                            title=f"{task}, {policy}: time to success ({n_succ}/{episodes} succeeded)")
+        write_time_histogram(times, out / "time_hist.png",
+                             title=f"{task}, {policy}: time to success ({n_succ}/{episodes} succeeded)")
     return summary
 
 
 def _reference(task: str, kind: str) -> float | None:
-    from .registry import get_skill
+    from ..skills.registry import get_skill
 
     return get_skill(task).reference.get(kind)
 
@@ -151,20 +138,3 @@ def _jsonable(d: Any) -> Any:
     if isinstance(d, (str, int, float, bool)) or d is None:
         return d
     return str(d)
-
-
-def plot_time_histogram(times: list[float], path: Path, title: str, bins: int = 30) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(6, 4))
-    if times:
-        ax.hist(times, bins=bins, color="tab:blue", edgecolor="black")
-    ax.set_xlabel("time (s)")
-    ax.set_ylabel("episodes")
-    ax.set_title(title, fontsize=10)
-    fig.tight_layout()
-    atomic_savefig(fig, path, dpi=110)
-    plt.close(fig)

@@ -1,0 +1,163 @@
+"""Team controllers for the runners, and how a team is named on the command line.
+
+A team is one of :data:`TEAM_KINDS`:
+
+* ``"learned"`` / ``"baseline"``: a :class:`~ssl_marl.plays.team.TeamController`
+  (STP) whose skills are the shipped DDPG actors / the hand-coded skills;
+* ``"random"``: uniform random actions (seeded); ``"idle"``: zero actions.
+
+An STP team may replace any skill with another source (:func:`team_skills`):
+``{"go-to-ball": "runs/gtb/actor.pt"}`` runs that trained actor inside the tactics,
+``{"aim-to-shoot": "baseline"}`` the hand-coded skill. A team can also be read from a
+small JSON team file (:func:`load_team_file`)::
+
+    {"kind": "learned", "skills": {"go-to-ball": "runs/gtb/actor.pt"}}
+
+(checkpoint paths relative to the file's folder). Any object with ``agents`` and
+``act(env) -> {agent: action}`` is accepted as a controller too.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any, Mapping
+
+import numpy as np
+
+TEAM_KINDS = ("learned", "baseline", "random", "idle")
+STP_KINDS = ("learned", "baseline")
+TEAM_FILE_KEYS = ("kind", "skills")
+
+
+class IdleController:
+    """Zero actions for every robot of ``team``."""
+
+    def __init__(self, team: str, n_robots: int) -> None:
+        self.agents = [f"{team}_{i}" for i in range(n_robots)]
+
+    def reset(self) -> None:
+        pass
+
+    def act(self, env_or_world: Any) -> dict[str, np.ndarray]:
+        return {a: np.zeros(5, np.float32) for a in self.agents}
+
+
+class RandomController:
+    """Uniform random actions in [-1, 1] (seeded)."""
+
+    def __init__(self, team: str, n_robots: int, seed: int = 0) -> None:
+        self.agents = [f"{team}_{i}" for i in range(n_robots)]
+        self.seed = seed
+        self.reset()
+
+    def reset(self) -> None:
+        self.rng = np.random.default_rng(self.seed)
+
+    def act(self, env_or_world: Any) -> dict[str, np.ndarray]:
+        a = self.rng.uniform(-1.0, 1.0, (len(self.agents), 5)).astype(np.float32)
+        return dict(zip(self.agents, a))
+
+
+def team_skills(kind: str, sources: Mapping[str, Any] | None = None, where: str = "team") -> Any:
+    """The :mod:`~ssl_marl.plays.skillset` spec for an STP team of ``kind`` whose
+    skills ``sources`` ({skill: "baseline" | "learned" | checkpoint path}) replace
+    the kind's own: ``kind`` itself when there are none, else a full mapping.
+    Raises ValueError for a non-STP kind with sources or an unknown skill."""
+    from ..plays.skillset import SWAPPABLE, validate_skills
+
+    if not sources:
+        return kind
+    if kind not in STP_KINDS:
+        raise ValueError(f"{where}: skill sources need an STP team ({' or '.join(STP_KINDS)}), not {kind!r}")
+    spec: dict[str, Any] = {name: kind for name in SWAPPABLE}
+    for name, source in sources.items():
+        key = name.replace("-", "_") if isinstance(name, str) else name
+        if key not in SWAPPABLE:
+            raise ValueError(f"{where}: unknown skill {name!r}; expected one of "
+                             f"{tuple(n.replace('_', '-') for n in SWAPPABLE)}")
+        spec[key] = str(source) if not isinstance(source, str) else source
+    validate_skills(spec)
+    return spec
+
+
+def parse_skill_source(text: str) -> tuple[str, str]:
+    """``"go-to-ball=runs/gtb/actor.pt"`` -> ("go_to_ball", "runs/gtb/actor.pt")."""
+    from ..plays.skillset import SWAPPABLE
+
+    name, sep, source = text.partition("=")
+    key = name.strip().replace("-", "_")
+    if not sep or not source.strip():
+        raise ValueError(f"skill source must be SKILL=SOURCE (e.g. go-to-ball=runs/gtb/actor.pt), got {text!r}")
+    if key not in SWAPPABLE:
+        raise ValueError(f"skill source {text!r}: unknown skill {name.strip()!r}; expected one of "
+                         f"{tuple(n.replace('_', '-') for n in SWAPPABLE)}")
+    return key, source.strip()
+
+
+def load_team_file(path: str | Path) -> tuple[str, dict[str, str]]:
+    """Read a JSON team file ``{"kind": ..., "skills": {skill: source}}``; returns
+    (kind, sources) with checkpoint paths resolved against the file's folder."""
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"team file {str(path)!r} does not exist")
+    try:
+        data = json.loads(path.read_text())
+    except json.JSONDecodeError as exc:
+        raise ValueError(f"team file {path}: not valid JSON ({exc})") from None
+    if not isinstance(data, dict):
+        raise ValueError(f"team file {path}: expected a JSON object with keys {TEAM_FILE_KEYS}")
+    unknown = sorted(set(data) - set(TEAM_FILE_KEYS))
+    if unknown:
+        raise ValueError(f"team file {path}: unknown key(s) {unknown}; expected {TEAM_FILE_KEYS}")
+    kind = data.get("kind", "baseline")
+    if kind not in TEAM_KINDS:
+        raise ValueError(f"team file {path}: kind must be one of {TEAM_KINDS}, got {kind!r}")
+    skills = data.get("skills", {}) or {}
+    if not isinstance(skills, dict):
+        raise ValueError(f"team file {path}: skills must be an object {{skill: source}}, got {skills!r}")
+    sources = {}
+    for name, source in skills.items():
+        if not isinstance(source, str):
+            raise ValueError(f"team file {path}: skills[{name!r}] must be a string, got {source!r}")
+        if source not in STP_KINDS and not Path(source).is_absolute():
+            source = str(path.parent / source)
+        sources[name] = source
+    team_skills(kind, sources, where=f"team file {path}")
+    return kind, sources
+
+
+def controller_label(kind: Any, skills: Any = None) -> Any:
+    """How a team appears in results: its kind, or {kind, skills} with sources."""
+    if not isinstance(kind, str):
+        return type(kind).__name__
+    if skills is None or isinstance(skills, str):
+        return kind
+    return {"kind": kind, "skills": dict(skills)}
+
+
+def make_controller(kind: Any, team: str, n_robots: int, field: Any = "div_b", seed: int = 0,
+                    skills: Any = None, **kwargs: Any):
+    """Controller ``kind`` (one of :data:`TEAM_KINDS`) for ``team``.
+
+    ``skills`` (STP kinds only): a :mod:`~ssl_marl.plays.skillset` spec that replaces
+    the kind's skills (see :func:`team_skills`). ``kwargs`` go to
+    :class:`~ssl_marl.plays.team.TeamController` (robot, ball, plays, adaptive, ...).
+    An object with ``act(env) -> {agent: action}`` and ``agents`` is passed through."""
+    if not isinstance(kind, str):
+        if not (hasattr(kind, "act") and hasattr(kind, "agents")):
+            raise ValueError(f"controller for {team} must be one of {TEAM_KINDS} or an object with act() and "
+                             f"agents, got {kind!r}")
+        return kind
+    if kind in STP_KINDS:
+        from ..plays.team import TeamController
+
+        return TeamController(team, n_robots, field=field, skills=kind if skills is None else skills, seed=seed,
+                              **kwargs)
+    if skills is not None:
+        raise ValueError(f"{team}: skill sources need an STP team ({' or '.join(STP_KINDS)}), not {kind!r}")
+    if kind == "random":
+        return RandomController(team, n_robots, seed=seed)
+    if kind == "idle":
+        return IdleController(team, n_robots)
+    raise ValueError(f"unknown controller {kind!r} for {team}; expected one of {TEAM_KINDS}")

@@ -1,0 +1,200 @@
+"""One full match between two team controllers: :func:`play_match`.
+
+The match runs in the full-field env (kickoff after each goal and out-of-play
+restarts are the env referee's job) and returns a
+:class:`~ssl_marl.runners.result.MatchResult`. Teams are named as in
+:mod:`~ssl_marl.runners.controllers` (``"learned"``, ``"baseline"``, ``"random"``,
+``"idle"``, with optional per-skill sources for STP teams); series of matches are
+:func:`ssl_marl.runners.series.play_series`.
+
+Real-time mode (``realtime=True``, the paper's evaluation mode, section 4.2): each
+team's ``act`` is timed against the control period by its own
+:class:`~ssl_marl.envs.deadline.ControlDeadline`; a command computed too late is lost
+and that team's robots keep executing the previous command. Each team is held to
+its own deadline, as if both ran on their own computers; the simulation itself is
+not paced by the wall clock (the env runs in step mode), so a match does not need
+its simulated duration in wall time. Results then depend on machine load: only step
+mode (``realtime=False``) is reproducible.
+
+Rendering (``render="match.mp4"`` or ``".gif"``): every k-th env frame
+(``render_fps`` frames per simulated second) is drawn with ``env.render()`` and
+streamed to disk by :class:`~ssl_marl.runners.video.VideoSink` (constant memory).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+from typing import Any
+
+import numpy as np
+
+from ..envs.deadline import ControlDeadline
+from .controllers import TEAM_KINDS, controller_label, make_controller
+from .result import MatchResult
+from .video import VideoSink
+
+
+def start_options(env: Any, seed: int, jitter_m: float) -> dict | None:
+    """Reset options: the kickoff formation (field frame) with seeded jitter, or None."""
+    if not jitter_m:
+        return None
+    from ..envs.referee import kickoff_poses
+
+    rng = np.random.default_rng([int(seed), 0x5EED])
+    cfg = env.config
+    poses = kickoff_poses(env.field, cfg.n_blue, cfg.n_yellow)
+    robots = {}
+    for name, (x0, y0, h0) in zip(env.possible_agents, poses.tolist()):
+        dxy = np.clip(rng.normal(0.0, jitter_m, 2), -2 * jitter_m, 2 * jitter_m)
+        x, y = x0 + dxy[0], y0 + dxy[1]
+        x = min(x, -0.05) if name.startswith("blue") else max(x, 0.05)  # stay in the own half
+        h = h0 + float(np.clip(rng.normal(0.0, jitter_m), -0.2, 0.2))
+        robots[name] = (float(x), float(y), h)
+    return {"formation": "kickoff", "robots": robots}
+
+
+class MatchStats:
+    """Per-step bookkeeping of a match: kicks, goals and ball possession per team."""
+
+    def __init__(self) -> None:
+        self.shots = {"blue": 0, "yellow": 0}
+        self.held = {"blue": 0, "yellow": 0}
+        self.goals: list[dict] = []
+        self.steps = 0
+
+    def record(self, events: list[dict], truth: Any) -> None:
+        """Count one control step's env events and who holds the ball (ground truth)."""
+        self.steps += 1
+        for e in events:
+            if e["type"] == "kick":
+                self.shots[e["agent"].split("_")[0]] += 1
+            elif e["type"] == "goal":
+                self.goals.append({"team": e["team"], "t": float(e["t"])})
+        self.held["blue"] += bool(truth.blue.ball_on_dribbler.any())
+        self.held["yellow"] += bool(truth.yellow.ball_on_dribbler.any())
+
+    def possession(self) -> dict[str, float]:
+        return {k: v / max(self.steps, 1) for k, v in self.held.items()}
+
+
+def validate_match_args(blue: Any, yellow: Any, seconds: Any) -> None:
+    """Clear errors for bad team names and match lengths (before anything is built)."""
+    for name, kind in (("blue", blue), ("yellow", yellow)):
+        if isinstance(kind, str) and kind not in TEAM_KINDS:
+            raise ValueError(f"{name} must be one of {TEAM_KINDS} or a controller object, got {kind!r}")
+    if not (isinstance(seconds, (int, float)) and math.isfinite(seconds) and seconds > 0):
+        raise ValueError(f"seconds must be a positive number, got {seconds!r}")
+
+
+def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6, field: Any = "div_b",
+               seconds: float = 300.0, seed: int = 0, realism: Any = "none", realtime: bool = False,
+               render: str | os.PathLike | None = None, progress: bool = True, render_fps: float = 30.0,
+               render_width_px: int = 640, start_jitter_m: float = 0.05, controller_kwargs: dict | None = None,
+               env_kwargs: dict | None = None, blue_skills: Any = None, yellow_skills: Any = None) -> MatchResult:
+    """Play one match and return its :class:`MatchResult`.
+
+    Args:
+        blue, yellow: team kinds ("learned", "baseline", "random", "idle") or
+            controller objects.
+        robots: robots per team (1-11).
+        field: "div_a", "div_b" or a FieldGeometry.
+        seconds: simulated match length (s).
+        seed: env seed (step mode is deterministic for a given seed).
+        realism: "none", "realistic" or a RealismConfig / dict.
+        realtime: hold each team to the 1/60 s control deadline (see the module docstring).
+        render: output path (.mp4 or .gif) or None.
+        progress: show a tqdm bar (simulated seconds).
+        render_fps: frames per simulated second in the video.
+        render_width_px: video frame width.
+        start_jitter_m: the match starts from the kickoff formation with each robot
+            moved by Gaussian noise of this sigma (m, clipped at 2 sigma; headings by
+            sigma / 0.1 m x 0.1 rad), drawn from ``seed``. Without noise (realism
+            "none") the simulation is deterministic, so this is what makes matches
+            with different seeds differ; 0 = the exact formation.
+        controller_kwargs: extra TeamController options for both teams.
+        env_kwargs: extra env options.
+        blue_skills, yellow_skills: an STP team's skills as a
+            :mod:`~ssl_marl.plays.skillset` spec (e.g. from
+            :func:`~ssl_marl.runners.controllers.team_skills`: a trained actor for one
+            skill); None = the kind's own skills.
+    """
+    from ..envs import parallel_env
+
+    validate_match_args(blue, yellow, seconds)
+    env_opts = dict(n_blue=robots, n_yellow=robots, field=field, max_time_s=float(seconds), realism=realism,
+                    after_goal="kickoff", realtime=False)
+    if render is not None:
+        env_opts.update(render_mode="rgb_array", render_width_px=int(render_width_px))
+    env_opts.update(env_kwargs or {})
+    env = parallel_env(**env_opts)
+    geom = env.field
+    ck = dict(controller_kwargs or {})
+    ck.setdefault("robot", env.config.robot)
+    ck.setdefault("ball", env.config.ball)
+    ck.setdefault("dt", env.config.dt)
+    teams = (("blue", blue, blue_skills), ("yellow", yellow, yellow_skills))
+    ctrls = {team: make_controller(kind, team, robots, geom, seed=seed + k, skills=skills,
+                                   **(ck if kind in ("learned", "baseline") else {}))
+             for k, (team, kind, skills) in enumerate(teams)}
+    for c in ctrls.values():
+        if hasattr(c, "reset"):
+            c.reset()
+    dt = env.config.dt
+    total_steps = int(round(seconds / dt))
+    every = max(int(round(env.config.control_hz / render_fps)), 1)
+    sink = VideoSink(render, env.config.control_hz / every) if render is not None else None
+    deadlines = {team: ControlDeadline(dt) for team in ctrls}
+
+    t_start = time.perf_counter()
+    env.reset(seed=seed, options=start_options(env, seed, start_jitter_m))
+    prev = {team: {a: np.zeros(5, np.float32) for a in c.agents} for team, c in ctrls.items()}
+    act_time = {"blue": 0.0, "yellow": 0.0}
+    stats = MatchStats()
+    bar = None
+    if progress:
+        from tqdm.auto import tqdm
+
+        bar = tqdm(total=total_steps, desc=f"match (seed {seed})", unit="step", leave=False)
+    ok = False
+    try:
+        if sink is not None:
+            sink.add(env.render())
+        while env.agents:
+            actions: dict[str, np.ndarray] = {}
+            for team, ctrl in ctrls.items():
+                if realtime:
+                    a, elapsed = deadlines[team].command(lambda c=ctrl: c.act(env), prev[team])
+                else:
+                    t0 = time.perf_counter()
+                    a = ctrl.act(env)
+                    elapsed = time.perf_counter() - t0
+                act_time[team] += elapsed
+                prev[team] = a
+                actions.update(a)
+            _, _, _, _, infos = env.step(actions)
+            stats.record(next(iter(infos.values()))["events"] if infos else [], env.world_state())
+            if sink is not None and stats.steps % every == 0:
+                sink.add(env.render())
+            if bar is not None:
+                bar.update(1)
+                if stats.goals and stats.steps % 60 == 0:
+                    bar.set_postfix(score=f"{env.score['blue']}-{env.score['yellow']}")
+        ok = True
+    finally:
+        if bar is not None:
+            bar.close()
+        if sink is not None:
+            sink.close(ok)
+        env.close()
+    wall = time.perf_counter() - t_start
+    steps = stats.steps
+    config = dict(blue=controller_label(blue, blue_skills), yellow=controller_label(yellow, yellow_skills),
+                  robots=robots, field=geom.name, seconds=float(seconds), seed=seed,
+                  realism=realism if isinstance(realism, str) else repr(realism), realtime=realtime,
+                  start_jitter_m=start_jitter_m, render=str(render) if render is not None else None)
+    return MatchResult(score=dict(env.score), goals=stats.goals, shots=stats.shots, possession=stats.possession(),
+                       steps=steps, sim_time_s=steps * dt, wall_time_s=wall,
+                       act_time_ms={k: 1000.0 * v / max(steps, 1) for k, v in act_time.items()},
+                       missed_deadlines={team: d.missed for team, d in deadlines.items()}, seed=seed, config=config)

@@ -1,0 +1,258 @@
+"""The runners layer: layering, the one pool (local and Ray), the video sink, the
+control deadline, and per-skill sources (trained actors) for STP teams."""
+
+from __future__ import annotations
+
+import ast
+import json
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
+
+from ssl_marl.envs.deadline import ControlDeadline  # noqa: E402
+from ssl_marl.runners.controllers import load_team_file, parse_skill_source, team_skills  # noqa: E402
+from ssl_marl.runners.pool import chunk_indices, run_pool  # noqa: E402
+from ssl_marl.runners.video import VideoSink  # noqa: E402
+from ssl_marl.skills.learned import PRETRAINED  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+# ------------------------------------------------------------------ layering
+def _imports(path: Path) -> set[str]:
+    tree = ast.parse(path.read_text())
+    out = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom):
+            out.add("." * node.level + (node.module or ""))
+        elif isinstance(node, ast.Import):
+            out.update(a.name for a in node.names)
+    return out
+
+
+@pytest.mark.parametrize("package", ["physics", "envs", "skills", "plays"])
+def test_lower_layers_import_nothing_from_runners(package):
+    for path in sorted((ROOT / "ssl_marl" / package).glob("*.py")):
+        bad = [m for m in _imports(path) if "runners" in m]
+        assert not bad, f"{path.relative_to(ROOT)} imports {bad} (data flows physics -> ... -> plays -> runners)"
+
+
+# ---------------------------------------------------------------------- pool
+def _square(x: int) -> int:
+    return x * x
+
+
+def test_pool_returns_results_in_job_order_for_any_worker_count():
+    jobs = list(range(7))
+    assert run_pool(_square, jobs, 1, progress=False) == [j * j for j in jobs]
+    assert run_pool(_square, jobs, 2, progress=False) == [j * j for j in jobs]
+
+
+def test_pool_rejects_bad_backend_and_workers():
+    with pytest.raises(ValueError, match="backend"):
+        run_pool(_square, [1], 1, backend="dask", progress=False)
+    with pytest.raises(ValueError, match="workers"):
+        run_pool(_square, [1], 0, progress=False)
+    with pytest.raises(ValueError, match="address"):
+        run_pool(_square, [1], 1, address="127.0.0.1:6379", progress=False)
+
+
+def test_chunks_cover_every_index_once():
+    for n, w in ((1, 1), (7, 2), (1000, 2), (30, None)):
+        chunks = chunk_indices(n, w)
+        assert [i for c in chunks for i in c] == list(range(n))
+        assert max(map(len, chunks)) <= 25
+
+
+# ------------------------------------------------------------------ deadline
+class FakeClock:
+    def __init__(self) -> None:
+        self.t = 100.0
+
+    def __call__(self) -> float:
+        return self.t
+
+    def sleep(self, s: float) -> None:
+        assert s >= 0
+        self.t += s
+
+
+def test_deadline_drops_late_commands_and_counts_them():
+    clock = FakeClock()
+    d = ControlDeadline(1 / 60, clock=clock, sleep=clock.sleep)
+
+    def slow():
+        clock.t += 0.02  # 20 ms > 16.7 ms
+        return "new"
+
+    def fast():
+        clock.t += 0.005
+        return "new"
+
+    assert d.command(fast, "old")[0] == "new" and d.missed == 0
+    cmd, elapsed = d.command(slow, "old")
+    assert cmd == "old" and d.missed == 1 and elapsed == pytest.approx(0.02)
+
+
+def test_deadline_tick_pacing_counts_missed_ticks():
+    clock = FakeClock()
+    d = ControlDeadline(0.01, clock=clock, sleep=clock.sleep)
+    d.start()
+    assert d.wait_for_tick() == 1 and clock.t == pytest.approx(100.01)  # slept to the tick
+    clock.t += 0.025  # 2.5 periods late
+    assert d.wait_for_tick() == 3 and d.missed == 2
+    with pytest.raises(ValueError, match="period_s"):
+        ControlDeadline(0.0)
+
+
+# --------------------------------------------------------------------- video
+def _frames(n: int, h: int = 24, w: int = 32) -> list[np.ndarray]:
+    colours = np.array([[0, 120, 0], [255, 255, 255], [250, 120, 0], [0, 0, 255]], np.uint8)
+    out = []
+    for k in range(n):
+        f = np.empty((h, w, 3), np.uint8)
+        f[:] = colours[0]
+        f[4:8, (2 * k) % (w - 4):(2 * k) % (w - 4) + 4] = colours[1 + k % 3]
+        out.append(f)
+    return out
+
+
+def test_gif_sink_streams_frames_that_read_back_exactly(tmp_path):
+    import imageio.v3 as iio
+
+    frames = _frames(6)
+    frames.insert(3, frames[2].copy())  # a repeated frame: stored once, shown twice as long
+    path = tmp_path / "clip.gif"
+    with VideoSink(path, fps=10) as sink:
+        for f in frames:
+            sink.add(f)
+    back = iio.imread(path, index=None)
+    expected = [f for i, f in enumerate(frames) if i != 3]
+    assert back.shape[0] == len(expected)
+    for got, want in zip(back, expected):
+        np.testing.assert_array_equal(got[..., :3], want)
+    meta = iio.immeta(path, index=2)
+    assert meta["duration"] == pytest.approx(200, abs=10)  # frame 2 shown for two frame periods
+
+
+def test_sink_publishes_atomically_and_rejects_bad_input(tmp_path):
+    path = tmp_path / "v.gif"
+    path.write_bytes(b"old")
+    sink = VideoSink(path, fps=10)
+    sink.add(_frames(1)[0])
+    assert path.read_bytes() == b"old"  # nothing published before close
+    sink.close(ok=False)
+    assert path.read_bytes() == b"old" and not list(tmp_path.glob(".v.*"))
+    with pytest.raises(ValueError, match="suffix"):
+        VideoSink(tmp_path / "v.avi", fps=10)
+    with pytest.raises(ValueError, match="fps"):
+        VideoSink(path, fps=0)
+    sink = VideoSink(path, fps=10)
+    sink.add(_frames(1)[0])
+    with pytest.raises(ValueError, match="shape"):
+        sink.add(np.zeros((5, 5, 3), np.uint8))
+    sink.close(ok=False)
+
+
+def test_mp4_sink_pads_odd_sizes(tmp_path):
+    pytest.importorskip("imageio_ffmpeg")
+    import imageio.v3 as iio
+
+    path = tmp_path / "v.mp4"
+    with VideoSink(path, fps=10) as sink:
+        for f in _frames(5, h=25, w=33):
+            sink.add(f)
+    assert iio.imread(path, index=None, plugin="FFMPEG").shape[1:3] == (26, 34)
+
+
+# -------------------------------------------------------------- skill sources
+def test_skill_sources_parse_and_merge(tmp_path):
+    assert parse_skill_source("go-to-ball=runs/x/actor.pt") == ("go_to_ball", "runs/x/actor.pt")
+    with pytest.raises(ValueError, match="SKILL=SOURCE"):
+        parse_skill_source("go-to-ball")
+    with pytest.raises(ValueError, match="unknown skill 'fly'"):
+        parse_skill_source("fly=learned")
+    ckpt = str(PRETRAINED["go_to_ball"])
+    assert team_skills("baseline", {"go-to-ball": ckpt}) == {"go_to_ball": ckpt, "aim_to_shoot": "baseline"}
+    assert team_skills("learned", {}) == "learned"
+    with pytest.raises(ValueError, match="STP team"):
+        team_skills("random", {"go-to-ball": "learned"})
+    with pytest.raises(FileNotFoundError, match="nope.pt"):
+        team_skills("learned", {"go-to-ball": str(tmp_path / "nope.pt")})
+
+
+def test_team_file_resolves_paths_against_its_folder(tmp_path):
+    import shutil
+
+    shutil.copy(PRETRAINED["go_to_ball"], tmp_path / "gtb.pt")
+    team = tmp_path / "team.json"
+    team.write_text(json.dumps({"kind": "learned", "skills": {"go-to-ball": "gtb.pt", "aim-to-shoot": "baseline"}}))
+    kind, sources = load_team_file(team)
+    assert kind == "learned" and sources == {"go-to-ball": str(tmp_path / "gtb.pt"), "aim-to-shoot": "baseline"}
+    team.write_text(json.dumps({"kind": "learned", "colour": "blue"}))
+    with pytest.raises(ValueError, match="unknown key"):
+        load_team_file(team)
+    with pytest.raises(FileNotFoundError, match="team file"):
+        load_team_file(tmp_path / "missing.json")
+
+
+def test_wrong_skill_checkpoint_fails_before_the_match_with_one_line(tmp_path, capsys):
+    from ssl_marl.cli import main
+
+    wrong = str(PRETRAINED["aim_to_shoot"])
+    rc = main(["match", "--blue", "learned", "--skill", f"go-to-ball={wrong}", "--seconds", "1", "--render", "none",
+               "--quiet"])
+    err = capsys.readouterr().err.strip()
+    assert rc == 2 and "skill mismatch" in err and "go_to_ball" in err and len(err.splitlines()) == 1
+    rc = main(["eval-tactic", "--skill", f"go-to-ball={tmp_path / 'missing.pt'}", "--episodes", "1", "--quiet"])
+    err = capsys.readouterr().err.strip()
+    assert rc == 2 and "missing.pt" in err and "does not exist" in err
+    rc = main(["match", "--blue", "random", "--blue-skill", "go-to-ball=learned", "--render", "none", "--quiet"])
+    assert rc == 2 and "STP team" in capsys.readouterr().err
+
+
+def test_a_checkpoint_source_plays_like_the_same_actor_shipped():
+    from ssl_marl.runners.match import play_match
+    from ssl_marl.runners.tactic_eval import evaluate_tactic
+
+    ckpt = str(PRETRAINED["go_to_ball"])
+    a = evaluate_tactic("learned", episodes=2, seed=20_000, progress=False)
+    b = evaluate_tactic({"go-to-ball": ckpt, "aim_to_shoot": "learned"}, episodes=2, seed=20_000, progress=False)
+    assert a["episodes_detail"] == b["episodes_detail"]
+    kw = dict(robots=2, seconds=2.0, seed=3, progress=False)
+    m1 = play_match("learned", "baseline", **kw)
+    m2 = play_match("learned", "baseline", blue_skills=team_skills("learned", {"go-to-ball": ckpt}), **kw)
+    assert (m1.score, m1.shots, m1.possession, m1.steps) == (m2.score, m2.shots, m2.possession, m2.steps)
+    assert m2.config["blue"] == {"kind": "learned", "skills": {"go_to_ball": ckpt, "aim_to_shoot": "learned"}}
+
+
+# ----------------------------------------------------------------------- ray
+@pytest.mark.slow  # starting Ray and its workers: ~100 s on the shared 2-core machine
+def test_ray_backend_gives_the_local_results():
+    """Skill and tactic evaluations and a match series on a local Ray instance
+    (started here, 2 CPUs) equal the local pool's results for the same seeds."""
+    ray = pytest.importorskip("ray")
+    from ssl_marl.runners.series import play_series
+    from ssl_marl.runners.skill_eval import evaluate_skill
+    from ssl_marl.runners.tactic_eval import evaluate_tactic
+
+    ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False)
+    try:
+        kw = dict(episodes=6, seed=123, progress=False)
+        t_ray = evaluate_tactic("baseline", workers=2, backend="ray", **kw)
+        t_loc = evaluate_tactic("baseline", workers=1, **kw)
+        assert t_ray["episodes_detail"] == t_loc["episodes_detail"]
+        s_ray = evaluate_skill("go-to-ball", "baseline", workers=None, backend="ray", **kw)
+        s_loc = evaluate_skill("go-to-ball", "baseline", workers=1, **kw)
+        assert s_ray["episodes_detail"] == s_loc["episodes_detail"]
+        mk = dict(matches=2, seed=30_000, robots=2, seconds=2.0, progress=False)
+        r_ray, _ = play_series("baseline", "random", workers=2, backend="ray", **mk)
+        r_loc, _ = play_series("baseline", "random", workers=1, **mk)
+        key = (lambda r: (r.seed, r.score, r.goals, r.shots, r.possession, r.steps))
+        assert [key(r) for r in r_ray] == [key(r) for r in r_loc]
+    finally:
+        ray.shutdown()
