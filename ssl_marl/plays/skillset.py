@@ -33,7 +33,7 @@ from typing import Any, Mapping, Union
 
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
-from ..skills.registry import SKILL_KINDS, get_skill, learned_skills
+from ..skills.registry import SKILL_KINDS, learned_skills
 
 SkillsSpec = Union[str, Mapping[str, Union[str, os.PathLike]]]
 
@@ -136,4 +136,8 @@ def clear_skill_cache() -> None:
 
 def _build(name: str, kind: str, field: FieldGeometry, robot: RobotParams | None, ball: BallParams | None,
            checkpoint: str | None = None):
-    return get_skill(name).build(kind, field, robot, ball, checkpoint=checkpoint)
+    from .. import skills  # the skills package factory (make_skill -> the registry record's build)
+
+    if checkpoint is None:
+        return skills.make_skill(name, kind, field, robot, ball)
+    return skills.make_skill(name, kind, field, robot, ball, checkpoint=checkpoint)
