@@ -7,17 +7,14 @@ Importing the package registers the task of every registered skill with Gymnasiu
 
 from __future__ import annotations
 
-import gymnasium
-
 __version__ = "0.1.0"
 
 
 def _register() -> None:
-    from .skills.registry import task_skills
+    from .skills.registry import register_gym, task_skills
 
     for skill in task_skills():
-        if skill.task.env_id not in gymnasium.registry:
-            gymnasium.register(id=skill.task.env_id, entry_point=skill.task.entry_point, disable_env_checker=True)
+        register_gym(skill.task)
 
 
 _register()

@@ -180,7 +180,17 @@ def register(skill: SkillDef) -> SkillDef:
     if old is not None and old is not skill:
         raise ValueError(f"skill {skill.name!r} is already registered")
     _REGISTRY[skill.name] = skill
+    if skill.task is not None:
+        register_gym(skill.task)
     return skill
+
+
+def register_gym(task: SkillTaskDef) -> None:
+    """Register ``task``'s Gymnasium id (no-op if it is registered already)."""
+    import gymnasium
+
+    if task.env_id not in gymnasium.registry:
+        gymnasium.register(id=task.env_id, entry_point=task.entry_point, disable_env_checker=True)
 
 
 def _ensure_loaded() -> None:
