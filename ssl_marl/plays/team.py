@@ -88,7 +88,7 @@ class TeamController:
         self._tactics = {}
         self._previous = {}
         self.assignment = self.play = self.context = None
-        self.selector.current, self.selector.since, self.selector._last_t = None, 0.0, None
+        self.selector.new_episode()
 
     # ------------------------------------------------------------- queries
     @property
