@@ -9,9 +9,10 @@ from __future__ import annotations
 import argparse
 import sys
 
+from .runners.controllers import TEAM_KINDS
+from .runners.pool import BACKENDS
+
 FIELDS = ("div_a", "div_b")
-TEAM_KINDS = ("learned", "baseline", "random", "idle")  # = ssl_marl.runners.controllers.TEAM_KINDS (test_cli checks)
-BACKENDS = ("local", "ray")  # = ssl_marl.runners.pool.BACKENDS
 
 
 def _positive_int(name: str):
@@ -87,7 +88,7 @@ def _resolve_team(team: str, value: str, sources: list[tuple[str, str]]):
     from .runners.controllers import load_team_file, team_skills
 
     kind, own = (load_team_file(value) if value.lower().endswith(".json") else (value, {}))
-    merged = {**own, **dict(sources)}
+    merged = {**{k.replace("-", "_"): v for k, v in own.items()}, **dict(sources)}  # later wins
     if not merged:
         return kind, None
     return kind, team_skills(kind, merged, where=f"--{team}")
@@ -251,11 +252,11 @@ def build_parser() -> argparse.ArgumentParser:
     m.add_argument("--yellow", type=_team, default="baseline", metavar="TEAM",
                    help="yellow team, as --blue (default baseline)")
     m.add_argument("--skill", type=_skill_source, action="append", default=[], metavar="SKILL=SOURCE",
-                   help="both STP teams: " + SKILL_SOURCE_HELP)
+                   help="for both STP teams: " + SKILL_SOURCE_HELP)
     m.add_argument("--blue-skill", type=_skill_source, action="append", default=[], metavar="SKILL=SOURCE",
-                   help="blue only (wins over --skill): " + SKILL_SOURCE_HELP)
+                   help="as --skill, for the blue team only (wins over --skill)")
     m.add_argument("--yellow-skill", type=_skill_source, action="append", default=[], metavar="SKILL=SOURCE",
-                   help="yellow only (wins over --skill): " + SKILL_SOURCE_HELP)
+                   help="as --skill, for the yellow team only (wins over --skill)")
     m.add_argument("--robots", type=_robots, default=6, help="robots per team, 1-11 (default 6)")
     m.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")
     m.add_argument("--seconds", type=_positive_float("--seconds"), default=30.0,

@@ -4,10 +4,13 @@ Geometry lives in pure functions (:func:`goalie_guard_position`,
 :func:`block_position`, :func:`mark_position`) so plays can use the same points as
 role-assignment targets.
 
-Clearing (Goalie and Defender): the go-to-ball skill (learned or baseline) fetches
-the ball; once it is within 35 mm of the dribbler the robot turns (dribbler on, at a
-gentle ``turn_rate``) until its heading lies within ``kick_cone`` of +x (towards the
-opponent half) and kicks (:func:`clear_kick_action`).
+Clearing (Goalie and Defender) is one shared sub-behaviour, :mod:`.clearing`: the
+go-to-ball skill (learned or baseline) fetches the ball; once it is within 35 mm of
+the dribbler the robot turns (dribbler on, at a gentle ``turn_rate``) until its
+heading lies within ``kick_cone`` of +x (towards the opponent half) and kicks.
+
+Numbers: defaults marked "hand-tuned" were set by watching matches in this simulator
+(Division B field, default robot); the others cite their source.
 """
 
 from __future__ import annotations
@@ -20,38 +23,40 @@ import numpy as np
 
 from ..physics.field import FieldGeometry
 from ..physics.params import RobotParams
-from ..physics.state import WorldState, wrap_angle
-from ..skills.base import make_action
-from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance
+from ..physics.state import WorldState
+from ..skills.features import dribbler_ball_distance
+from .clearing import BallClearing, ClearPhase, clear_phase
 from .navigation import NavigateToPoint, NavParams, defense_rect, facing_towards, push_out_of_rect
 from .tactic_base import NEAR_BALL_M, Tactic
 
 
-
 # ----------------------------------------------------------------- geometry
 def goalie_guard_position(ball_pos: np.ndarray, ball_vel: np.ndarray, field: FieldGeometry, rp: RobotParams,
-                          radius: float = 0.4, shot_speed: float = 0.5) -> np.ndarray:
+                          radius: float = 0.4, shot_speed: float = 0.5, line_gap_m: float = 0.02,
+                          mouth_margin_m: float = 0.1, ball_gap_m: float = 0.15) -> np.ndarray:
     """Where the goalie stands (team frame, m).
 
     * Shot: if the ball moves towards the own goal faster than ``shot_speed`` (m/s)
-      and its straight path crosses the goal mouth (+10 cm), the point where the path
-      meets the line just in front of the goal (x = -L/2 + robot radius + 2 cm).
+      and its straight path crosses the goal mouth (+ ``mouth_margin_m``), the point
+      where the path meets the line just in front of the goal
+      (x = -L/2 + robot radius + ``line_gap_m``).
     * Otherwise: on the arc of ``radius`` around the own goal centre, on the line from
-      the goal centre to the ball, kept in front of the goal line and within the posts.
+      the goal centre to the ball (at most ``ball_gap_m`` short of the ball), kept in
+      front of the goal line and within the posts.
     """
     L2, hw = field.half_length, field.goal_width / 2.0
-    x_line = -L2 + rp.radius + 0.02
+    x_line = -L2 + rp.radius + line_gap_m
     b, v = np.asarray(ball_pos, float), np.asarray(ball_vel, float)
     if v[0] < -shot_speed and b[0] > x_line:
         t = (x_line - b[0]) / v[0]
         y = b[1] + v[1] * t
-        if abs(y) <= hw + 0.1:
+        if abs(y) <= hw + mouth_margin_m:
             return np.array([x_line, min(max(y, -hw), hw)])
     g = field.goal_center(-1)
     d = b - g
     dist = float(np.hypot(*d))
     u = d / dist if dist > 1e-6 else np.array([1.0, 0.0])
-    r = min(radius, max(dist - 0.15, 0.0))
+    r = min(radius, max(dist - ball_gap_m, 0.0))
     p = g + u * r
     return np.array([max(float(p[0]), x_line), min(max(float(p[1]), -hw), hw)])
 
@@ -91,20 +96,6 @@ def mark_position(opp_pos: np.ndarray, ball_pos: np.ndarray, field: FieldGeometr
     return field.clamp_to_field(np.array([ox + distance * dx, oy + distance * dy]))
 
 
-def clear_kick_action(world: WorldState, robot: int, rp: RobotParams, cone: float, strength: float,
-                      turn_rate: float) -> np.ndarray:
-    """Ball on the dribbler: kick at ``strength`` if the heading is within ``cone`` (rad)
-    of +x and the kicker is ready, else turn towards +x at most ``turn_rate`` (rad/s)
-    with the dribbler on."""
-    ts = world.team(world.frame)
-    h = float(ts.heading[robot])
-    err = float(wrap_angle(-h))
-    if abs(err) <= cone and bool(ts.kick_ready[robot]):
-        return make_action(dribble=True, kick=strength)
-    omega = min(max(6.0 * err, -turn_rate), turn_rate)
-    return make_action(omega=omega / rp.max_omega, dribble=True)
-
-
 # ------------------------------------------------------------------ Goalie
 class GoalieState(enum.Enum):
     GUARD = "guard"
@@ -115,18 +106,35 @@ class GoalieState(enum.Enum):
 @dataclass(frozen=True)
 class GoalieParams:
     """Attributes:
-        guard_radius: arc radius around the own goal centre (m).
-        shot_speed: ball speed towards the goal (m/s) above which it intercepts the path.
-        slow_ball_speed: clear only a ball slower than this (m/s) inside the area.
-        near_ball_m: d_{d-b} at which the ball counts as taken (m).
-        kick_cone: clear when the heading is within this of +x (rad).
-        kick_strength: clearing kick strength (0..1].
-        turn_rate: turning rate with the ball (rad/s).
+        guard_radius: arc radius around the own goal centre (m); hand-tuned: 0.4 m
+            keeps the goalie inside the Division B defense area (1.0 m deep).
+        shot_speed: ball speed towards the goal (m/s) above which it intercepts the
+            path; hand-tuned (a rolling ball slower than this stops ~0.5 m later).
+        line_gap_m, mouth_margin_m, ball_gap_m: :func:`goalie_guard_position`'s gaps
+            (m); hand-tuned: 2 cm off the goal line, 10 cm beyond the posts, 15 cm
+            short of the ball.
+        slow_ball_speed: clear only a ball slower than this (m/s) inside the area;
+            hand-tuned (a faster ball is intercepted instead).
+        area_margin_m: the ball still counts as "near the area" up to this far
+            outside it (m): hysteresis so a ball on the line does not flip
+            guard/clear every tick; hand-tuned.
+        guard_tolerance_m: position tolerance of the guard spot (m); hand-tuned.
+        near_ball_m: d_{d-b} at which the ball counts as taken (m); the paper's 35 mm.
+        kick_cone: clear when the heading is within this of +x (rad); hand-tuned:
+            ~70 degrees, any kick into the opponent half's direction clears.
+        kick_strength: clearing kick strength (0..1]; full.
+        turn_rate: turning rate with the ball (rad/s); hand-tuned: slow enough that
+            the dribbler keeps the ball.
     """
 
     guard_radius: float = 0.4
     shot_speed: float = 0.5
+    line_gap_m: float = 0.02
+    mouth_margin_m: float = 0.1
+    ball_gap_m: float = 0.15
     slow_ball_speed: float = 0.6
+    area_margin_m: float = 0.1
+    guard_tolerance_m: float = 0.02
     near_ball_m: float = NEAR_BALL_M
     kick_cone: float = 1.2
     kick_strength: float = 1.0
@@ -136,7 +144,7 @@ class GoalieParams:
 @dataclass(frozen=True)
 class GoalieInputs:
     """Attributes: ball_in_area (inside the own defense area), ball_near_area (inside it
-    grown by 0.1 m; hysteresis), ball_speed (m/s), d_db (m), kicked (last tick)."""
+    grown by ``area_margin_m``; hysteresis), ball_speed (m/s), d_db (m), kicked (last tick)."""
 
     ball_in_area: bool
     ball_near_area: bool
@@ -158,14 +166,15 @@ class Goalie(Tactic):
     def __init__(self, field, robot=None, ball=None, skills="baseline", dt: float = 1.0 / 60.0, **params) -> None:
         super().__init__(field, robot, ball, skills, dt, **params)
         self.go_to_ball = self._skill("go_to_ball")
+        self.clearing = BallClearing(self.go_to_ball, self.rp)
         self.nav = NavigateToPoint(field, self.rp, self.bp, NavParams(avoid_own_defense=False,
                                                                       avoid_opp_defense=True),
-                                   tolerance=0.02)
+                                   tolerance=self.params.guard_tolerance_m)
 
     def observe(self, world: WorldState, robot: int) -> GoalieInputs:
         b = world.ball_pos
         return GoalieInputs(ball_in_area=bool(self.field.in_defense_area(b, -1)),
-                            ball_near_area=bool(self.field.in_defense_area(b, -1, margin=0.1)),
+                            ball_near_area=bool(self.field.in_defense_area(b, -1, margin=self.params.area_margin_m)),
                             ball_speed=float(np.hypot(*world.ball_vel)),
                             d_db=dribbler_ball_distance(world, robot, self.rp, self.bp), kicked=self._kicked)
 
@@ -179,30 +188,29 @@ class Goalie(Tactic):
         if state is S.CLEAR_APPROACH:
             if not inputs.ball_near_area:
                 return S.GUARD
-            return S.CLEAR_KICK if inputs.d_db <= params.near_ball_m else S.CLEAR_APPROACH
+            phase = clear_phase(False, inputs.d_db, inputs.kicked, params)
+            return S.CLEAR_KICK if phase is ClearPhase.KICK else S.CLEAR_APPROACH
         if state is S.CLEAR_KICK:
-            if inputs.kicked:
+            phase = clear_phase(True, inputs.d_db, inputs.kicked, params)
+            if phase is ClearPhase.DONE:
                 return S.GUARD
-            if inputs.d_db > BALL_LOST_DISTANCE:
+            if phase is ClearPhase.LOST:
                 return S.CLEAR_APPROACH if inputs.ball_near_area else S.GUARD
             return S.CLEAR_KICK
         raise ValueError(f"unknown state {state!r}")
 
     def on_enter(self, state: GoalieState) -> None:
-        if state is GoalieState.CLEAR_APPROACH and hasattr(self, "go_to_ball"):
-            self.go_to_ball.reset()
+        if state is GoalieState.CLEAR_APPROACH and hasattr(self, "clearing"):
+            self.clearing.reset()
 
     def guard_target(self, world: WorldState) -> np.ndarray:
         p = self.params
         return goalie_guard_position(world.ball_pos, world.ball_vel, self.field, self.rp, p.guard_radius,
-                                     p.shot_speed)
+                                     p.shot_speed, p.line_gap_m, p.mouth_margin_m, p.ball_gap_m)
 
     def execute(self, world: WorldState, robot: int, inputs: GoalieInputs) -> np.ndarray:
-        p = self.params
-        if self.state is GoalieState.CLEAR_APPROACH:
-            return self.go_to_ball.act(world, robot)
-        if self.state is GoalieState.CLEAR_KICK:
-            return clear_kick_action(world, robot, self.rp, p.kick_cone, p.kick_strength, p.turn_rate)
+        if self.state in (GoalieState.CLEAR_APPROACH, GoalieState.CLEAR_KICK):
+            return self.clearing.act(self.state is GoalieState.CLEAR_KICK, world, robot, self.params)
         pos = world.team(world.frame).pos[robot]
         self.nav.target = self.guard_target(world)
         self.nav.facing = facing_towards(pos, world.ball_pos)
@@ -221,15 +229,23 @@ class DefenderParams:
     """Attributes:
         lane_offset: sideways shift from the goal-ball lane (m); +-0.11 for two defenders.
         standoff: robot centre distance outside the defense area (m).
+        standoff: robot centre distance outside the defense area (m); hand-tuned:
+            robot radius (0.09 m) + 3 cm.
         challenge_radius: go for a slow ball closer than this (m) if no teammate holds
-            it and it is outside the defense area; 0 disables.
-        slow_ball_speed: "slow" for a challenge (m/s).
+            it and it is outside the defense area; 0 disables; hand-tuned.
+        abort_factor: give a challenge up when the ball is further than this times
+            ``challenge_radius`` (hysteresis); hand-tuned.
+        defense_margin_m: the ball counts as in the own defense area (the goalie's)
+            up to this far outside it (m); hand-tuned.
+        slow_ball_speed: "slow" for a challenge (m/s); hand-tuned.
         near_ball_m, kick_cone, kick_strength, turn_rate: as for the goalie's clear.
     """
 
     lane_offset: float = 0.0
     standoff: float = 0.12
     challenge_radius: float = 0.4
+    abort_factor: float = 2.0
+    defense_margin_m: float = 0.05
     slow_ball_speed: float = 1.0
     near_ball_m: float = NEAR_BALL_M
     kick_cone: float = 1.2
@@ -263,6 +279,7 @@ class Defender(Tactic):
     def __init__(self, field, robot=None, ball=None, skills="baseline", dt: float = 1.0 / 60.0, **params) -> None:
         super().__init__(field, robot, ball, skills, dt, **params)
         self.go_to_ball = self._skill("go_to_ball")
+        self.clearing = BallClearing(self.go_to_ball, self.rp)
         self.nav = NavigateToPoint(field, self.rp, self.bp, NavParams())
 
     def observe(self, world: WorldState, robot: int) -> DefenderInputs:
@@ -270,7 +287,8 @@ class Defender(Tactic):
         holders = np.flatnonzero(ts.ball_on_dribbler)
         return DefenderInputs(ball_dist=float(np.hypot(*(world.ball_pos - ts.pos[robot]))),
                               ball_speed=float(np.hypot(*world.ball_vel)),
-                              ball_in_own_defense=bool(self.field.in_defense_area(world.ball_pos, -1, margin=0.05)),
+                              ball_in_own_defense=bool(self.field.in_defense_area(
+                                  world.ball_pos, -1, margin=self.params.defense_margin_m)),
                               teammate_has_ball=bool(np.any(holders != robot)),
                               d_db=dribbler_ball_distance(world, robot, self.rp, self.bp), kicked=self._kicked)
 
@@ -284,30 +302,31 @@ class Defender(Tactic):
                 return S.CLEAR_APPROACH
             return S.BLOCK
         abort = (inputs.ball_in_own_defense or inputs.teammate_has_ball
-                 or inputs.ball_dist > 2.0 * params.challenge_radius)
+                 or inputs.ball_dist > params.abort_factor * params.challenge_radius)
         if state is S.CLEAR_APPROACH:
             if abort:
                 return S.BLOCK
-            return S.CLEAR_KICK if inputs.d_db <= params.near_ball_m else S.CLEAR_APPROACH
+            phase = clear_phase(False, inputs.d_db, inputs.kicked, params)
+            return S.CLEAR_KICK if phase is ClearPhase.KICK else S.CLEAR_APPROACH
         if state is S.CLEAR_KICK:
-            if inputs.kicked or inputs.ball_in_own_defense:
+            if inputs.ball_in_own_defense:
                 return S.BLOCK
-            return S.CLEAR_APPROACH if inputs.d_db > BALL_LOST_DISTANCE else S.CLEAR_KICK
+            phase = clear_phase(True, inputs.d_db, inputs.kicked, params)
+            if phase is ClearPhase.DONE:
+                return S.BLOCK
+            return S.CLEAR_APPROACH if phase is ClearPhase.LOST else S.CLEAR_KICK
         raise ValueError(f"unknown state {state!r}")
 
     def on_enter(self, state: DefenderState) -> None:
-        if state is DefenderState.CLEAR_APPROACH and hasattr(self, "go_to_ball"):
-            self.go_to_ball.reset()
+        if state is DefenderState.CLEAR_APPROACH and hasattr(self, "clearing"):
+            self.clearing.reset()
 
     def block_target(self, world: WorldState) -> np.ndarray:
         return block_position(world.ball_pos, self.field, self.params.standoff, self.params.lane_offset)
 
     def execute(self, world: WorldState, robot: int, inputs: DefenderInputs) -> np.ndarray:
-        p = self.params
-        if self.state is DefenderState.CLEAR_APPROACH:
-            return self.go_to_ball.act(world, robot)
-        if self.state is DefenderState.CLEAR_KICK:
-            return clear_kick_action(world, robot, self.rp, p.kick_cone, p.kick_strength, p.turn_rate)
+        if self.state in (DefenderState.CLEAR_APPROACH, DefenderState.CLEAR_KICK):
+            return self.clearing.act(self.state is DefenderState.CLEAR_KICK, world, robot, self.params)
         pos = world.team(world.frame).pos[robot]
         self.nav.target = self.block_target(world)
         self.nav.facing = facing_towards(pos, world.ball_pos)

@@ -39,7 +39,7 @@ from .assignment import DEFAULT_UNFILLED_COST, Assignment
 from .defense import Defender, Goalie, Mark, block_position, goalie_guard_position, mark_position
 from .navigation import NavParams, sanitize_target
 from .shoot import Attacker
-from .support import Support
+from .support import Support, SupportParams
 from .tactic_base import Tactic
 
 HAS_BALL_MARGIN_S = 0.25  # overlap band of the offense/defense predicates (s of time-to-ball)
@@ -194,6 +194,10 @@ def attacker_role(priority: int = 90) -> RoleDef:
     return RoleDef("attacker", priority, Attacker, lambda ctx: np.asarray(ctx.ball, float))
 
 
+# Cost (s of travel time) of leaving a mark or support role empty: far below the
+# default (assignment.DEFAULT_UNFILLED_COST, "must fill"), so these optional roles
+# are the first left empty when robots are short; hand-tuned.
+OPTIONAL_ROLE_UNFILLED_COST = 20.0
 DEFENDER_SPACING = 0.22  # m between neighbouring defenders' lanes (robot diameter + 4 cm)
 
 
@@ -222,7 +226,7 @@ def mark_role(k: int, priority: int) -> RoleDef:
     def update(t: Tactic, ctx: PlayContext, a: Assignment) -> None:
         t.set_params(opponent=ctx.threats[k] if k < len(ctx.threats) else None)
 
-    return RoleDef(name, priority, Mark, target, update=update, unfilled_cost=20.0)
+    return RoleDef(name, priority, Mark, target, update=update, unfilled_cost=OPTIONAL_ROLE_UNFILLED_COST)
 
 
 def _support_band(field: FieldGeometry, i: int, m: int) -> tuple[float, float]:
@@ -242,10 +246,11 @@ def support_role(k: int, priority: int) -> RoleDef:
         f = ctx.field
         # k-th of up to 4 bands, by role index: a rough spot for the cost only
         lo, hi = _support_band(f, k % 4, 4)
-        x = min(max(float(ctx.ball[0]) + 1.0, 0.3), f.half_length - f.defense_depth - 0.35)
+        sp = SupportParams()  # the tactic's own defaults: ``ahead`` of the ball, within its x range
+        x = min(max(float(ctx.ball[0]) + sp.ahead, sp.x_min_m), f.half_length - f.defense_depth - sp.defense_gap_m)
         return np.array([x, 0.5 * (lo + hi)])
 
-    return RoleDef(name, priority, Support, target, update=update, unfilled_cost=20.0)
+    return RoleDef(name, priority, Support, target, update=update, unfilled_cost=OPTIONAL_ROLE_UNFILLED_COST)
 
 
 # ------------------------------------------------------------ standard plays
@@ -341,7 +346,7 @@ class PlaySelector:
         self.rng = np.random.default_rng(self.seed)
 
     def new_episode(self) -> None:
-        """Drop the running play (a new episode starts); keep weights, statistics and the RNG."""
+        """Drop the running play (the env was reset); keep weights and statistics."""
         self.current, self.since, self._last_t = None, 0.0, None
 
     def _pick(self, candidates: list[Play]) -> Play:

@@ -51,9 +51,15 @@ class ShootParams:
         keep_out_of_own_defense_area: wait outside the own defense area while the ball
             is in it (team play); False = the paper's machine.
         wait_margin: how far outside the defense area to wait (m, robot centre).
+        wait_hysteresis_m: keep waiting until the ball is this far outside the own
+            defense area (m), so a ball on the line does not flip the state every
+            tick; hand-tuned.
         safe_drive_forward: scale the drive-forward speed down to 0 as the free space
-            ahead of the ball (to the field lines, along the heading) shrinks from 0.5 m
-            to 0.1 m, so the robot does not push the ball out of play; False = paper.
+            ahead of the ball (to the field lines, along the heading) shrinks from
+            ``safe_free_full_m`` (full speed) to ``safe_free_stop_m`` (stop), so the
+            robot does not push the ball out of play; False = paper. The band
+            0.1-0.5 m is hand-tuned: at 0.5 m/s and the ball's rolling friction the ball
+            stops within ~0.1 m after contact.
         approach_speed: speed governor on the go-to-ball skill (m/s at contact, None =
             off): the commanded speed is capped at sqrt(v^2 + 2 a gap) (a =
             ``approach_decel``, gap = ball distance - reach), so a skill that drives into
@@ -69,7 +75,10 @@ class ShootParams:
     drive_forward_speed: float = 0.5
     keep_out_of_own_defense_area: bool = False
     wait_margin: float = 0.2
+    wait_hysteresis_m: float = 0.1
     safe_drive_forward: bool = False
+    safe_free_stop_m: float = 0.1
+    safe_free_full_m: float = 0.5
     approach_speed: float | None = 0.8
     approach_decel: float = 3.0
 
@@ -81,7 +90,8 @@ class ShootInputs:
         skill_status: status of the current state's skill after its last tick.
         kicked: a kick was commanded on the previous tick.
         ball_in_own_defense: ball inside the own defense area.
-        ball_near_own_defense: ball inside the own defense area grown by 0.1 m
+        ball_near_own_defense: ball inside the own defense area grown by
+            ``wait_hysteresis_m``
             (hysteresis for leaving the wait state).
     """
 
@@ -121,7 +131,8 @@ class GoToBallAndShoot(Tactic):
         return ShootInputs(d_db=dribbler_ball_distance(world, robot, self.rp, self.bp),
                            skill_status=skill_status(self._current_skill()), kicked=self._kicked,
                            ball_in_own_defense=bool(self.field.in_defense_area(ball, -1)),
-                           ball_near_own_defense=bool(self.field.in_defense_area(ball, -1, margin=0.1)))
+                           ball_near_own_defense=bool(self.field.in_defense_area(
+                               ball, -1, margin=self.params.wait_hysteresis_m)))
 
     @staticmethod
     def transition(state: ShootState, inputs: ShootInputs, params: ShootParams) -> ShootState:
@@ -159,7 +170,9 @@ class GoToBallAndShoot(Tactic):
         if self.state is ShootState.DRIVE_FORWARD and self.params.safe_drive_forward:
             heading = float(world.team(world.frame).heading[robot])
             free = free_distance_ahead(world.ball_pos, heading, self.field)
-            self.drive_forward.speed = self.params.drive_forward_speed * min(max((free - 0.1) / 0.4, 0.0), 1.0)
+            p = self.params
+            scale = (free - p.safe_free_stop_m) / (p.safe_free_full_m - p.safe_free_stop_m)
+            self.drive_forward.speed = p.drive_forward_speed * min(max(scale, 0.0), 1.0)
         if self.state is ShootState.WAIT_OUTSIDE_DEFENSE_AREA:
             pos = world.team(world.frame).pos[robot]
             rect = defense_rect(self.field, -1, self.nav.params.defense_margin + self.params.wait_margin)

@@ -75,8 +75,14 @@ class SupportParams:
     """Attributes:
         y_range: (y_min, y_max) band of the field this support covers (m), or None
             for the whole width; plays split the width between several supports.
-        x_range: (x_min, x_max) (m), or None for the opponent half from 0.3 m up to
-            0.35 m before the opponent defense area.
+        x_range: (x_min, x_max) (m), or None for the opponent half from ``x_min_m``
+            up to ``defense_gap_m`` before the opponent defense area.
+        x_min_m, defense_gap_m: the default x range's ends (m); hand-tuned: 0.3 m past
+            the halfway line (out of the centre circle's restart area), 0.35 m short
+            of the opponent defense area (room for a robot outside it).
+        side_margin_m: candidate spots stay this far inside the touch lines (m);
+            hand-tuned (a robot radius plus room to receive).
+        tolerance_m: navigation position tolerance (m); hand-tuned.
         ahead: preferred distance in front of the ball along +x (m).
         min_ball_dist: keep at least about this far from the ball (m).
         switch_margin: a new spot must score this much better to be taken.
@@ -91,6 +97,10 @@ class SupportParams:
     switch_margin: float = 0.15
     grid: tuple[int, int] = (7, 7)
     arrive_tol: float = 0.1
+    x_min_m: float = 0.3
+    defense_gap_m: float = 0.35
+    side_margin_m: float = 0.3
+    tolerance_m: float = 0.05
 
 
 @dataclass(frozen=True)
@@ -112,7 +122,7 @@ class Support(Tactic):
 
     def __init__(self, field, robot=None, ball=None, skills="baseline", dt: float = 1.0 / 60.0, **params) -> None:
         super().__init__(field, robot, ball, skills, dt, **params)
-        self.nav = NavigateToPoint(field, self.rp, self.bp, NavParams(), tolerance=0.05)
+        self.nav = NavigateToPoint(field, self.rp, self.bp, NavParams(), tolerance=self.params.tolerance_m)
         self.target: np.ndarray | None = None
 
     def reset(self) -> None:
@@ -129,9 +139,9 @@ class Support(Tactic):
 
     def _candidates(self) -> tuple[np.ndarray, tuple[float, float]]:
         f, p = self.field, self.params
-        x_range = p.x_range or (0.3, f.half_length - f.defense_depth - 0.35)
+        x_range = p.x_range or (p.x_min_m, f.half_length - f.defense_depth - p.defense_gap_m)
         y_lo, y_hi = p.y_range or (-f.half_width, f.half_width)
-        y_lo, y_hi = max(y_lo, -f.half_width + 0.3), min(y_hi, f.half_width - 0.3)
+        y_lo, y_hi = max(y_lo, -f.half_width + p.side_margin_m), min(y_hi, f.half_width - p.side_margin_m)
         if y_lo > y_hi:
             y_lo = y_hi = 0.5 * (y_lo + y_hi)
         xs = np.linspace(x_range[0], x_range[1], p.grid[0])

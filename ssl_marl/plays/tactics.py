@@ -17,8 +17,9 @@ dt=1/60, **params)`` and implement ``act(world_team_frame, robot) -> (5,) action
 
 from __future__ import annotations
 
+from .clearing import BallClearing, clear_kick_action
 from .defense import (Defender, DefenderParams, DefenderState, Goalie, GoalieParams, GoalieState, Mark, MarkParams,
-                      MarkState, block_position, clear_kick_action, goalie_guard_position, mark_position)
+                      MarkState, block_position, goalie_guard_position, mark_position)
 from .navigation import NavigateToPoint, NavParams
 from .shoot import Attacker, GoToBallAndShoot, ShootParams, ShootState
 from .support import Support, SupportParams, SupportState, open_space_scores
@@ -30,5 +31,6 @@ TACTICS = {"go_to_ball_and_shoot": GoToBallAndShoot, "attacker": Attacker, "goal
 __all__ = ["Tactic", "TacticStatus", "NEAR_BALL_M", "GoToBallAndShoot", "Attacker", "ShootState", "ShootParams",
            "Goalie", "GoalieState", "GoalieParams", "Defender", "DefenderState", "DefenderParams", "Mark",
            "MarkState", "MarkParams", "Support", "SupportState", "SupportParams", "NavigateToPoint", "NavParams",
-           "goalie_guard_position", "block_position", "mark_position", "clear_kick_action", "open_space_scores",
+           "goalie_guard_position", "block_position", "mark_position", "clear_kick_action", "BallClearing",
+           "open_space_scores",
            "TACTICS"]

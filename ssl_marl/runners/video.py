@@ -9,8 +9,9 @@ collecting them first cost ~1.3 GB of RSS, see docs/BENCHMARKS.md).
   (``PIL.GifImagePlugin.getheader`` / ``getdata``, Pillow's documented helpers for
   writing animations piece by piece). Like Pillow's own ``save_all``, a frame only
   stores the rectangle that changed since the previous frame (each with its own
-  adaptive 256-colour palette) and a frame identical to the previous one extends
-  that frame's duration instead of being stored again. Only the previous frame and
+  adaptive palette; unchanged pixels inside it are transparent, so the previous
+  frame shows through) and a frame identical to the previous one extends that
+  frame's duration instead of being stored again. Only the previous frame and
   one pending frame are held in memory.
 * MP4: frames are piped to ffmpeg (``imageio-ffmpeg``, libx264, yuv420p; odd sizes
   are padded by repeating the last row / column).
@@ -31,6 +32,7 @@ from typing import IO, Any
 import numpy as np
 
 VIDEO_SUFFIXES = (".gif", ".mp4")
+TRANSPARENT = 255  # GIF: palette index of "unchanged since the previous frame"
 
 
 class VideoSink:
@@ -160,7 +162,14 @@ class VideoSink:
         cols = np.flatnonzero(changed.any(axis=0))
         y0, y1, x0, x1 = int(rows[0]), int(rows[-1]) + 1, int(cols[0]), int(cols[-1]) + 1
         self._flush_pending()
-        crop = Image.fromarray(np.ascontiguousarray(frame[y0:y1, x0:x1])).quantize(256)
+        # the changed rectangle in 255 colours; its unchanged pixels become the
+        # transparent index 255 (the previous frame shows through: smaller files)
+        crop = Image.fromarray(np.ascontiguousarray(frame[y0:y1, x0:x1])).quantize(255)
+        idx = np.asarray(crop).copy()
+        idx[~changed[y0:y1, x0:x1]] = TRANSPARENT
+        pal = crop.getpalette()[:3 * 255] + [0, 0, 0]
+        crop = Image.fromarray(idx, mode="P")
+        crop.putpalette(pal)
         self._pending = [crop, (x0, y0), duration_ms, False]
         self._prev = frame
 
@@ -177,6 +186,7 @@ class VideoSink:
                 self._fp.write(chunk)
             params: dict[str, Any] = {"duration": duration_ms}
         else:  # a changed rectangle over the previous frame, with its own palette
-            params = {"duration": duration_ms, "include_color_table": True, "disposal": 1}
+            params = {"duration": duration_ms, "include_color_table": True, "disposal": 1,
+                      "transparency": TRANSPARENT}
         for chunk in GifImagePlugin.getdata(im, offset, **params):
             self._fp.write(chunk)
