@@ -24,17 +24,17 @@ SKILL_CONFIGS = {"go-to-ball": "go_to_ball.json", "aim-to-shoot": "aim_to_shoot.
                  "pendulum": "pendulum.json"}
 
 
-def cpu_has_fast_bf16() -> bool:
+def cpu_has_fast_bf16(cpuinfo: str | Path = "/proc/cpuinfo") -> bool:
     """True when this CPU computes bfloat16 matrix products natively: AMX (``amx_bf16``,
     Intel Sapphire Rapids and later) or AVX512-BF16 (``avx512_bf16``: Intel Cooper Lake,
-    AMD Zen 4 and later), read from ``/proc/cpuinfo`` (Linux x86); False elsewhere.
-    Without either, torch emulates bf16 and autocast slows training down."""
+    AMD Zen 4 and later), read from the ``flags`` line of ``cpuinfo`` (Linux x86); False
+    where that file is missing or names neither. Without them torch emulates bfloat16
+    and autocast does not pay (docs/BENCHMARKS.md)."""
     try:
-        with open("/proc/cpuinfo") as f:
+        with open(cpuinfo) as f:
             for line in f:
                 if line.startswith("flags"):
-                    flags = set(line.split(":", 1)[1].split())
-                    return bool(flags & {"amx_bf16", "avx512_bf16"})
+                    return bool(set(line.split(":", 1)[1].split()) & {"amx_bf16", "avx512_bf16"})
     except OSError:
         pass
     return False
