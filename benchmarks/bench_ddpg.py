@@ -4,7 +4,7 @@
 
 Measures updates/s (replay sampling included) of:
 
-* ``ours``: :meth:`train.ddpg.DDPG.update` (fused Adam, actor loss back-propagated
+* ``ours``: :meth:`train.algos.ddpg.DDPG.update` (fused Adam, actor loss back-propagated
   into the actor only, foreach soft update, no per-update ``.item()``);
 * ``naive``: the same maths written the common way (default Adam, full
   ``backward()``, per-parameter soft-update loop, ``.item()`` every update),
@@ -42,7 +42,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from ssl_marl.skills.networks import Actor, Critic  # noqa: E402
 from train.config import DDPGConfig  # noqa: E402
-from train.ddpg import DDPG  # noqa: E402
+from train.algos.ddpg import DDPG  # noqa: E402
 from train.replay import ReplayBuffer  # noqa: E402
 
 OBS_DIM, ACT_DIM, HIDDEN, N_FILL = 14, 3, (300, 400), 100_000

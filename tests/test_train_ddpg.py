@@ -9,7 +9,7 @@ import pytest
 import torch
 
 from train.config import DDPGConfig, apply_overrides, default_config, load_config
-from train.ddpg import DDPG, soft_update, td_target
+from train.algos.ddpg import DDPG, soft_update, td_target
 from train.replay import Batch
 
 torch.set_num_threads(1)
@@ -52,7 +52,9 @@ def test_update_moves_networks_and_targets_by_tau() -> None:
     for k, v in agent.actor_target.state_dict().items():
         torch.testing.assert_close(v, before[k] + 0.1 * (after_online[k] - before[k]), rtol=0, atol=1e-6)
     assert agent.updates == 1
-    c, a = agent.read_losses()
+    losses = agent.read_losses()
+    assert set(losses) == {"critic", "actor"}
+    c, a = losses["critic"], losses["actor"]
     assert np.isfinite(c) and np.isfinite(a)
     assert agent.read_losses() is None
     assert all(p.grad is None for p in agent.critic_target.parameters())
@@ -95,7 +97,7 @@ def test_config_errors_and_overrides(tmp_path) -> None:
     assert cfg.total_samples == 20000 and isinstance(cfg.total_samples, int)
     assert cfg.demo_fn is None and cfg.critic_hidden == (8, 8) and cfg.env_id == "Foo-v0"
     path.write_text(json.dumps({"gamam": 0.9}))
-    with pytest.raises(ValueError, match="unknown DDPG config key"):
+    with pytest.raises(ValueError, match="unknown training config key"):
         load_config(path)
     with pytest.raises(ValueError, match="tau"):
         apply_overrides(cfg, ["tau=0"])
@@ -142,7 +144,7 @@ def test_bf16_autocast_update_tracks_float32() -> None:
         agent = DDPG(4, 2, DDPGConfig(actor_hidden=(32, 32), critic_hidden=(32, 32), batch_size=16, autocast_bf16=bf16))
         for _ in range(20):
             agent.update(_batch())
-        losses[bf16] = agent.read_losses()
+        losses[bf16] = list(agent.read_losses().values())
     assert np.allclose(losses[True], losses[False], rtol=0.05, atol=1e-3), losses
 
 

@@ -1,10 +1,11 @@
-"""CLI: ``python -m train SKILL --seed 0 --out runs/NAME [--config X.json] [--resume] [--samples N] [--set k=v ...]``.
+"""CLI: ``python -m train SKILL --seed 0 --out runs/NAME [--algo td3] [--config X.json] [--resume] [--samples N] [--set k=v ...]``.
 
 SKILL is go-to-ball, aim-to-shoot or pendulum and picks the default config in
 ``train/configs/``; ``--config`` replaces it, ``--set`` overrides single keys
 (values parsed as JSON: ``--set actor_hidden=[64,64] --set demo_fn=null``).
-With ``--resume`` the config stored in OUT's checkpoint is used (``--samples``
-and ``--set`` still apply on top, e.g. to extend a finished run).
+``--algo`` picks the learning algorithm (same as ``--set algo=NAME``; default: the
+config's, ``ddpg``). With ``--resume`` the config stored in OUT's checkpoint is used
+(``--samples`` and ``--set`` still apply on top, e.g. to extend a finished run).
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ import json
 import sys
 from pathlib import Path
 
+from .algos import ALGOS
 from .config import SKILL_CONFIGS, apply_overrides, default_config, load_config
 
 
@@ -22,7 +24,9 @@ def build_parser() -> argparse.ArgumentParser:
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("skill", choices=sorted(SKILL_CONFIGS), help="which default config to start from")
     p.add_argument("--config", type=Path, default=None, help="JSON config (default: train/configs/<skill>.json)")
-    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--algo", choices=sorted(ALGOS), default=None,
+                   help="learning algorithm (default: the config's 'algo', ddpg); same as --set algo=NAME")
+    p.add_argument("--seed", type=int, default=0, help="training seed (evaluation during training uses seed + 1000)")
     p.add_argument("--out", type=Path, required=True, help="run folder (logs, checkpoints, actor.pt)")
     p.add_argument("--resume", action="store_true", help="continue from OUT/checkpoint.pt")
     p.add_argument("--samples", type=int, default=None, help="override total_samples (env samples)")
@@ -44,7 +48,8 @@ def main(argv: list[str] | None = None) -> int:
     else:
         cfg = load_config(args.config) if args.config else default_config(args.skill)
         seed = args.seed
-    overrides = list(args.overrides) + ([f"total_samples={args.samples}"] if args.samples is not None else [])
+    overrides = list(args.overrides) + ([f"total_samples={args.samples}"] if args.samples is not None else []) \
+        + ([f"algo={args.algo}"] if args.algo is not None else [])
     cfg = apply_overrides(cfg, overrides)
     result = train(cfg, seed, args.out, resume=args.resume, progress=not args.no_progress)
     summary = {k: result[k] for k in ("mean_return", "std_return", "mean_length", "success_rate", "wall_time_s")}

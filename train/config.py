@@ -1,4 +1,7 @@
-"""DDPG hyperparameters: one documented dataclass, loaded from JSON, overridable by ``--set``.
+"""Training hyperparameters: one documented dataclass, loaded from JSON, overridable by ``--set``.
+
+One flat dataclass for every algorithm (``algo``: ``ddpg`` or ``td3``, see
+:mod:`train.algos`); an algorithm's own keys carry its name (``td3_*``).
 
 JSON files live in ``train/configs/``; keys starting with ``_`` are comments and
 ignored; any other unknown key is an error (a typo must not silently fall back
@@ -34,9 +37,25 @@ def _skill_configs() -> dict[str, str]:
 SKILL_CONFIGS = _skill_configs()
 
 
+def cpu_has_fast_bf16(cpuinfo: str | Path = "/proc/cpuinfo") -> bool:
+    """True when this CPU computes bfloat16 matrix products natively: AMX (``amx_bf16``,
+    Intel Sapphire Rapids and later) or AVX512-BF16 (``avx512_bf16``: Intel Cooper Lake,
+    AMD Zen 4 and later), read from the ``flags`` line of ``cpuinfo`` (Linux x86); False
+    where that file is missing or names neither. Without them torch emulates bfloat16
+    and autocast does not pay (docs/BENCHMARKS.md)."""
+    try:
+        with open(cpuinfo) as f:
+            for line in f:
+                if line.startswith("flags"):
+                    return bool(set(line.split(":", 1)[1].split()) & {"amx_bf16", "avx512_bf16"})
+    except OSError:
+        pass
+    return False
+
+
 @dataclass
-class DDPGConfig:
-    """Everything that defines a DDPG run except the seed and the output folder.
+class TrainConfig:
+    """Everything that defines a training run except the seed and the output folder.
 
     From the paper (Tables 1 and 2): learning rates, layer sizes, replay size,
     OU noise (theta 0.15, mu 0, sigma 0.3) and the number of demonstration
@@ -57,6 +76,12 @@ class DDPGConfig:
       training samples"); demonstration transitions are counted separately.
     * ``num_envs`` 1 synchronous env; ``eval_interval`` 25,000 samples with
       ``eval_episodes`` 10 deterministic episodes; ``checkpoint_interval`` 50,000.
+    * ``algo`` "ddpg" (the paper's); "td3" adds twin critics, target policy
+      smoothing and delayed actor updates (``td3_*`` keys, the TD3 paper's values).
+    * ``exploration`` "ou" (the paper's OU noise); "gaussian" draws independent
+      N(0, ``gaussian_sigma``) noise each step (TD3 paper: 0.1).
+    * ``autocast_bf16``: on by default only where the CPU has native bfloat16
+      (:func:`cpu_has_fast_bf16`); ``compile`` off by default (~30 s of start-up).
     * ``torch_threads`` 1: 2 threads are ~1.4x faster on an idle 2-core
       machine, but two 2-thread trainers sharing 2 cores slow each other down
       several-fold (OpenMP spin-waiting); 1 is the safe default (see
@@ -66,6 +91,8 @@ class DDPGConfig:
     per env step (1.0 = the textbook discrete OU); intervals in env samples.
     """
 
+    # --- algorithm ----------------------------------------------------------
+    algo: str = "ddpg"  #: learning algorithm, a key of train.algos.ALGOS ("ddpg", "td3")
     # --- task --------------------------------------------------------------
     skill: str = "go_to_ball"  #: skill name stored in the exported actor's metadata
     env_id: str = "ssl_marl/GoToBall-v0"  #: Gymnasium id ("module:id" imports module first)
@@ -80,7 +107,7 @@ class DDPGConfig:
     actor_lr: float = 1e-4
     critic_lr: float = 1e-3
     critic_weight_decay: float = 0.0  #: Adam L2 on the critic (original DDPG: 1e-2)
-    # --- DDPG --------------------------------------------------------------
+    # --- learning (every algorithm) ------------------------------------------
     gamma: float = 0.99
     tau: float = 0.005
     batch_size: int = 256
@@ -92,7 +119,13 @@ class DDPGConfig:
     bc_weight: float = 0.0  #: DDPGfD-style behaviour cloning: + bc_weight * MSE(mu(s_d), a_d) on demo rows (0: plain DDPG)
     bc_batch_size: int = 64  #: demonstration rows per update for the behaviour-cloning term
     reward_scale: float = 1.0  #: rewards are multiplied by this before storage (logs show raw)
-    # --- exploration (Ornstein-Uhlenbeck, in the actor's [-1, 1] action units) --
+    # --- TD3 (Fujimoto et al. 2018; in the actor's [-1, 1] action units) ------
+    td3_policy_noise: float = 0.2  #: std of the target policy smoothing noise
+    td3_noise_clip: float = 0.5  #: the smoothing noise is clipped to +-this
+    td3_policy_delay: int = 2  #: critic updates per actor (and target) update
+    # --- exploration (in the actor's [-1, 1] action units) --------------------
+    exploration: str = "ou"  #: "ou" (Ornstein-Uhlenbeck, ou_* keys) or "gaussian" (gaussian_sigma)
+    gaussian_sigma: float = 0.1  #: std of the Gaussian exploration noise
     ou_theta: float = 0.15
     ou_mu: float = 0.0
     ou_sigma: float = 0.3
@@ -107,7 +140,7 @@ class DDPGConfig:
     log_interval: int = 100  #: updates between loss read-outs (avoids a .item() sync per update)
     # --- speed -------------------------------------------------------------
     torch_threads: int = 1  #: torch.set_num_threads; 0 leaves torch's default
-    autocast_bf16: bool = False  #: bfloat16 autocast of the forward passes (matrix products in bf16; less precise)
+    autocast_bf16: bool = field(default_factory=cpu_has_fast_bf16)  #: bfloat16 autocast of the forward passes (matrix products in bf16; less precise); default: on where the CPU has native bf16
     compile: bool = False  #: torch.compile the loss functions (~30 s start-up; with autocast_bf16 see BENCHMARKS.md)
 
     def __post_init__(self) -> None:
@@ -118,11 +151,11 @@ class DDPGConfig:
             elif f.type == "float" and isinstance(v, int) and not isinstance(v, bool):
                 setattr(self, f.name, float(v))
             elif f.type in ("int", "float", "bool") and not isinstance(getattr(self, f.name), (int, float)):
-                raise ValueError(f"invalid DDPG config: {f.name} must be {f.type} (got {v!r})")
+                raise ValueError(f"invalid training config: {f.name} must be {f.type} (got {v!r})")
         if self.ou_sigma_per_dim is not None:
             self.ou_sigma_per_dim = tuple(float(v) for v in self.ou_sigma_per_dim)
             if any(v < 0 for v in self.ou_sigma_per_dim):
-                raise ValueError(f"invalid DDPG config: ou_sigma_per_dim must be >= 0 (got {self.ou_sigma_per_dim})")
+                raise ValueError(f"invalid training config: ou_sigma_per_dim must be >= 0 (got {self.ou_sigma_per_dim})")
         self.actor_hidden = tuple(int(h) for h in self.actor_hidden)
         self.critic_hidden = tuple(int(h) for h in self.critic_hidden)
         self.env_kwargs = dict(self.env_kwargs)
@@ -132,7 +165,8 @@ class DDPGConfig:
             if not getattr(self, name) > 0:
                 problems.append(f"{name} must be > 0 (got {getattr(self, name)!r})")
         for name in ("total_samples", "warmup_samples", "demo_steps", "eval_interval", "critic_weight_decay",
-                     "torch_threads", "updates_per_sample", "ou_sigma", "ou_theta", "bc_weight"):
+                     "torch_threads", "updates_per_sample", "ou_sigma", "ou_theta", "bc_weight", "gaussian_sigma",
+                     "td3_policy_noise", "td3_noise_clip"):
             if getattr(self, name) < 0:
                 problems.append(f"{name} must be >= 0 (got {getattr(self, name)!r})")
         if not 0.0 <= self.gamma <= 1.0:
@@ -143,6 +177,15 @@ class DDPGConfig:
             problems.append(f"ou_dt must be > 0 (got {self.ou_dt})")
         if not self.actor_hidden or not self.critic_hidden or min(self.actor_hidden + self.critic_hidden) <= 0:
             problems.append("actor_hidden and critic_hidden need at least one positive size")
+        if self.td3_policy_delay < 1:
+            problems.append(f"td3_policy_delay must be >= 1 (got {self.td3_policy_delay})")
+        from .algos import ALGOS  # late: the algorithms import this module
+        from .exploration import EXPLORATIONS
+
+        if self.algo not in ALGOS:
+            problems.append(f"algo must be one of {sorted(ALGOS)} (got {self.algo!r})")
+        if self.exploration not in EXPLORATIONS:
+            problems.append(f"exploration must be one of {sorted(EXPLORATIONS)} (got {self.exploration!r})")
         if self.vector_mode not in ("sync", "async"):
             problems.append(f"vector_mode must be 'sync' or 'async' (got {self.vector_mode!r})")
         if self.demo_steps > 0 and not self.demo_fn:
@@ -150,7 +193,7 @@ class DDPGConfig:
         if self.demo_steps > self.buffer_size:
             problems.append(f"demo_steps ({self.demo_steps}) exceeds buffer_size ({self.buffer_size})")
         if problems:
-            raise ValueError("invalid DDPG config: " + "; ".join(problems))
+            raise ValueError("invalid training config: " + "; ".join(problems))
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-safe dict (tuples as lists)."""
@@ -158,22 +201,26 @@ class DDPGConfig:
         return {k: list(v) if isinstance(v, tuple) else v for k, v in d.items()}
 
 
+#: the name this dataclass had while DDPG was the only algorithm (kept for existing code)
+DDPGConfig = TrainConfig
+
+
 def _field_names() -> set[str]:
-    return {f.name for f in dataclasses.fields(DDPGConfig)}
+    return {f.name for f in dataclasses.fields(TrainConfig)}
 
 
-def config_from_dict(data: Mapping[str, Any], base: DDPGConfig | None = None) -> DDPGConfig:
+def config_from_dict(data: Mapping[str, Any], base: TrainConfig | None = None) -> TrainConfig:
     """Build a config from ``data`` (over ``base`` or the defaults); unknown keys raise ValueError."""
     unknown = sorted(k for k in data if not k.startswith("_") and k not in _field_names())
     if unknown:
-        raise ValueError(f"unknown DDPG config key(s) {unknown}; valid keys: {sorted(_field_names())}")
+        raise ValueError(f"unknown training config key(s) {unknown}; valid keys: {sorted(_field_names())}")
     values = base.to_dict() if base is not None else {}
     values.update({k: v for k, v in data.items() if not k.startswith("_")})
-    return DDPGConfig(**values)
+    return TrainConfig(**values)
 
 
-def load_config(path: str | Path) -> DDPGConfig:
-    """Read a JSON config file (see :class:`DDPGConfig` for the keys)."""
+def load_config(path: str | Path) -> TrainConfig:
+    """Read a JSON config file (see :class:`TrainConfig` for the keys)."""
     path = Path(path)
     try:
         data = json.loads(path.read_text())
@@ -186,7 +233,7 @@ def load_config(path: str | Path) -> DDPGConfig:
     return config_from_dict(data)
 
 
-def default_config(skill: str) -> DDPGConfig:
+def default_config(skill: str) -> TrainConfig:
     """The shipped config for a CLI skill name ("go-to-ball", "aim-to-shoot", "pendulum")."""
     if skill not in SKILL_CONFIGS:
         raise ValueError(f"unknown skill {skill!r}; expected one of {sorted(SKILL_CONFIGS)}")
@@ -206,7 +253,7 @@ def parse_override(text: str) -> tuple[str, Any]:
     return key, value
 
 
-def apply_overrides(cfg: DDPGConfig, overrides: Iterable[str]) -> DDPGConfig:
+def apply_overrides(cfg: TrainConfig, overrides: Iterable[str]) -> TrainConfig:
     """Return a new config with ``--set key=value`` overrides applied (validated)."""
     data = dict(parse_override(o) for o in overrides)
     return config_from_dict(data, base=cfg) if data else cfg

@@ -1,4 +1,9 @@
-"""The training loop: demo burn-in, collection with OU noise, updates, logs, checkpoints, export.
+"""The training loop: demo burn-in, collection with exploration noise, updates, logs, checkpoints, export.
+
+Algorithm-free: the agent (:mod:`train.algos`, chosen by ``cfg.algo``) does the
+updates, the exploration process (:mod:`train.exploration`, ``cfg.exploration``)
+perturbs its actions; this module collects, logs, evaluates, checkpoints and
+exports.
 
 Data handling (Gymnasium 1.x vector envs, ``AutoresetMode.NEXT_STEP``):
 
@@ -18,17 +23,13 @@ Output folder: ``progress.csv`` (one row per episode, demo episodes flagged
 ``phase=demo``), ``eval.csv``, ``checkpoint.pt`` + ``replay-*.npz``,
 ``actors/actor-<samples>.pt`` (the actor at each checkpoint, for model selection),
 ``config.json``, ``actor.pt`` (export), ``eval.json`` (final evaluation),
-``learning_curve.png``, and ``tb/`` when TensorBoard is installed.
+``learning_curve.png``, and ``tb/`` when TensorBoard is installed (:mod:`train.logs`).
 """
 
 from __future__ import annotations
 
-import csv
 import importlib
-import json
-import os
 import random
-import tempfile
 import time
 from collections import deque
 from collections.abc import Callable, Iterable, Mapping
@@ -42,20 +43,19 @@ from gymnasium.vector import AsyncVectorEnv, AutoresetMode, SyncVectorEnv
 from tqdm import tqdm
 
 import ssl_marl  # noqa: F401  (registers the ssl_marl/* Gymnasium ids)
-from ssl_marl.skills.checkpoint import atomic_torch_save, safe_torch_load, save_actor
+from ssl_marl.io import atomic_write_json
+from ssl_marl.skills.checkpoint import atomic_torch_save, save_actor
 
-from .config import DDPGConfig, config_from_dict
-from .ddpg import DDPG
+from .algos import make_agent
+from .checkpoints import CHECKPOINT, FORMAT, VERSION, actor_metadata, load_run_config, read_train_state
+from .config import TrainConfig
 from .evaluate import ActionScaler, evaluate_actor, make_env, run_episodes
-from .noise import OUNoise
+from .exploration import make_exploration
+from .logs import EVAL_FIELDS, CsvLog, TensorBoardLog, progress_fields
 from .replay import ReplayBuffer
 
-CHECKPOINT = "checkpoint.pt"
+__all__ = ["CHECKPOINT", "Trainer", "load_run_config", "train"]
 DemoFn = Callable[..., Iterable[Any]]
-BASE_FIELDS = ["phase", "samples", "transitions", "episode", "return", "length", "success", "critic_loss",
-               "actor_loss", "updates", "wall_time"]
-EVAL_FIELDS = ["samples", "transitions", "updates", "mean_return", "std_return", "mean_length", "success_rate",
-               "wall_time"]
 
 
 def resolve_callable(path: str) -> Callable[..., Any]:
@@ -84,71 +84,30 @@ def _masked(info: Mapping[str, Any], key: str, i: int) -> Any:
     return info[key][i]
 
 
-class CsvLog:
-    """Append-only CSV, flushed per row. Columns fixed by the existing header or the first row."""
-
-    def __init__(self, path: Path, fields: list[str] | None = None) -> None:
-        self.path, self.fields, self.rows, self._initial_fields = path, fields, 0, fields
-        if path.exists() and path.stat().st_size > 0:
-            with path.open(newline="") as f:
-                reader = csv.reader(f)
-                self.fields = next(reader)
-                self.rows = sum(1 for _ in reader)
-        self._f = None
-
-    def write(self, row: Mapping[str, Any]) -> None:
-        if self._f is None:
-            new = self.rows == 0
-            if self.fields is None:
-                self.fields = list(row)
-            self._f = self.path.open("a" if not new else "w", newline="")
-            self._w = csv.DictWriter(self._f, self.fields, extrasaction="ignore")
-            if new:
-                self._w.writeheader()
-        self._w.writerow({k: ("" if v is None else v) for k, v in row.items()})
-        self._f.flush()
-        self.rows += 1
-
-    def truncate(self, rows: int) -> None:
-        """Keep the header and the first ``rows`` rows (drop what was logged after a checkpoint)."""
-        self.close()
-        if not self.path.exists():
-            return
-        lines = self.path.read_text().splitlines(keepends=True)
-        _atomic_write_text(self.path, "".join(lines[: rows + 1]))
-        self.rows = min(rows, max(len(lines) - 1, 0))
-
-    def clear(self) -> None:
-        """Start the file afresh (a new run in a folder left by a run that never checkpointed)."""
-        self.close()
-        self.path.unlink(missing_ok=True)
-        self.fields, self.rows = self._initial_fields, 0
-
-    def close(self) -> None:
-        if self._f is not None:
-            self._f.close()
-            self._f = None
-
-
-def _atomic_write_text(path: Path, text: str) -> None:
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    with os.fdopen(fd, "w") as f:
-        f.write(text)
-    os.replace(tmp, path)
-
-
-def _tensorboard(out: Path) -> Any:
-    try:
-        from torch.utils.tensorboard import SummaryWriter
-    except Exception:  # tensorboard not installed: optional
-        return None
-    return SummaryWriter(str(out / "tb"))
+def check_demo(tr: Any, n: int, obs_dim: int, scaler: ActionScaler) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Demonstration transition ``n`` as (obs, action in [-1, 1], next_obs); ValueError naming what
+    does not fit the env's spaces."""
+    obs = np.asarray(tr.obs, np.float32)
+    next_obs = np.asarray(tr.next_obs, np.float32)
+    act = np.asarray(tr.action, np.float64)
+    problems = []
+    if obs.shape != (obs_dim,) or next_obs.shape != (obs_dim,):
+        problems.append(f"obs shapes {obs.shape}/{next_obs.shape} != ({obs_dim},)")
+    if act.shape != scaler.low.shape:
+        problems.append(f"action shape {act.shape} != {scaler.low.shape}")
+    elif np.any(act < scaler.low - 1e-5) or np.any(act > scaler.high + 1e-5):
+        problems.append(f"action {act} outside [{scaler.low}, {scaler.high}]")
+    if not (np.all(np.isfinite(obs)) and np.all(np.isfinite(next_obs)) and np.isfinite(tr.reward)):
+        problems.append("non-finite obs or reward")
+    if problems:
+        raise ValueError(f"demo transition {n} does not fit the env's spaces: " + "; ".join(problems))
+    return obs, scaler.from_env(np.clip(act, scaler.low, scaler.high)), next_obs
 
 
 class Trainer:
-    """One DDPG run writing to ``out``; :meth:`run` trains to ``cfg.total_samples`` env samples."""
+    """One training run writing to ``out``; :meth:`run` trains to ``cfg.total_samples`` env samples."""
 
-    def __init__(self, cfg: DDPGConfig, seed: int, out: str | Path, demo_fn: DemoFn | None = None,
+    def __init__(self, cfg: TrainConfig, seed: int, out: str | Path, demo_fn: DemoFn | None = None,
                  progress: bool = True) -> None:
         self.cfg, self.seed, self.out, self.progress = cfg, int(seed), Path(out), progress
         self.out.mkdir(parents=True, exist_ok=True)
@@ -162,18 +121,15 @@ class Trainer:
         self.eval_env = make_env(cfg.env_id, cfg.env_kwargs, cfg.max_episode_steps)
         obs_space, act_space = self.eval_env.observation_space, self.eval_env.action_space
         if not isinstance(obs_space, gym.spaces.Box) or len(obs_space.shape) != 1:
-            raise ValueError(f"DDPG needs a flat Box observation space, got {obs_space}")
+            raise ValueError(f"{cfg.algo} needs a flat Box observation space, got {obs_space}")
         self.obs_dim, self.act_dim = obs_space.shape[0], int(np.prod(act_space.shape))
         self.scaler = ActionScaler(act_space)
         self.obs_spec = spec_version(self.eval_env, cfg.env_id)
         self.demo_fn = demo_fn if demo_fn is not None else (resolve_callable(cfg.demo_fn) if cfg.demo_fn else None)
 
-        self.agent = DDPG(self.obs_dim, self.act_dim, cfg)
+        self.agent = make_agent(self.obs_dim, self.act_dim, cfg)
         self.buffer = ReplayBuffer(cfg.buffer_size, self.obs_dim, self.act_dim, cfg.batch_size, replay_rng)
-        sigma = cfg.ou_sigma if cfg.ou_sigma_per_dim is None else cfg.ou_sigma_per_dim
-        if cfg.ou_sigma_per_dim is not None and len(cfg.ou_sigma_per_dim) != self.act_dim:
-            raise ValueError(f"ou_sigma_per_dim has {len(cfg.ou_sigma_per_dim)} values, the action has {self.act_dim}")
-        self.noise = OUNoise(cfg.num_envs, self.act_dim, cfg.ou_theta, cfg.ou_mu, sigma, cfg.ou_dt, noise_rng)
+        self.noise = make_exploration(cfg, cfg.num_envs, self.act_dim, noise_rng)
         env_fns = [lambda: make_env(cfg.env_id, cfg.env_kwargs, cfg.max_episode_steps)] * cfg.num_envs
         vec_cls = SyncVectorEnv if cfg.vector_mode == "sync" else AsyncVectorEnv
         self.envs = vec_cls(env_fns, autoreset_mode=AutoresetMode.NEXT_STEP)
@@ -188,13 +144,13 @@ class Trainer:
         self.next_eval = cfg.eval_interval if cfg.eval_interval > 0 else None
         self.next_checkpoint = cfg.checkpoint_interval
         self.wall_offset = 0.0
-        self.losses: tuple[float, float] | None = None
+        self.losses: dict[str, float] | None = None  # the last read-out of the agent's named losses
         self.recent_returns: deque[float] = deque(maxlen=100)
         self.recent_success: deque[float] = deque(maxlen=100)
 
         self.log = CsvLog(self.out / "progress.csv")
         self.eval_log = CsvLog(self.out / "eval.csv", EVAL_FIELDS)
-        self.tb = _tensorboard(self.out)
+        self.tb: TensorBoardLog | None = None  # opened by run() (it knows whether this is a resume)
         self._t0 = time.perf_counter()
 
     # --- helpers --------------------------------------------------------------
@@ -217,19 +173,18 @@ class Trainer:
         if success is not None:
             self.recent_success.append(float(bool(success)))
         if self.log.fields is None:  # first row fixes the columns: base + reward terms seen now
-            self.log.fields = BASE_FIELDS + [f"r_{k}" for k in sorted(terms)]
+            self.log.fields = progress_fields(self.agent.loss_names, list(terms))
+        losses = self.losses or {}
         row = {"phase": phase, "samples": self.samples, "transitions": self.transitions, "episode": self.episodes,
                "return": round(ret, 6), "length": length, "success": None if success is None else int(bool(success)),
-               "critic_loss": None if self.losses is None else round(self.losses[0], 6),
-               "actor_loss": None if self.losses is None else round(self.losses[1], 6),
+               **{f"{k}_loss": None if k not in losses else round(losses[k], 6) for k in self.agent.loss_names},
                "updates": self.agent.updates, "wall_time": round(self.wall_time(), 3)}
         row.update({f"r_{k}": round(float(v), 6) for k, v in terms.items()})
         self.log.write(row)
         if self.tb is not None:
-            self.tb.add_scalar(f"{phase}/return", ret, self.transitions)
-            self.tb.add_scalar(f"{phase}/length", length, self.transitions)
-            if success is not None:
-                self.tb.add_scalar(f"{phase}/success", float(bool(success)), self.transitions)
+            self.tb.scalars(phase, {"return": ret, "length": length, "success": row["success"],
+                                    **{f"r_{k}": v for k, v in terms.items()}},
+                            self.transitions if phase == "demo" else self.samples)
 
     # --- demonstration burn-in -------------------------------------------------
     def burn_in(self) -> None:
@@ -253,9 +208,9 @@ class Trainer:
                    dynamic_ncols=True)
         n = 0
         for n, tr in enumerate(self.demo_fn(n_steps=cfg.demo_steps, seed=self.seed, **cfg.env_kwargs), 1):
-            obs, act, next_obs = self._check_demo(tr, n)
+            obs, act, next_obs = check_demo(tr, n, self.obs_dim, self.scaler)
             chunk["obs"].append(obs)
-            chunk["act"].append(self.scaler.from_env(act))
+            chunk["act"].append(act)
             chunk["rew"].append(float(tr.reward))
             chunk["next_obs"].append(next_obs)
             chunk["term"].append(float(bool(tr.terminated)))
@@ -277,23 +232,6 @@ class Trainer:
         if n < cfg.demo_steps:
             raise ValueError(f"demo source produced {n} transitions, expected {cfg.demo_steps}")
         self.demo_done = True
-
-    def _check_demo(self, tr: Any, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        obs = np.asarray(tr.obs, np.float32)
-        next_obs = np.asarray(tr.next_obs, np.float32)
-        act = np.asarray(tr.action, np.float64)
-        problems = []
-        if obs.shape != (self.obs_dim,) or next_obs.shape != (self.obs_dim,):
-            problems.append(f"obs shapes {obs.shape}/{next_obs.shape} != ({self.obs_dim},)")
-        if act.shape != (self.act_dim,):
-            problems.append(f"action shape {act.shape} != ({self.act_dim},)")
-        elif np.any(act < self.scaler.low - 1e-5) or np.any(act > self.scaler.high + 1e-5):
-            problems.append(f"action {act} outside [{self.scaler.low}, {self.scaler.high}]")
-        if not (np.all(np.isfinite(obs)) and np.all(np.isfinite(next_obs)) and np.isfinite(tr.reward)):
-            problems.append("non-finite obs or reward")
-        if problems:
-            raise ValueError(f"demo transition {n} does not fit the env's spaces: " + "; ".join(problems))
-        return obs, np.clip(act, self.scaler.low, self.scaler.high), next_obs
 
     # --- collection -----------------------------------------------------------
     def collect_step(self) -> int:
@@ -345,10 +283,11 @@ class Trainer:
             self.agent.update(self.buffer.sample(), demo)
             self.update_credit -= 1.0
             if self.agent.updates % cfg.log_interval == 0:
-                self.losses = self.agent.read_losses()
-                if self.tb is not None and self.losses is not None:
-                    self.tb.add_scalar("loss/critic", self.losses[0], self.transitions)
-                    self.tb.add_scalar("loss/actor", self.losses[1], self.transitions)
+                losses = self.agent.read_losses()
+                if losses is not None:
+                    self.losses = {**(self.losses or {}), **losses}
+                    if self.tb is not None:
+                        self.tb.scalars("loss", losses, self.samples)
 
     def evaluate(self) -> dict[str, Any]:
         """Deterministic evaluation on the fixed eval start states (seed + 1000); logged to eval.csv."""
@@ -358,7 +297,8 @@ class Trainer:
                "wall_time": round(self.wall_time(), 3), **{k: res[k] for k in EVAL_FIELDS if k in res}}
         self.eval_log.write(row)
         if self.tb is not None:
-            self.tb.add_scalar("eval/return", res["mean_return"], self.transitions)
+            self.tb.scalars("eval", {k: res[k] for k in ("mean_return", "std_return", "mean_length", "success_rate")},
+                            self.samples)
         return res
 
     # --- checkpoints ----------------------------------------------------------
@@ -371,16 +311,15 @@ class Trainer:
         replay_name = f"replay-{self.transitions:012d}.npz"
         self.buffer.save(self.out / replay_name)
         state = {
-            "format": "ssl_marl.train_state", "version": 1, "config": self.cfg.to_dict(), "seed": self.seed,
-            "agent": self.agent.state_dict(), "noise": self.noise.state_dict(),
+            "format": FORMAT, "version": VERSION, "algo": self.cfg.algo, "config": self.cfg.to_dict(),
+            "seed": self.seed, "agent": self.agent.state_dict(), "exploration": self.noise.state_dict(),
             "rng": {"action": self.rng.bit_generator.state, "replay": self.buffer.rng.bit_generator.state,
                     "torch": torch.get_rng_state(), "python": random.getstate()},
             "counters": {"samples": self.samples, "transitions": self.transitions, "episodes": self.episodes,
                          "segment": self.segment, "env_seed": self.env_seed, "update_credit": self.update_credit,
                          "demo_done": self.demo_done, "next_eval": self.next_eval,
                          "next_checkpoint": self.next_checkpoint, "wall_time": self.wall_time()},
-            "losses": list(self.losses) if self.losses is not None else None,
-            "pending_losses": [self.agent._loss_sum.clone(), self.agent._loss_count],
+            "losses": self.losses,
             "recent": {"returns": list(self.recent_returns), "success": list(self.recent_success)},
             "csv_rows": {"progress": self.log.rows, "eval": self.eval_log.rows}, "replay_file": replay_name,
         }
@@ -392,13 +331,13 @@ class Trainer:
         return self.out / CHECKPOINT
 
     def load_checkpoint(self) -> None:
-        state = safe_torch_load(self.out / CHECKPOINT, "ssl_marl training checkpoint")
-        if not isinstance(state, dict) or state.get("format") != "ssl_marl.train_state":
-            raise ValueError(f"{self.out / CHECKPOINT} is not a valid ssl_marl training checkpoint")
+        state = read_train_state(self.out / CHECKPOINT)
         if int(state["seed"]) != self.seed:
             raise ValueError(f"checkpoint was made with seed {state['seed']}, not {self.seed}")
+        if state["algo"] != self.cfg.algo:
+            raise ValueError(f"checkpoint was trained with algo {state['algo']!r}, not {self.cfg.algo!r}")
         self.agent.load_state_dict(state["agent"])
-        self.noise.load_state_dict(state["noise"])
+        self.noise.load_state_dict(state["exploration"])
         self.buffer.load(self.out / state["replay_file"])
         self.rng.bit_generator.state = state["rng"]["action"]
         self.buffer.rng.bit_generator.state = state["rng"]["replay"]
@@ -410,9 +349,7 @@ class Trainer:
         self.next_eval, self.next_checkpoint = c["next_eval"], int(c["next_checkpoint"])
         self.wall_offset = float(c["wall_time"])
         self._t0 = time.perf_counter()
-        self.losses = tuple(state["losses"]) if state["losses"] is not None else None  # type: ignore[assignment]
-        self.agent._loss_sum.copy_(state["pending_losses"][0])
-        self.agent._loss_count = int(state["pending_losses"][1])
+        self.losses = dict(state["losses"]) if state["losses"] is not None else None
         self.recent_returns.extend(state["recent"]["returns"])
         self.recent_success.extend(state["recent"]["success"])
         self.log.truncate(int(state["csv_rows"]["progress"]))
@@ -425,13 +362,15 @@ class Trainer:
     def run(self, resume: bool = False) -> dict[str, Any]:
         """Train (or resume) to ``cfg.total_samples``; export ``actor.pt``; return a summary."""
         cfg = self.cfg
-        _atomic_write_text(self.out / "config.json", json.dumps({**cfg.to_dict(), "seed": self.seed}, indent=2))
+        atomic_write_json(self.out / "config.json", {**cfg.to_dict(), "seed": self.seed})
         if resume:
             self.load_checkpoint()
         else:
             self.log.clear()
             self.eval_log.clear()
             self._reset_envs()
+        self.tb = TensorBoardLog(self.out / "tb", purge_step=self.samples if resume else None)
+        if not resume:
             self.burn_in()
         bar = tqdm(total=cfg.total_samples, initial=min(self.samples, cfg.total_samples), desc=cfg.skill,
                    unit="sample", disable=not self.progress, dynamic_ncols=True, smoothing=0.05)
@@ -455,25 +394,23 @@ class Trainer:
             self.envs.close()
             self.log.close()
             self.eval_log.close()
-            if self.tb is not None:
-                self.tb.close()
+            self.tb.close()
         return self.finish()
 
     def postfix(self) -> dict[str, str]:
         d = {"ret": f"{np.mean(self.recent_returns):.1f}" if self.recent_returns else "-"}
         if self.recent_success:
             d["succ"] = f"{np.mean(self.recent_success):.2f}"
-        if self.losses is not None:
-            d["Lc"], d["La"] = f"{self.losses[0]:.3g}", f"{self.losses[1]:.3g}"
+        for k, v in (self.losses or {}).items():
+            d[f"L{k[0]}"] = f"{v:.3g}"
         d["upd"] = str(self.agent.updates)
         return d
 
     def export_actor(self, path: Path | None = None) -> Path:
         """Write the current actor with its metadata (``OUT/actor.pt`` by default)."""
-        meta = {"skill": self.cfg.skill, "obs_spec": self.obs_spec, "env_id": self.cfg.env_id,
-                "hyperparameters": self.cfg.to_dict(), "seed": self.seed, "samples": self.samples,
-                "demo_transitions": self.transitions - self.samples, "updates": self.agent.updates,
-                "action_low": self.scaler.low.tolist(), "action_high": self.scaler.high.tolist()}
+        meta = actor_metadata(self.cfg, obs_spec=self.obs_spec, seed=self.seed, samples=self.samples,
+                              transitions=self.transitions, updates=self.agent.updates,
+                              action_low=self.scaler.low.tolist(), action_high=self.scaler.high.tolist())
         return save_actor(path or self.out / "actor.pt", self.agent.actor, meta)
 
     def finish(self) -> dict[str, Any]:
@@ -482,7 +419,7 @@ class Trainer:
         result = evaluate_actor(self.cfg.env_id, actor_path, self.cfg.eval_episodes, self.seed + 1000,
                                 self.cfg.env_kwargs, self.cfg.max_episode_steps)
         result["wall_time_s"] = round(self.wall_time(), 1)
-        _atomic_write_text(self.out / "eval.json", json.dumps(result, indent=2) + "\n")
+        atomic_write_json(self.out / "eval.json", result)
         self.eval_env.close()
         try:
             from .plots import plot_run
@@ -492,17 +429,9 @@ class Trainer:
         return result
 
 
-def load_run_config(out: str | Path) -> tuple[DDPGConfig, int]:
-    """Config and seed stored in ``OUT/checkpoint.pt`` (for ``--resume``)."""
-    state = safe_torch_load(Path(out) / CHECKPOINT, "ssl_marl training checkpoint")
-    if not isinstance(state, dict) or "config" not in state:
-        raise ValueError(f"{Path(out) / CHECKPOINT} is not a valid ssl_marl training checkpoint")
-    return config_from_dict(state["config"]), int(state["seed"])
-
-
-def train(cfg: DDPGConfig, seed: int, out: str | Path, resume: bool = False, demo_fn: DemoFn | None = None,
+def train(cfg: TrainConfig, seed: int, out: str | Path, resume: bool = False, demo_fn: DemoFn | None = None,
           progress: bool = True) -> dict[str, Any]:
-    """Train a DDPG actor per ``cfg``; return the final evaluation (also in ``OUT/eval.json``)."""
+    """Train an actor per ``cfg`` (algorithm ``cfg.algo``); return the final evaluation (also in ``OUT/eval.json``)."""
     out = Path(out)
     if not resume and (out / CHECKPOINT).exists():
         raise FileExistsError(f"{out} already holds a run; pass resume=True (--resume) or another output folder")

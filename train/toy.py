@@ -16,24 +16,14 @@ An idle policy (v = 0) scores about -0.5 * 40 = -20 on average; a good one about
 
 from __future__ import annotations
 
-from typing import Any, Iterator, NamedTuple
+from typing import Any, Iterator
 
 import gymnasium as gym
 import numpy as np
 
+from ssl_marl.skills.demos import Transition
+
 ENV_ID = "train_toy/MoveToTarget-v0"
-
-
-class Transition(NamedTuple):
-    """Same fields as ``ssl_marl.skills.demos.Transition``."""
-
-    obs: np.ndarray
-    action: np.ndarray
-    reward: float
-    next_obs: np.ndarray
-    terminated: bool
-    truncated: bool
-    info: dict
 
 
 class MoveToTarget(gym.Env):

@@ -1,11 +1,12 @@
-"""The DDPG learner: networks, optimisers and the update step (Lillicrap et al. 2016).
-
-One update, all of it in :meth:`DDPG.update`::
+"""DDPG (Lillicrap et al. 2016), the paper's algorithm: one update in :meth:`DDPG.update`::
 
     y        = r + gamma * (1 - terminated) * Q'(s', mu'(s'))      # no grad; truncations bootstrap
     L_critic = mean((Q(s, a) - y)^2)                               # Adam step on the critic
     L_actor  = -mean(Q(s, mu(s))) [+ w_bc * mean((mu(s_d) - a_d)^2)]  # Adam step on the actor only
     theta'   <- theta' + tau * (theta - theta')                    # Polyak, both targets
+
+Hyperparameters: :class:`train.config.TrainConfig` (``gamma``, ``tau``, learning rates,
+layer sizes, ``bc_weight``, ``autocast_bf16``, ``compile``).
 
 Speed (measured, see benchmarks/bench_ddpg.py and docs/BENCHMARKS.md): fused
 Adam; the critic's parameters frozen during the actor step (no critic weight
@@ -20,9 +21,7 @@ float32); ``compile`` hands the two loss functions (forward and backward) to
 
 from __future__ import annotations
 
-import contextlib
 import copy
-from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -31,52 +30,36 @@ import torch.nn.functional as F
 
 from ssl_marl.skills.networks import Actor, Critic
 
-from .config import DDPGConfig
-from .replay import Batch
+from ..config import TrainConfig
+from ..replay import Batch
+from .base import LossMeter, actor_act, adam, bf16_autocast, soft_update, td_target
 
-
-def td_target(rew: torch.Tensor, terminated: torch.Tensor, next_q: torch.Tensor, gamma: float) -> torch.Tensor:
-    """Bellman target r + gamma (1 - terminated) Q'(s', mu'(s')). Truncated (time-limit) steps have
-    terminated = 0 and so bootstrap; shapes (B,)."""
-    return rew + gamma * (1.0 - terminated) * next_q
-
-
-@torch.no_grad()
-def soft_update(target: Sequence[torch.Tensor], online: Sequence[torch.Tensor], tau: float) -> None:
-    """In place: target <- target + tau * (online - target), one fused foreach op."""
-    torch._foreach_lerp_(list(target), list(online), tau)
-
-
-def _adam(params: Any, lr: float, weight_decay: float = 0.0) -> torch.optim.Adam:
-    try:  # fused CPU Adam (torch >= 2.4) measured ~7% faster than foreach here
-        return torch.optim.Adam(params, lr=lr, weight_decay=weight_decay, fused=True)
-    except (RuntimeError, TypeError):
-        return torch.optim.Adam(params, lr=lr, weight_decay=weight_decay, foreach=True)
+__all__ = ["DDPG", "soft_update", "td_target"]
 
 
 class DDPG:
     """Actor, critic, their targets and optimisers; ``update(batch)`` does one gradient step of each."""
 
-    def __init__(self, obs_dim: int, act_dim: int, cfg: DDPGConfig) -> None:
+    loss_names = ("critic", "actor")
+
+    def __init__(self, obs_dim: int, act_dim: int, cfg: TrainConfig) -> None:
         self.cfg = cfg
         self.actor = Actor(obs_dim, act_dim, cfg.actor_hidden, cfg.layer_norm)
         self.critic = Critic(obs_dim, act_dim, cfg.critic_hidden, cfg.layer_norm)
         self.actor_target = copy.deepcopy(self.actor).requires_grad_(False)
         self.critic_target = copy.deepcopy(self.critic).requires_grad_(False)
-        self.actor_opt = _adam(self.actor.parameters(), cfg.actor_lr)
-        self.critic_opt = _adam(self.critic.parameters(), cfg.critic_lr, cfg.critic_weight_decay)
+        self.actor_opt = adam(self.actor.parameters(), cfg.actor_lr)
+        self.critic_opt = adam(self.critic.parameters(), cfg.critic_lr, cfg.critic_weight_decay)
         self._critic_params = list(self.critic.parameters())
         self._online = list(self.actor.parameters()) + self._critic_params
         self._target = list(self.actor_target.parameters()) + list(self.critic_target.parameters())
-        self._autocast = (lambda: torch.autocast("cpu", dtype=torch.bfloat16)) if cfg.autocast_bf16 \
-            else contextlib.nullcontext
+        self._autocast = bf16_autocast(cfg.autocast_bf16)
         self._critic_loss, self._actor_loss = self.critic_loss, self.actor_loss
         if cfg.compile:  # shapes are fixed (batch sizes), so no dynamic-shape graphs
             self._critic_loss = torch.compile(self.critic_loss, dynamic=False)
             self._actor_loss = torch.compile(self.actor_loss, dynamic=False)
         self.updates = 0
-        self._loss_sum = torch.zeros(2)  # (critic, actor) summed since the last read-out
-        self._loss_count = 0
+        self.losses = LossMeter(self.loss_names)
 
     def critic_loss(self, b: Batch) -> torch.Tensor:
         """mean((Q(s, a) - y)^2) with y from the target networks (no gradient through y)."""
@@ -116,31 +99,26 @@ class DDPG:
         self.actor_opt.step()
 
         soft_update(self._target, self._online, self.cfg.tau)
-        self._loss_sum += torch.stack((critic_loss.detach(), actor_loss.detach()))
-        self._loss_count += 1
+        self.losses.add(critic=critic_loss, actor=actor_loss)
         self.updates += 1
 
-    def read_losses(self) -> tuple[float, float] | None:
-        """Mean (critic, actor) loss since the last call (one sync), or None if no update since."""
-        if self._loss_count == 0:
-            return None
-        c, a = (self._loss_sum / self._loss_count).tolist()
-        self._loss_sum.zero_()
-        self._loss_count = 0
-        return c, a
+    def read_losses(self) -> dict[str, float] | None:
+        """Mean ``{"critic": ..., "actor": ...}`` since the last call (one sync), or None if no update since."""
+        return self.losses.read()
 
-    @torch.no_grad()
     def act(self, obs: np.ndarray) -> np.ndarray:
         """Deterministic actions in [-1, 1] for a (n, obs_dim) batch of observations."""
-        return self.actor(torch.from_numpy(np.asarray(obs, np.float32))).numpy()
+        return actor_act(self.actor, obs)
 
     def state_dict(self) -> dict[str, Any]:
         return {"actor": self.actor.state_dict(), "critic": self.critic.state_dict(),
                 "actor_target": self.actor_target.state_dict(), "critic_target": self.critic_target.state_dict(),
                 "actor_opt": self.actor_opt.state_dict(), "critic_opt": self.critic_opt.state_dict(),
-                "updates": self.updates}
+                "updates": self.updates, "losses": self.losses.state_dict()}
 
     def load_state_dict(self, state: dict[str, Any]) -> None:
         for name in ("actor", "critic", "actor_target", "critic_target", "actor_opt", "critic_opt"):
             getattr(self, name).load_state_dict(state[name])
         self.updates = int(state["updates"])
+        if "losses" in state:  # absent in version-1 train states (the loop migrates those)
+            self.losses.load_state_dict(state["losses"])
