@@ -544,7 +544,11 @@ def write_animation(frames: Iterable[np.ndarray] | list[np.ndarray], path: str |
             raise RuntimeError("write_animation: writing .mp4 needs the 'imageio-ffmpeg' package "
                                "(pip install imageio-ffmpeg); or write a .gif instead") from None
     directory = path.parent if str(path.parent) else Path(".")
-    fd, tmp_name = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=f".tmp{suffix}", dir=directory)
+    try:  # the one output rule (ssl_marl.io.prepare_output_file): missing parent folders are created
+        directory.mkdir(parents=True, exist_ok=True)
+        fd, tmp_name = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=f".tmp{suffix}", dir=directory)
+    except OSError as exc:  # name the target, never the hidden temp file
+        raise OSError(f"write_animation: cannot write {path} ({exc.strerror})") from None
     os.close(fd)
     try:
         if suffix == ".gif":
