@@ -18,8 +18,10 @@ import gymnasium
 import numpy as np
 from gymnasium.utils import EzPickle
 
+from ..envs.observation import clip_to_bounds, position_extent, speed_caps
 from ..envs.ssl_env import SSLParallelEnv
 from ..physics.field import FieldGeometry
+from ..physics.params import RobotParams
 from ..physics.state import WorldState, to_team_frame
 from .base import make_action
 from .features import (AIM_TO_SHOOT_SPEC, BALL_LOST_DISTANCE, GO_TO_BALL_SPEC, ORIENTATION_FORMS,
@@ -27,6 +29,26 @@ from .features import (AIM_TO_SHOOT_SPEC, BALL_LOST_DISTANCE, GO_TO_BALL_SPEC, O
                        go_to_ball_features, go_to_ball_reward)
 
 AGENT = "blue_0"
+
+
+def skill_observation_bounds(skill: str, field: FieldGeometry, robot: RobotParams) -> tuple[np.ndarray, np.ndarray]:
+    """(low, high) float32 bounds of a skill task's observation (``"go-to-ball"`` or
+    ``"aim-to-shoot"``), from the same rules as the full-field env
+    (:mod:`ssl_marl.envs.observation`): any robot-frame point lies within D, the
+    largest distance between two observable positions; velocities within the speed
+    caps x safety factor; distances in [0, D]; sin/cos in [-1, 1]."""
+    x, y = position_extent(field)
+    d = math.hypot(2 * x, 2 * y)
+    v, w, vb = speed_caps(robot)
+    if skill == "go-to-ball":  # ball xy, robot v, omega, dist, 4 closest line points
+        high = [d, d, v, v, w, d] + [d] * 8
+        low = [-d, -d, -v, -v, -w, 0.0] + [-d] * 8
+    elif skill == "aim-to-shoot":  # ball xy, ball v, omega, dist to goal, sin/cos of the post angles
+        high = [d, d, vb, vb, w, d, 1, 1, 1, 1]
+        low = [-d, -d, -vb, -vb, -w, 0.0, -1, -1, -1, -1]
+    else:
+        raise ValueError(f"unknown skill task {skill!r}; expected 'go-to-ball' or 'aim-to-shoot'")
+    return np.array(low, dtype=np.float32), np.array(high, dtype=np.float32)
 
 
 class _SkillEnv(gymnasium.Env, EzPickle):
@@ -55,6 +77,10 @@ class _SkillEnv(gymnasium.Env, EzPickle):
         self._opponent_skills: list = []
 
     # --- helpers --------------------------------------------------------------
+    def _bounded(self, obs: np.ndarray) -> np.ndarray:
+        """``obs`` clipped into ``observation_space`` (bounds wide enough that it never binds in play)."""
+        return clip_to_bounds(obs, self.observation_space.low, self.observation_space.high)
+
     @property
     def t(self) -> float:
         """Simulated time since the episode started (s), from the world itself (in real-time
@@ -120,7 +146,7 @@ class GoToBallEnv(_SkillEnv):
     """go-to-ball: drive to the ball and get it on the dribbler (paper, section 4.3).
 
     Observation
-        ``Box(-inf, inf, (14,), float32)``: the paper's state, see
+        ``Box(low, high, (14,), float32)`` (finite: :func:`skill_observation_bounds`): the paper's state, see
         :func:`ssl_marl.skills.features.go_to_ball_features` (robot frame, m, m/s, rad/s).
     Action
         ``Box(-1, 1, (3,), float32)``: (vx, vy, omega) in the robot frame as fractions of
@@ -147,7 +173,8 @@ class GoToBallEnv(_SkillEnv):
             raise ValueError(f"max_time_s must be positive, got {max_time_s!r}")
         self.max_time_s = max_time_s
         self.orientation_form = orientation_form
-        self.observation_space = gymnasium.spaces.Box(-np.inf, np.inf, (14,), np.float32)
+        self.observation_space = gymnasium.spaces.Box(*skill_observation_bounds("go-to-ball", self.field,
+                                                                                 self.robot_params), (14,), np.float32)
         self.action_space = gymnasium.spaces.Box(-1.0, 1.0, (3,), np.float32)
 
     def reset(self, *, seed: int | None = None, options: dict | None = None):
@@ -165,7 +192,7 @@ class GoToBallEnv(_SkillEnv):
                 heading = math.atan2(ball[1] - xy[1], ball[0] - xy[0])
             pose = (xy[0], xy[1], heading)
         self._reset_inner(seed, np.asarray(pose, float), np.asarray(ball, float))
-        return go_to_ball_features(self.seen(), 0, f), {"reward_terms": {}}
+        return self._bounded(go_to_ball_features(self.seen(), 0, f)), {"reward_terms": {}}
 
     def step(self, action):
         self._step_inner(expand_task_action("go-to-ball", self._check_action(action, 3)))
@@ -178,7 +205,7 @@ class GoToBallEnv(_SkillEnv):
             info["is_success"] = success
             info["failure_reason"] = None if success else "timeout"
             info["time_s"] = self.t
-        obs = go_to_ball_features(self.seen(), 0, self.field)
+        obs = self._bounded(go_to_ball_features(self.seen(), 0, self.field))
         return obs, float(sum(terms.values())), success, timeout, info
 
 
@@ -187,7 +214,7 @@ class AimToShootEnv(_SkillEnv):
     (paper, section 4.3).
 
     Observation
-        ``Box(-inf, inf, (10,), float32)``: the paper's state, see
+        ``Box(low, high, (10,), float32)`` (finite: :func:`skill_observation_bounds`): the paper's state, see
         :func:`ssl_marl.skills.features.aim_to_shoot_features`.
     Action
         ``Box(-1, 1, (3,), float32)``: (omega, dribble, kick): angular velocity as a
@@ -238,7 +265,8 @@ class AimToShootEnv(_SkillEnv):
         self.max_time_s, self.post_kick_time_s, self.lost_distance = max_time_s, post_kick_time_s, lost_distance
         f = self.field
         self.spawn_x = spawn_x or (0.5, f.half_length - 0.5)
-        self.observation_space = gymnasium.spaces.Box(-np.inf, np.inf, (10,), np.float32)
+        self.observation_space = gymnasium.spaces.Box(*skill_observation_bounds("aim-to-shoot", self.field,
+                                                                                 self.robot_params), (10,), np.float32)
         self.action_space = gymnasium.spaces.Box(-1.0, 1.0, (3,), np.float32)
         self._kick_t: float | None = None
 
@@ -256,7 +284,7 @@ class AimToShootEnv(_SkillEnv):
         ball = pose[:2] + reach * np.array([math.cos(pose[2]), math.sin(pose[2])])
         self._reset_inner(seed, pose, ball)
         self._kick_t = None
-        return aim_to_shoot_features(self.seen(), 0, f), {"reward_terms": {}}
+        return self._bounded(aim_to_shoot_features(self.seen(), 0, f)), {"reward_terms": {}}
 
     def step(self, action):
         a = self._check_action(action, 3)
@@ -274,7 +302,7 @@ class AimToShootEnv(_SkillEnv):
         out: dict[str, Any] = {"reward_terms": terms, "t": self.t, "kicked": self._kick_t is not None}
         if terminated or truncated:
             out.update(is_success=success, failure_reason=reason, time_s=self.t)
-        obs = aim_to_shoot_features(self.seen(), 0, self.field)
+        obs = self._bounded(aim_to_shoot_features(self.seen(), 0, self.field))
         return obs, float(sum(terms.values())), terminated, truncated, out
 
     def _outcome(self, truth: WorldState) -> tuple[bool, bool, bool, str | None]:
