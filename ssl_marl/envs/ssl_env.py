@@ -333,7 +333,8 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
             from .render import FieldRenderer
 
             self._renderer = FieldRenderer(self.field, self.config.robot, self.config.ball,
-                                           width_px=self.config.render_width_px, trails=self.config.render_trails)
+                                           width_px=self.config.render_width_px, trails=self.config.render_trails,
+                                           team_labels=self.config.render_team_labels)
         text = f"t={self._truth.t:5.1f} s   blue {self.score['blue']} - {self.score['yellow']} yellow"
         frame = self._renderer.draw(self._truth, info_text=text)
         if self.render_mode == "human":
