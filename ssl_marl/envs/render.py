@@ -165,7 +165,7 @@ class FieldRenderer:
         min_r = MIN_ID_ROBOT_RADIUS_PX if self.show_ids else 3.0
         self._robot_scale = max(1.0, min_r / (robot.radius * self.ppm))
         self._robot_r_px = robot.radius * self.ppm * self._robot_scale
-        self._ball_r_px = max(3, int(round(ball.radius * self.ppm)))
+        self._ball_r_px = max(4, int(round(ball.radius * self.ppm)))  # >= 4 px: seen at 480 px width
         self._robot_shape = self._make_robot_shape()  # (K, 2) px, robot frame, y up
 
         self._font_ok = self._init_fonts()
@@ -431,6 +431,8 @@ class FieldRenderer:
         centre = (int(round(u)), int(round(v)))
         if world.ball_visible:
             pygame.draw.circle(surf, BALL_ORANGE, centre, self._ball_r_px)
+            if self._ball_r_px >= 4:  # dark rim: the ball stands out on the carpet and on white lines
+                pygame.draw.circle(surf, WALL_DARK, centre, self._ball_r_px, width=1)
         else:  # vision dropped it: hollow ring at the last seen position
             pygame.draw.circle(surf, BALL_ORANGE, centre, self._ball_r_px, width=1)
 
