@@ -17,7 +17,7 @@ import sys
 FIELDS = ("div_a", "div_b")
 TEAM_POLICIES = ("learned", "baseline", "random", "idle")
 VIDEO_SUFFIXES = (".gif", ".mp4")
-OUTPUT_RULE = ("Output paths (--out, --render, --json): missing parent folders are created; a path that "
+OUTPUT_RULE = ("Output paths (--out, --render, --json, export-onnx OUT): missing parent folders are created; a path that "
                "cannot be written is refused before any simulation starts.")
 #: subcommands whose options belong to another program: everything after the name is forwarded
 FORWARDED = ("bench", "train")
@@ -216,7 +216,15 @@ def cmd_train(args: argparse.Namespace) -> int:
 
 def cmd_export_onnx(args: argparse.Namespace) -> int:
     """Write a learned-skill actor checkpoint as an ONNX model (see :mod:`ssl_marl.skills.onnx_export`)."""
+    import importlib.util
+
     from .io import prepare_output_file
+
+    missing = [m for m in ("onnx", "onnxruntime") if importlib.util.find_spec(m) is None]
+    if missing:
+        print(f"ssl-marl export-onnx: error: needs {' and '.join(missing)}: pip install -e \".[onnx]\"",
+              file=sys.stderr)
+        return 2
     from .skills.onnx_export import export_onnx
 
     prepare_output_file(args.out, (".onnx",), "OUT")
@@ -347,7 +355,7 @@ def main(argv: list[str] | None = None) -> int:
         args = build_parser().parse_args(argv)
     try:
         return args.func(args)
-    except (ValueError, FileNotFoundError) as exc:
+    except (ValueError, FileNotFoundError, FileExistsError) as exc:  # bad input: one clear line, exit 2
         print(f"ssl-marl {args.command}: error: {exc}", file=sys.stderr)
         return 2
 

@@ -13,7 +13,9 @@ import pytest
 from ssl_marl import __version__
 from ssl_marl.cli import build_parser, main
 
-PRETRAINED = "ssl_marl/skills/pretrained/go_to_ball.pt"
+from ssl_marl.skills.learned import PRETRAINED as _SHIPPED  # noqa: E402
+
+PRETRAINED = str(_SHIPPED["go_to_ball"])
 
 
 # ------------------------------------------------------------------ forwarding
@@ -201,3 +203,20 @@ def test_checkpoint_with_code_is_refused_without_pytorchs_advice(tmp_path, capsy
     assert main(["export-onnx", str(bad), str(tmp_path / "x.onnx")]) == 2
     err = capsys.readouterr().err
     assert "never loaded" in err and "weights_only" not in err and "trust" not in err
+
+
+def test_export_onnx_without_the_extra_says_how_to_install(monkeypatch, tmp_path, capsys):
+    import importlib.util
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec", lambda name, *a: None if name == "onnx" else real(name, *a))
+    assert main(["export-onnx", PRETRAINED, str(tmp_path / "x.onnx")]) == 2
+    assert 'pip install -e ".[onnx]"' in capsys.readouterr().err
+
+
+def test_train_into_an_existing_run_is_a_clear_error(tmp_path, capsys):
+    out = tmp_path / "run"
+    out.mkdir()
+    (out / "checkpoint.pt").write_bytes(b"x")
+    assert main(["train", "pendulum", "--out", str(out), "--no-progress"]) == 2
+    assert "already holds a run" in capsys.readouterr().err
