@@ -12,8 +12,7 @@ import pytest
 
 from ssl_marl import __version__
 from ssl_marl.cli import build_parser, main
-
-from ssl_marl.skills.learned import PRETRAINED as _SHIPPED  # noqa: E402
+from ssl_marl.skills.learned import PRETRAINED as _SHIPPED
 
 PRETRAINED = str(_SHIPPED["go_to_ball"])
 
