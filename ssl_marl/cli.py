@@ -81,7 +81,8 @@ def cmd_demo(args: argparse.Namespace) -> int:
 
     prepare_output_file(args.out, VIDEO_SUFFIXES, "--out")
     env = parallel_env(n_blue=args.robots, n_yellow=args.robots, field=args.field, max_time_s=args.seconds,
-                       render_mode="rgb_array", render_trails=True)
+                       render_mode="rgb_array", render_trails=True,
+                       render_team_labels={"blue": "scripted, baseline skills", "yellow": "scripted, baseline skills"})
     env.reset(seed=args.seed)
     skills = {a: (make_skill("go_to_ball", "baseline", env.field), make_skill("aim_to_shoot", "baseline", env.field))
               for a in env.possible_agents}
