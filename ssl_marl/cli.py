@@ -1,7 +1,12 @@
-"""The ``ssl-marl`` command line: demo, match, eval-skill, eval-tactic, bench.
+"""The ``ssl-marl`` command line: demo, match, eval-skill, eval-tactic, bench, train, export-onnx.
 
 Every long-running command shows a progress bar; ``ssl-marl COMMAND --help``
-explains every option.
+explains every option. Output paths follow one rule (:data:`OUTPUT_RULE`),
+checked before any simulation starts.
+
+``train`` is the single exception to "ssl_marl never imports train": its handler
+forwards the command line to ``train.__main__.main`` through a lazy import, so
+``ssl_marl`` itself still loads without the trainer.
 """
 
 from __future__ import annotations
@@ -13,6 +18,11 @@ from .runners.controllers import TEAM_KINDS
 from .runners.pool import BACKENDS
 
 FIELDS = ("div_a", "div_b")
+VIDEO_SUFFIXES = (".gif", ".mp4")
+OUTPUT_RULE = ("Output paths (--out, --render, --json, export-onnx OUT): missing parent folders are created; a path that "
+               "cannot be written is refused before any simulation starts.")
+#: subcommands whose options belong to another program: everything after the name is forwarded
+FORWARDED = ("bench", "train")
 
 
 def _positive_int(name: str):
@@ -35,6 +45,18 @@ def _robots(text: str) -> int:
     if not 1 <= v <= 11:
         raise argparse.ArgumentTypeError(f"--robots must be between 1 and 11 (SSL allows at most 11), got {v}")
     return v
+
+
+def _int_at_least(name: str, lowest: int):
+    def parse(text: str) -> int:
+        try:
+            v = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{name} must be an integer, got {text!r}") from None
+        if v < lowest:
+            raise argparse.ArgumentTypeError(f"{name} must be >= {lowest}, got {v}")
+        return v
+    return parse
 
 
 def _positive_float(name: str):
@@ -100,11 +122,14 @@ def cmd_demo(args: argparse.Namespace) -> int:
     from tqdm import tqdm
 
     from .envs import parallel_env
+    from .io import prepare_output_file
     from .runners.video import VideoSink
     from .skills import SkillStatus, make_skill
 
+    prepare_output_file(args.out, VIDEO_SUFFIXES, "--out")
     env = parallel_env(n_blue=args.robots, n_yellow=args.robots, field=args.field, max_time_s=args.seconds,
-                       render_mode="rgb_array", render_trails=True)
+                       render_mode="rgb_array", render_trails=True,
+                       render_team_labels={"blue": "scripted, baseline skills", "yellow": "scripted, baseline skills"})
     env.reset(seed=args.seed)
     skills = {a: (make_skill("go_to_ball", "baseline", env.field), make_skill("aim_to_shoot", "baseline", env.field))
               for a in env.possible_agents}
@@ -150,7 +175,7 @@ def _match_line(res) -> str:
 
 def cmd_match(args: argparse.Namespace) -> int:
     """Play one match (or a series) between two team controllers."""
-    from .io import atomic_write_json
+    from .io import atomic_write_json, prepare_output_file
     from .runners.match import play_match
     from .runners.series import play_series
 
@@ -161,6 +186,10 @@ def cmd_match(args: argparse.Namespace) -> int:
     common = dict(robots=args.robots, field=args.field, seconds=args.seconds, realism=args.realism,
                   realtime=args.realtime, blue_skills=blue_skills, yellow_skills=yellow_skills)
     render = None if str(args.render).lower() == "none" else args.render
+    if render is not None and args.matches == 1:
+        prepare_output_file(render, VIDEO_SUFFIXES, "--render")
+    if args.json:
+        prepare_output_file(args.json, None, "--json")
     if args.matches == 1:
         res = play_match(blue=blue, yellow=yellow, seed=args.seed, render=render,
                          render_fps=args.render_fps, render_width_px=args.render_width, progress=not args.quiet,
@@ -186,8 +215,11 @@ def cmd_match(args: argparse.Namespace) -> int:
 
 # ---------------------------------------------------------------- eval-skill
 def cmd_eval_skill(args: argparse.Namespace) -> int:
+    from .io import prepare_output_dir
     from .runners.skill_eval import evaluate_skill
 
+    if args.out:
+        prepare_output_dir(args.out, "--out")
     s = evaluate_skill(args.skill, args.policy, episodes=args.episodes, seed=args.seed, workers=_workers(args),
                        out=args.out, realism=args.realism, field=args.field, progress=not args.quiet,
                        realtime=args.realtime, backend=args.backend, address=args.address)
@@ -202,9 +234,12 @@ def cmd_eval_skill(args: argparse.Namespace) -> int:
 
 # --------------------------------------------------------------- eval-tactic
 def cmd_eval_tactic(args: argparse.Namespace) -> int:
+    from .io import prepare_output_dir
     from .runners.controllers import team_skills
     from .runners.tactic_eval import evaluate_tactic
 
+    if args.out:
+        prepare_output_dir(args.out, "--out")
     skills = team_skills(args.skills, dict(args.skill), where="--skill") if args.skill else args.skills
     s = evaluate_tactic(skills=skills, episodes=args.episodes, seed=args.seed, workers=_workers(args),
                         realism=args.realism, out=args.out, field=args.field, progress=not args.quiet,
@@ -219,15 +254,51 @@ def cmd_eval_tactic(args: argparse.Namespace) -> int:
 
 
 def cmd_bench(args: argparse.Namespace) -> int:
+    """Forward everything after ``bench`` (a leading ``--`` is dropped) to :func:`ssl_marl.bench.main`."""
     from . import bench
 
     bench.main(args.rest)
     return 0
 
 
+def cmd_train(args: argparse.Namespace) -> int:
+    """Forward everything after ``train`` to ``python -m train`` (same options, same behaviour).
+
+    The single place ``ssl_marl`` imports ``train`` (lazily, here): the dependency still
+    points one way for the library, and one command line covers the whole workflow.
+    """
+    from train.__main__ import main as train_main
+
+    return int(train_main(args.rest, prog="ssl-marl train") or 0)
+
+
+def cmd_export_onnx(args: argparse.Namespace) -> int:
+    """Write a learned-skill actor checkpoint as an ONNX model (see :mod:`ssl_marl.skills.onnx_export`)."""
+    import importlib.util
+
+    from .io import prepare_output_file
+
+    missing = [m for m in ("onnx", "onnxruntime") if importlib.util.find_spec(m) is None]
+    if missing:
+        print(f"ssl-marl export-onnx: error: needs {' and '.join(missing)}: pip install -e \".[onnx]\"",
+              file=sys.stderr)
+        return 2
+    from .skills.onnx_export import export_onnx
+
+    prepare_output_file(args.out, (".onnx",), "OUT")
+    meta = export_onnx(args.checkpoint, args.out, opset=args.opset)
+    print(f"{args.checkpoint} ({meta['skill']}, {meta['obs_spec']}, obs {meta['obs_dim']} -> act {meta['act_dim']})"
+          f" -> {args.out}")
+    return 0
+
+
 # -------------------------------------------------------------------- parser
 def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="ssl-marl", description="RoboCup SSL simulator, learned skills and STP matches.")
+    from . import __version__
+
+    p = argparse.ArgumentParser(prog="ssl-marl", description="RoboCup SSL simulator, learned skills and STP matches.",
+                                epilog=OUTPUT_RULE)
+    p.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
     d = sub.add_parser("demo", help="one scripted episode on the full field, written to a GIF",
@@ -238,7 +309,8 @@ def build_parser() -> argparse.ArgumentParser:
     d.add_argument("--seconds", type=_positive_float("--seconds"), default=20.0, help="simulated seconds (default 20)")
     d.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     d.add_argument("--fps", type=_positive_int("--fps"), default=20, help="GIF frames per second (default 20)")
-    d.add_argument("--out", default="demo.gif", help="output GIF/MP4 path (default demo.gif)")
+    d.add_argument("--out", default="demo.gif",
+                   help="output GIF/MP4 path; missing folders are created (default demo.gif)")
     d.add_argument("--quiet", action="store_true", help="no progress bar")
     d.set_defaults(func=cmd_demo)
 
@@ -268,23 +340,25 @@ def build_parser() -> argparse.ArgumentParser:
                    help="paper's evaluation mode: a team whose controller misses the 16.7 ms deadline loses "
                         "that command")
     m.add_argument("--render", default="match.gif", metavar="PATH",
-                   help="write a single match to PATH (.gif or .mp4); 'none' to skip (default match.gif)")
+                   help="write a single match to PATH (.gif or .mp4; missing folders are created); 'none' "
+                        "to skip (default match.gif)")
     m.add_argument("--render-fps", type=_positive_float("--render-fps"), default=10.0,
                    help="video frames per simulated second (default 10)")
-    m.add_argument("--render-width", type=_positive_int("--render-width"), default=480,
-                   help="video width in pixels (default 480)")
+    m.add_argument("--render-width", type=_int_at_least("--render-width", 64), default=480,
+                   help="video width in pixels, >= 64 (default 480)")
     m.add_argument("--matches", type=_positive_int("--matches"), default=1, help="number of matches (default 1)")
     m.add_argument("--workers", type=_positive_int("--workers"), default=None,
                    help="parallel worker processes for a series (default 1; with --backend ray: matches in flight, "
                         "default the cluster's CPUs)")
     _add_backend(m, "the matches of a series")
-    m.add_argument("--json", default=None, metavar="PATH", help="also write the result as JSON to PATH")
+    m.add_argument("--json", default=None, metavar="PATH",
+                   help="also write the result as JSON to PATH (missing folders are created)")
     m.add_argument("--quiet", action="store_true", help="no progress bar")
     m.set_defaults(func=cmd_match)
 
     e = sub.add_parser("eval-skill", help="the paper's skill evaluation protocol (section 5.1)",
                        description="Run a skill from random spawns for N episodes; writes OUT/results.json "
-                                   "(success rate with 95%% CI, times, failure reasons) and OUT/time_hist.png.")
+                                   "(success rate with 95% CI, times, failure reasons) and OUT/time_hist.png.")
     from .skills.registry import cli_choices
 
     e.add_argument("skill", choices=cli_choices(), help="which skill (every registered skill with a task)")
@@ -294,7 +368,8 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("--seed", type=int, default=10_000, help="evaluation seed (default 10000; training uses < 1000)")
     e.add_argument("--workers", type=_positive_int("--workers"), default=None,
                    help="worker processes (default 1; with --backend ray: tasks in flight, default the cluster's CPUs)")
-    e.add_argument("--out", default=None, help="output directory for results.json and time_hist.png")
+    e.add_argument("--out", default=None,
+                   help="output folder for results.json and time_hist.png, created if missing (default: none)")
     e.add_argument("--realism", choices=("none", "realistic"), default="none",
                    help="vision noise / latency preset (default none)")
     e.add_argument("--realtime", action="store_true", help="run in real-time mode (slow: 60 steps per second)")
@@ -306,7 +381,8 @@ def build_parser() -> argparse.ArgumentParser:
     t = sub.add_parser("eval-tactic", help="the paper's go-to-ball-and-shoot tactic evaluation (section 5.2)",
                        description="One robot and the ball at random; run go-to-ball-and-shoot until a goal or "
                                    "15 s. Writes OUT/results.json and OUT/time_hist.png.")
-    t.add_argument("--skills", choices=("learned", "baseline"), default="learned", help="skills inside the tactic")
+    t.add_argument("--skills", choices=("learned", "baseline"), default="learned",
+                   help="skills inside the tactic (default learned)")
     t.add_argument("--skill", type=_skill_source, action="append", default=[], metavar="SKILL=SOURCE",
                    help="replace one skill of --skills: " + SKILL_SOURCE_HELP)
     t.add_argument("--episodes", type=_positive_int("--episodes"), default=500, help="episodes (default 500)")
@@ -314,26 +390,48 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--workers", type=_positive_int("--workers"), default=None,
                    help="worker processes (default 1; with --backend ray: tasks in flight, default the cluster's CPUs)")
     t.add_argument("--realism", choices=("none", "realistic"), default="none", help="noise / latency preset")
-    t.add_argument("--out", default=None, help="output directory")
+    t.add_argument("--out", default=None,
+                   help="output folder for results.json and time_hist.png, created if missing (default: none)")
     t.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")
     _add_backend(t, "the episodes")
     t.add_argument("--quiet", action="store_true", help="no progress bar")
     t.set_defaults(func=cmd_eval_tactic)
 
-    b = sub.add_parser("bench", help="env throughput benchmark (JSON); options: ssl-marl bench -- --help",
-                       description="Env steps/s for 1v0, 6v6 Division B and 11v11 Division A, reset time and "
-                                   "learned-skill inference time, as JSON. Options after '--' go to the benchmark "
-                                   "(--steps, --resets, --configs, --no-skills).", add_help=True)
-    b.add_argument("rest", nargs=argparse.REMAINDER, help="options passed to python -m ssl_marl.bench")
+    b = sub.add_parser("bench", help="env throughput benchmark (JSON); options: ssl-marl bench --help",
+                       add_help=False)
+    b.add_argument("rest", nargs=argparse.REMAINDER, help="options of python -m ssl_marl.bench")
     b.set_defaults(func=cmd_bench)
+
+    tr = sub.add_parser("train", help="train a skill with DDPG, as python -m train (ssl-marl train --help)",
+                        add_help=False)
+    tr.add_argument("rest", nargs=argparse.REMAINDER, help="options of python -m train")
+    tr.set_defaults(func=cmd_train)
+
+    x = sub.add_parser("export-onnx", help="write a learned-skill actor checkpoint as an ONNX model",
+                       description="Export a learned-skill actor (an ssl_marl actor checkpoint, e.g. "
+                                   "ssl_marl/skills/pretrained/go_to_ball.pt or a run's actor.pt) to ONNX for "
+                                   "deployment in C++/Rust (onnxruntime). Input 'obs' (batch, obs_dim) float32, "
+                                   "output 'action' (batch, act_dim) in [-1, 1]; the observation spec, feature "
+                                   "names, normalisation and action mapping are in the model's metadata_props. "
+                                   "Needs the 'onnx' extra: pip install -e \".[onnx]\".")
+    x.add_argument("checkpoint", help="actor checkpoint (.pt) written by ssl_marl (weights only; never executed)")
+    x.add_argument("out", help="output .onnx path (missing folders are created)")
+    x.add_argument("--opset", type=_int_at_least("--opset", 13), default=17, help="ONNX opset version (default 17)")
+    x.set_defaults(func=cmd_export_onnx)
     return p
 
 
 def main(argv: list[str] | None = None) -> int:
-    args = build_parser().parse_args(argv)
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if argv and argv[0] in FORWARDED:  # bench / train own their options (and --help): forward them verbatim
+        rest = argv[1:][1:] if argv[1:2] == ["--"] else argv[1:]
+        args = argparse.Namespace(command=argv[0], rest=rest,
+                                  func={"bench": cmd_bench, "train": cmd_train}[argv[0]])
+    else:
+        args = build_parser().parse_args(argv)
     try:
         return args.func(args)
-    except (ValueError, FileNotFoundError) as exc:
+    except (ValueError, FileNotFoundError, FileExistsError) as exc:  # bad input: one clear line, exit 2
         print(f"ssl-marl {args.command}: error: {exc}", file=sys.stderr)
         return 2
 

@@ -32,6 +32,48 @@ def atomic_write_bytes(path: str | os.PathLike, data: bytes) -> None:
         raise
 
 
+def prepare_output_file(path: str | os.PathLike, suffixes: tuple[str, ...] | None = None,
+                        what: str = "output file") -> Path:
+    """Check, before any long work, that ``path`` can be written as a file; return it as a Path.
+
+    The one rule every ``ssl-marl`` output follows: missing parent folders are
+    created; a path that is a folder, a parent that is a file, a folder without
+    write permission or (when ``suffixes`` is given, e.g. ``(".gif", ".mp4")``) a
+    wrong suffix raise ValueError naming ``path`` and what to do.
+    """
+    path = Path(path)
+    if suffixes is not None and path.suffix.lower() not in suffixes:
+        raise ValueError(f"{what} {path}: unsupported suffix {path.suffix or '(none)'!r}; use "
+                         + " or ".join(suffixes))
+    if path.is_dir():
+        raise ValueError(f"{what} {path} is a folder; give a file path")
+    _make_folder(path.parent if str(path.parent) else Path("."), what, path)
+    if path.exists() and not os.access(path, os.W_OK):
+        raise ValueError(f"{what} {path} exists and is not writable")
+    return path
+
+
+def prepare_output_dir(path: str | os.PathLike, what: str = "output folder") -> Path:
+    """Like :func:`prepare_output_file` for a folder: create it (and its parents) or
+    raise ValueError naming ``path`` if that is impossible or it is not writable."""
+    path = Path(path)
+    if path.exists() and not path.is_dir():
+        raise ValueError(f"{what} {path} is a file; give a folder path")
+    _make_folder(path, what, path)
+    return path
+
+
+def _make_folder(folder: Path, what: str, target: Path) -> None:
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except FileExistsError:
+        raise ValueError(f"{what} {target}: cannot create folder {folder} (a file of that name is in the way)") from None
+    except OSError as exc:
+        raise ValueError(f"{what} {target}: cannot create folder {folder} ({exc.strerror})") from None
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise ValueError(f"{what} {target}: folder {folder} is not writable")
+
+
 def atomic_write_json(path: str | os.PathLike, obj: Any) -> None:
     atomic_write_bytes(path, (json.dumps(obj, indent=2, sort_keys=False, default=_json_default) + "\n").encode())
 

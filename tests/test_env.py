@@ -17,6 +17,8 @@ FACE = RobotParams().front_distance + BallParams().radius
 
 @pytest.mark.parametrize("kw", [dict(n_blue=1, n_yellow=0), dict(n_blue=3, n_yellow=3, field="div_b"),
                                 dict(n_blue=11, n_yellow=11, field="div_a")])
+# api_test resets with a dummy option key on purpose; the env warns that it ignores it.
+@pytest.mark.filterwarnings("ignore:.*reset options. ignoring unknown key.*:UserWarning")
 def test_pettingzoo_api(kw):
     parallel_api_test(parallel_env(**kw, max_time_s=1.0), num_cycles=100)
     api_test(aec_env(**kw, max_time_s=1.0), num_cycles=30)

@@ -114,10 +114,10 @@ def test_behaviour_cloning_term_pulls_the_actor_to_the_demonstrations() -> None:
     cfg = DDPGConfig(actor_hidden=(32,), critic_hidden=(32,), batch_size=16, bc_weight=10.0, actor_lr=1e-3)
     agent = DDPG(4, 2, cfg)
     demo = Batch(torch.randn(16, 4), torch.full((16, 2), 0.8), torch.zeros(16), torch.randn(16, 4), torch.zeros(16))
-    before = float(((agent.actor(demo.obs) - demo.act) ** 2).mean())
+    before = float(((agent.actor(demo.obs) - demo.act) ** 2).mean().detach())
     for _ in range(200):
         agent.update(_batch(), demo)
-    after = float(((agent.actor(demo.obs) - demo.act) ** 2).mean())
+    after = float(((agent.actor(demo.obs) - demo.act) ** 2).mean().detach())
     assert after < 0.1 * before
 
 

@@ -1,4 +1,5 @@
-"""CLI: ``python -m train SKILL --seed 0 --out runs/NAME [--algo td3] [--config X.json] [--resume] [--samples N] [--set k=v ...]``.
+"""CLI: ``python -m train SKILL --seed 0 --out runs/NAME [--algo td3] [--config X.json] [--resume] [--samples N] [--set k=v ...]``
+(the same as ``ssl-marl train SKILL ...``).
 
 SKILL is go-to-ball, aim-to-shoot or pendulum and picks the default config in
 ``train/configs/``; ``--config`` replaces it, ``--set`` overrides single keys
@@ -19,8 +20,8 @@ from .algos import ALGOS
 from .config import SKILL_CONFIGS, apply_overrides, default_config, load_config
 
 
-def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="python -m train", description=__doc__,
+def build_parser(prog: str = "python -m train") -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog=prog, description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("skill", choices=sorted(SKILL_CONFIGS), help="which default config to start from")
     p.add_argument("--config", type=Path, default=None, help="JSON config (default: train/configs/<skill>.json)")
@@ -36,8 +37,9 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
-def main(argv: list[str] | None = None) -> int:
-    args = build_parser().parse_args(argv)
+def main(argv: list[str] | None = None, prog: str = "python -m train") -> int:
+    """Entry point of ``python -m train`` and ``ssl-marl train`` (``prog`` names it in messages)."""
+    args = build_parser(prog).parse_args(argv)
     from .loop import load_run_config, train  # heavy imports after argument errors
 
     if args.resume:

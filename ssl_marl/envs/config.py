@@ -103,6 +103,8 @@ class EnvConfig:
         render_mode: None, "rgb_array" or "human".
         render_trails: draw trajectories (the paper's Fig. 7).
         render_width_px: frame width in pixels.
+        render_team_labels: ``{"blue": text, "yellow": text}`` or None: a caption strip
+            below the field says what each team is (e.g. "learned skills").
     """
 
     n_blue: int = 6
@@ -127,6 +129,7 @@ class EnvConfig:
     render_mode: str | None = None
     render_trails: bool = False
     render_width_px: int = 960
+    render_team_labels: Mapping[str, str] | None = None
 
     def __post_init__(self) -> None:
         from .tasks import TASKS, Task
@@ -174,6 +177,10 @@ class EnvConfig:
             raise ValueError(f"render_mode must be None, 'rgb_array' or 'human', got {self.render_mode!r}")
         if not isinstance(self.render_width_px, int) or self.render_width_px < 64:
             raise ValueError(f"render_width_px must be an integer >= 64, got {self.render_width_px!r}")
+        labels = self.render_team_labels
+        if labels is not None and not (isinstance(labels, Mapping) and set(labels) <= {"blue", "yellow"}
+                                       and all(isinstance(v, str) for v in labels.values())):
+            raise ValueError(f"render_team_labels must map 'blue'/'yellow' to text, got {labels!r}")
 
     @property
     def dt(self) -> float:

@@ -27,6 +27,14 @@ index   name                  meaning (team frame; m, m/s, rad/s)
 
 Teammate and opponent slots are sorted by distance to self (nearest first); unused
 slots are all zero (mask 0).
+
+Bounds (:func:`observation_bounds`, the env's ``observation_space``): finite and
+documented, and observations are clipped into them (:func:`clip_to_bounds`), so they
+really stay inside. Positions: the outer walls plus :data:`POSITION_MARGIN_M` (room for
+vision noise); relative positions: twice that. Velocities: :data:`SPEED_SAFETY` times
+the caps (robot ``max_speed`` / ``max_omega``; ball: kick cap + robot top speed, a ball
+kicked by a moving robot), since collisions can briefly exceed the commanded caps.
+cos/sin in [-1, 1], flags and masks in [0, 1]. In normal play clipping never binds.
 """
 
 from __future__ import annotations
@@ -34,6 +42,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..physics.field import FieldGeometry
+from ..physics.params import RobotParams
 from ..physics.state import TeamState, WorldState
 
 SELF_DIM = 21
@@ -44,6 +53,51 @@ OBS_NAMES_SELF = ("self_x", "self_y", "self_cos", "self_sin", "self_vx", "self_v
                   "opp_goal_dy", "own_goal_dx", "own_goal_dy", "field_half_length", "field_half_width",
                   "goal_half_width")
 SLOT_NAMES = ("mask", "dx", "dy", "vx", "vy", "cos", "sin")
+
+POSITION_MARGIN_M = 0.5  #: m beyond the outer walls allowed in observed positions (vision noise)
+SPEED_SAFETY = 2.0  #: factor on the speed caps allowed in observed velocities (collisions)
+
+
+def position_extent(field: FieldGeometry) -> tuple[float, float]:
+    """(x, y) half-extent (m) of any observed position: outer walls + :data:`POSITION_MARGIN_M`."""
+    return field.wall_half_length + POSITION_MARGIN_M, field.wall_half_width + POSITION_MARGIN_M
+
+
+def speed_caps(robot: RobotParams) -> tuple[float, float, float]:
+    """(robot speed m/s, robot angular speed rad/s, ball speed m/s) bounds, :data:`SPEED_SAFETY`
+    times the robot's caps and the kick cap plus the robot's top speed."""
+    return (SPEED_SAFETY * robot.max_speed, SPEED_SAFETY * robot.max_omega,
+            SPEED_SAFETY * (robot.kick_speed_max + robot.max_speed))
+
+
+def observation_bounds(field: FieldGeometry, robot: RobotParams, max_teammates: int,
+                       max_opponents: int) -> tuple[np.ndarray, np.ndarray]:
+    """(low, high) float32 arrays of the observation layout above (see the module docstring)."""
+    x, y = position_extent(field)
+    v, w, vb = speed_caps(robot)
+    self_hi = [x, y, 1, 1, v, v, w, 2 * x, 2 * y, vb, vb, 1, 1, 1, 2 * x, 2 * y, 2 * x, 2 * y,
+               field.half_length, field.half_width, field.goal_width / 2]
+    self_lo = [-x, -y, -1, -1, -v, -v, -w, -2 * x, -2 * y, -vb, -vb, 0, 0, 0, -2 * x, -2 * y, -2 * x, -2 * y,
+               0, 0, 0]
+    slot_hi, slot_lo = [1, 2 * x, 2 * y, v, v, 1, 1], [0, -2 * x, -2 * y, -v, -v, -1, -1]
+    n_slots = max_teammates + max_opponents
+    low = np.array(self_lo + slot_lo * n_slots, dtype=np.float32)
+    high = np.array(self_hi + slot_hi * n_slots, dtype=np.float32)
+    return low, high
+
+
+def state_bounds(field: FieldGeometry, robot: RobotParams, n_robots: int) -> tuple[np.ndarray, np.ndarray]:
+    """(low, high) float32 arrays of :func:`state_vector` (same rules as :func:`observation_bounds`)."""
+    x, y = position_extent(field)
+    v, w, vb = speed_caps(robot)
+    high = [x, y, vb, vb] + [x, y, 1, 1, v, v, w, 1] * n_robots
+    low = [-x, -y, -vb, -vb] + [-x, -y, -1, -1, -v, -v, -w, 0] * n_robots
+    return np.array(low, dtype=np.float32), np.array(high, dtype=np.float32)
+
+
+def clip_to_bounds(obs: np.ndarray, low: np.ndarray, high: np.ndarray) -> np.ndarray:
+    """``obs`` clipped into [low, high] in place (float32 observations keep their dtype)."""
+    return np.clip(obs, low, high, out=obs)
 
 
 def obs_dim(max_teammates: int, max_opponents: int) -> int:

@@ -16,7 +16,14 @@ getting frames from :meth:`draw`, exactly as in "rgb_array" mode.
 
 Screen mapping: field-frame +x (the goal blue attacks) points right, +y points
 up.  The picture covers the whole walled area (playing area + ``boundary_width``
-on each side) plus a thin dark border that stands for the outer wall.
+on each side) plus a thin dark border that stands for the outer wall.  With
+``team_labels`` a caption strip below the field says what each team is (e.g.
+"blue: learned skills", "yellow: baseline skills") and which way it attacks.
+
+Legibility at small sizes: goals are drawn as a light net inside walls at least
+2 px thick, tinted with the defending team's colour; with ``show_ids`` robots are
+drawn with a radius of at least :data:`MIN_ID_ROBOT_RADIUS_PX` so that their number
+fits (at the match default of 480 px they are drawn about 1.6x their true size).
 """
 
 from __future__ import annotations
@@ -24,11 +31,9 @@ from __future__ import annotations
 import math
 import os
 import sys
-import tempfile
 import warnings
 from collections import deque
-from pathlib import Path
-from typing import Iterable
+from typing import Mapping
 
 import numpy as np
 
@@ -43,6 +48,8 @@ if sys.platform.startswith("linux") and not (os.environ.get("DISPLAY") or os.env
 
 import pygame  # noqa: E402  (pygame-ce)
 
+from .animation import write_animation  # noqa: E402  (re-exported: frames -> GIF/MP4)
+
 __all__ = ["FieldRenderer", "write_animation", "BLUE", "YELLOW", "BALL_ORANGE"]
 
 # ----------------------------------------------------------------------- colours
@@ -56,6 +63,8 @@ GOAL_COLOURS = {  # goal walls tinted with the colour of the team defending that
     +1: (150, 130, 20),  # +x goal: yellow defends (blue attacks +x)
     -1: (20, 60, 160),  # -x goal: blue defends
 }
+GOAL_NET = (215, 215, 215)  # inside of the goals (light, so the goal mouth stands out on the carpet)
+CAPTION_BG = (20, 20, 20)
 TEAM_COLOURS = {"blue": BLUE, "yellow": YELLOW}
 TEAM_MARK = {"blue": (255, 255, 255), "yellow": (0, 0, 0)}  # heading marker / id text
 TEAM_OUTLINE = {"blue": (0, 40, 120), "yellow": (120, 100, 0)}
@@ -65,6 +74,8 @@ OUTER_WALL_M = 0.05  # drawn thickness of the outer boundary wall (m)
 LINE_WIDTH_M = 0.01  # SSL field-line width (m)
 _ARC_POINTS = 20  # vertices on the round part of the robot outline
 _COORD_LIMIT = 20000.0  # clip pixel coordinates (far-off / inf positions must not overflow SDL)
+MIN_GOAL_WALL_PX = 2  # goal walls are drawn at least this thick
+MIN_ID_ROBOT_RADIUS_PX = 7.0  # with show_ids, robots are drawn at least this big so the number fits
 
 
 _RGB24_MASKS = (0x0000FF, 0x00FF00, 0xFF0000, 0)
@@ -101,11 +112,15 @@ class FieldRenderer:
         trail_length: number of past positions kept per trail.
         show_ids: draw each robot's index on it.
         render_fps: frame rate :meth:`show` ticks at.
+        team_labels: ``{"blue": text, "yellow": text}`` (either may be missing): adds a
+            caption strip below the field naming each team (frames get taller by
+            :attr:`caption_height`; field pixel coordinates do not change).
     """
 
     def __init__(self, field: FieldGeometry, robot: RobotParams, ball: BallParams, *,
                  pixels_per_metre: float | None = None, width_px: int = 960, trails: bool = False,
-                 trail_length: int = 120, show_ids: bool = True, render_fps: int = 30) -> None:
+                 trail_length: int = 120, show_ids: bool = True, render_fps: int = 30,
+                 team_labels: Mapping[str, str] | None = None) -> None:
         self.field = field
         self.robot = robot
         self.ball = ball
@@ -123,7 +138,13 @@ class FieldRenderer:
                                  f"got {pixels_per_metre!r}")
             self.ppm = float(pixels_per_metre)
             self.width = max(16, int(round(2.0 * half_w_m * self.ppm)))
-        self.height = max(16, int(round(2.0 * half_h_m * self.ppm)))
+        self.field_height = max(16, int(round(2.0 * half_h_m * self.ppm)))
+        self.team_labels = dict(team_labels or {})
+        unknown = sorted(set(self.team_labels) - set(TEAM_COLOURS))
+        if unknown or not all(isinstance(v, str) for v in self.team_labels.values()):
+            raise ValueError(f"FieldRenderer: team_labels must map 'blue'/'yellow' to text, got {team_labels!r}")
+        self.caption_height = max(16, self.width // 28) if self.team_labels else 0
+        self.height = self.field_height + self.caption_height
         if self.width * self.height > 64_000_000:
             raise ValueError(f"FieldRenderer: frame {self.width}x{self.height} px is too large")
         if not (isinstance(trail_length, (int, np.integer)) and trail_length >= 2):
@@ -132,17 +153,19 @@ class FieldRenderer:
             raise ValueError(f"FieldRenderer: render_fps must be positive, got {render_fps!r}")
         # Pixel-centre convention: pixel index i is centred on continuous coordinate i.
         self._cx = (self.width - 1) / 2.0
-        self._cy = (self.height - 1) / 2.0
+        self._cy = (self.field_height - 1) / 2.0
         self.trails = bool(trails)
         self.trail_length = int(trail_length)
         self.show_ids = bool(show_ids)
         self.render_fps = render_fps
 
         self._line_px = max(1, int(round(LINE_WIDTH_M * self.ppm)))
-        # robots are drawn at least 3 px in radius so that they stay visible at small scales
-        self._robot_scale = max(1.0, 3.0 / (robot.radius * self.ppm))
+        # robots are drawn at least 3 px in radius so that they stay visible at small scales,
+        # and big enough for their number when ids are shown
+        min_r = MIN_ID_ROBOT_RADIUS_PX if self.show_ids else 3.0
+        self._robot_scale = max(1.0, min_r / (robot.radius * self.ppm))
         self._robot_r_px = robot.radius * self.ppm * self._robot_scale
-        self._ball_r_px = max(3, int(round(ball.radius * self.ppm)))
+        self._ball_r_px = max(4, int(round(ball.radius * self.ppm)))  # >= 4 px: seen at 480 px width
         self._robot_shape = self._make_robot_shape()  # (K, 2) px, robot frame, y up
 
         self._font_ok = self._init_fonts()
@@ -181,9 +204,11 @@ class FieldRenderer:
         try:
             if not pygame.font.get_init():
                 pygame.font.init()
-            id_size = max(9, int(round(self._robot_r_px * 1.5)))
+            id_size = max(12, int(round(self._robot_r_px * 1.9)))
             self._id_font = pygame.font.Font(None, id_size)
+            self._id_font.set_bold(True)
             self._info_font = pygame.font.Font(None, max(14, self.width // 45))
+            self._caption_font = pygame.font.Font(None, max(15, int(self.caption_height * 0.95)))
             return True
         except Exception as exc:  # pygame.error, missing SDL_ttf, ...
             warnings.warn(f"FieldRenderer: font initialisation failed ({exc}); robot ids and info text "
@@ -255,16 +280,39 @@ class FieldRenderer:
         for p in ((0.0, 0.0), (hl - f.penalty_mark_distance, 0.0), (-hl + f.penalty_mark_distance, 0.0)):
             if abs(p[0]) < hl:
                 pygame.draw.circle(bg, LINE_WHITE, self.world_to_px(*p), dot + 1)
-        # goals: side walls and back wall behind each goal line (inner box goal_depth x goal_width)
-        gw, gd, t = f.goal_width / 2.0, f.goal_depth, f.goal_wall_thickness
+        # goals: a light net inside (goal_depth x goal_width behind the goal line), side
+        # walls and back wall at least MIN_GOAL_WALL_PX thick, tinted by the defending team
+        gw, gd = f.goal_width / 2.0, f.goal_depth
+        t = max(f.goal_wall_thickness, MIN_GOAL_WALL_PX / self.ppm)
         for s in (+1, -1):
             col = GOAL_COLOURS[s]
             x_line, x_back = s * hl, s * (hl + gd)
             x_out = s * (hl + gd + t)
+            bg.fill(GOAL_NET, self._rect_m(x_line + s * self._line_px / (2 * self.ppm), -gw, x_back, gw))
             bg.fill(col, self._rect_m(x_line, gw, x_out, gw + t))  # wall at +y
             bg.fill(col, self._rect_m(x_line, -gw - t, x_out, -gw))  # wall at -y
             bg.fill(col, self._rect_m(x_back, -gw - t, x_out, gw + t))  # back wall
+        if self.caption_height:
+            self._draw_caption(bg)
         return bg
+
+    def _draw_caption(self, bg: pygame.Surface) -> None:
+        """Caption strip below the field: each team's colour swatch, name and label."""
+        top = self.field_height
+        bg.fill(CAPTION_BG, pygame.Rect(0, top, self.width, self.caption_height))
+        if not self._font_ok:
+            return
+        attacks = {"blue": "attacks right", "yellow": "attacks left"}
+        x, sw = 6, max(8, self.caption_height - 8)
+        for team in ("blue", "yellow"):
+            if team not in self.team_labels:
+                continue
+            cy = top + self.caption_height // 2
+            bg.fill(TEAM_COLOURS[team], pygame.Rect(x, cy - sw // 2, sw, sw))
+            text = self._caption_font.render(f"{team}: {self.team_labels[team]} ({attacks[team]})", True,
+                                             LINE_WHITE)
+            bg.blit(text, text.get_rect(midleft=(x + sw + 4, cy)))
+            x += sw + 4 + text.get_width() + 14
 
     # ---------------------------------------------------------------- drawing
     @staticmethod
@@ -383,6 +431,8 @@ class FieldRenderer:
         centre = (int(round(u)), int(round(v)))
         if world.ball_visible:
             pygame.draw.circle(surf, BALL_ORANGE, centre, self._ball_r_px)
+            if self._ball_r_px >= 4:  # dark rim: the ball stands out on the carpet and on white lines
+                pygame.draw.circle(surf, WALL_DARK, centre, self._ball_r_px, width=1)
         else:  # vision dropped it: hollow ring at the last seen position
             pygame.draw.circle(surf, BALL_ORANGE, centre, self._ball_r_px, width=1)
 
@@ -504,64 +554,3 @@ class FieldRenderer:
         self._trails.clear()
         self._id_cache.clear()
         self._closed = True
-
-
-# -------------------------------------------------------------------- export
-def write_animation(frames: Iterable[np.ndarray] | list[np.ndarray], path: str | os.PathLike,
-                    fps: int = 30) -> None:
-    """Write RGB frames to ``path`` as an animated GIF (``.gif``) or an MP4 (``.mp4``).
-
-    The file is written atomically (temp file in the same directory, then
-    ``os.replace``).  GIF: Pillow merges consecutive identical frames (adding up
-    their durations), so a still scene gives fewer frames than were passed.  MP4
-    needs the ``imageio-ffmpeg`` package.
-    """
-    # imageio: the standard, well-maintained image/video IO library for numpy arrays
-    # (GIF through Pillow, MP4 through imageio-ffmpeg); imported lazily so that
-    # drawing does not depend on it.
-    import imageio.v3 as iio
-
-    frames = [np.asarray(f) for f in frames]
-    if not frames:
-        raise ValueError("write_animation: no frames given")
-    shape = frames[0].shape
-    for i, f in enumerate(frames):
-        if f.ndim != 3 or f.shape[2] != 3 or f.shape != shape:
-            raise ValueError(f"write_animation: frame {i} has shape {f.shape}; all frames must be "
-                             f"(H, W, 3) with the same shape as frame 0 {shape}")
-    if not (isinstance(fps, (int, float)) and math.isfinite(fps) and fps > 0):
-        raise ValueError(f"write_animation: fps must be positive, got {fps!r}")
-    frames = [np.ascontiguousarray(f, dtype=np.uint8) if f.dtype != np.uint8 else f for f in frames]
-
-    path = Path(path)
-    suffix = path.suffix.lower()
-    if suffix not in (".gif", ".mp4"):
-        raise ValueError(f"write_animation: unsupported suffix {path.suffix!r} for {path}; use .gif or .mp4")
-    if suffix == ".mp4":
-        try:
-            import imageio_ffmpeg  # noqa: F401
-        except ImportError:
-            raise RuntimeError("write_animation: writing .mp4 needs the 'imageio-ffmpeg' package "
-                               "(pip install imageio-ffmpeg); or write a .gif instead") from None
-    directory = path.parent if str(path.parent) else Path(".")
-    fd, tmp_name = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=f".tmp{suffix}", dir=directory)
-    os.close(fd)
-    try:
-        if suffix == ".gif":
-            iio.imwrite(tmp_name, np.stack(frames), extension=".gif", duration=1000.0 / fps, loop=0)
-        else:
-            h, w = shape[:2]
-            if h % 2 or w % 2:  # yuv420p needs even sizes: pad by repeating the last row/column
-                frames = [np.pad(f, ((0, h % 2), (0, w % 2), (0, 0)), mode="edge") for f in frames]
-            iio.imwrite(tmp_name, np.stack(frames), extension=".mp4", plugin="FFMPEG", fps=fps,
-                        codec="libx264", macro_block_size=1)
-        mask = os.umask(0)  # mkstemp files are 0600: publish with the usual 0666 minus umask
-        os.umask(mask)
-        os.chmod(tmp_name, 0o666 & ~mask)
-        os.replace(tmp_name, path)
-    except BaseException:
-        try:
-            os.unlink(tmp_name)
-        except OSError:
-            pass
-        raise

@@ -3,9 +3,11 @@
 Agents: ``blue_0 .. blue_{n_blue-1}``, ``yellow_0 .. yellow_{n_yellow-1}``.
 
 Observation
-    Per agent, ``Box(-inf, inf, (D,), float32)`` in the agent's team frame (own
-    goal at -x). Index by index layout in :mod:`ssl_marl.envs.observation`
-    (D = 21 + 7 * (obs_max_teammates + obs_max_opponents) = 168 by default).
+    Per agent, ``Box(low, high, (D,), float32)`` in the agent's team frame (own
+    goal at -x). Index by index layout and the finite bounds (field walls + margin,
+    speed caps x safety factor; observations are clipped into them) in
+    :mod:`ssl_marl.envs.observation` (D = 21 + 7 * (obs_max_teammates +
+    obs_max_opponents) = 168 by default).
     ``state()`` / ``state_space``: the whole world in the field frame (see
     :func:`ssl_marl.envs.observation.state_vector`).
 
@@ -53,7 +55,15 @@ from ..physics.world import PhysicsWorld
 from .actions import ACTION_DIM, scale_actions, validate_actions
 from .config import EnvConfig, make_config
 from .deadline import ControlDeadline
-from .observation import all_observations, obs_dim, state_dim, state_vector
+from .observation import (
+    all_observations,
+    clip_to_bounds,
+    obs_dim,
+    observation_bounds,
+    state_bounds,
+    state_dim,
+    state_vector,
+)
 from .realism import Radio, Vision
 from .tasks import Task, make_task
 
@@ -76,11 +86,14 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         self._index = {a: i for i, a in enumerate(self.possible_agents)}
         self.n = len(self.possible_agents)
         d = obs_dim(cfg.obs_max_teammates, cfg.obs_max_opponents)
-        self._obs_space = gymnasium.spaces.Box(-np.inf, np.inf, (d,), np.float32)
+        self._obs_low, self._obs_high = observation_bounds(cfg.field, cfg.robot, cfg.obs_max_teammates,
+                                                           cfg.obs_max_opponents)
+        self._obs_space = gymnasium.spaces.Box(self._obs_low, self._obs_high, (d,), np.float32)
         self._act_space = gymnasium.spaces.Box(-1.0, 1.0, (ACTION_DIM,), np.float32)
         self.observation_spaces = {a: self._obs_space for a in self.possible_agents}
         self.action_spaces = {a: self._act_space for a in self.possible_agents}
-        self.state_space = gymnasium.spaces.Box(-np.inf, np.inf, (state_dim(self.n),), np.float32)
+        self._state_low, self._state_high = state_bounds(cfg.field, cfg.robot, self.n)
+        self.state_space = gymnasium.spaces.Box(self._state_low, self._state_high, (state_dim(self.n),), np.float32)
         self.physics = PhysicsWorld(cfg.field, cfg.robot, cfg.ball, cfg.n_blue, cfg.n_yellow, cfg.dt,
                                     cfg.physics_substeps)
         self.vision = Vision(cfg.realism)
@@ -226,7 +239,7 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
     def _observations(self) -> dict[str, np.ndarray]:
         cfg = self.config
         ob = all_observations(self._seen, self.field, cfg.obs_max_teammates, cfg.obs_max_opponents)
-        return dict(zip(self.possible_agents, ob))
+        return dict(zip(self.possible_agents, clip_to_bounds(ob, self._obs_low, self._obs_high)))
 
     def world_state(self) -> WorldState:
         """Ground-truth snapshot in the field frame (what the referee and rewards read)."""
@@ -238,7 +251,7 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         return self._seen if team is None else to_team_frame(self._seen, team)
 
     def state(self) -> np.ndarray:
-        return state_vector(self._truth)
+        return clip_to_bounds(state_vector(self._truth), self._state_low, self._state_high)
 
     # ---------------------------------------------------------------- render
     def render(self):
@@ -249,7 +262,8 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
             from .render import FieldRenderer
 
             self._renderer = FieldRenderer(self.field, self.config.robot, self.config.ball,
-                                           width_px=self.config.render_width_px, trails=self.config.render_trails)
+                                           width_px=self.config.render_width_px, trails=self.config.render_trails,
+                                           team_labels=self.config.render_team_labels)
         text = f"t={self._truth.t:5.1f} s   blue {self.score['blue']} - {self.score['yellow']} yellow"
         frame = self._renderer.draw(self._truth, info_text=text)
         if self.render_mode == "human":

@@ -126,7 +126,9 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
     env_opts = dict(n_blue=robots, n_yellow=robots, field=field, max_time_s=float(seconds), realism=realism,
                     after_goal="kickoff", realtime=False)
     if render is not None:
-        env_opts.update(render_mode="rgb_array", render_width_px=int(render_width_px))
+        env_opts.update(render_mode="rgb_array", render_width_px=int(render_width_px),  # caption: who is who
+                        render_team_labels={t: f"{k} skills" if k in ("learned", "baseline") else str(k)
+                                            for t, k in (("blue", blue), ("yellow", yellow)) if isinstance(k, str)})
     env_opts.update(env_kwargs or {})
     env = parallel_env(**env_opts)
     geom = env.field

@@ -3,7 +3,11 @@
 A tactic drives a skill by calling :meth:`Skill.act` once per control tick with
 the current world snapshot *in the robot's team frame* (``world.frame`` is the
 team name; own goal at -x, opponent goal at +x) and the robot's index inside its
-own team. The skill returns the robot's action in the env's normalised action
+own team. From a field-frame snapshot (``env.world_state()``), pass the team:
+``skill.act(env.world_state(), 0, team="yellow")`` converts it with
+:func:`~ssl_marl.physics.state.to_team_frame` first (every :class:`SkillBase`
+subclass accepts ``team=``); without ``team`` a field-frame snapshot is refused
+with an error that says so. The skill returns the robot's action in the env's normalised action
 space and updates :attr:`Skill.status`. A tactic cannot tell a learned skill
 from a hand-coded one.
 
@@ -16,6 +20,7 @@ strength = value when > 0.
 from __future__ import annotations
 
 import enum
+import functools
 from typing import Protocol, runtime_checkable
 
 import numpy as np
@@ -23,7 +28,7 @@ import numpy as np
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..envs.actions import make_action
-from ..physics.state import WorldState
+from ..physics.state import TEAMS, WorldState, to_team_frame
 from .features import BALL_LOST_DISTANCE, dribbler_ball_distance
 
 
@@ -43,14 +48,56 @@ class Skill(Protocol):
     def reset(self) -> None:
         """Start afresh (status RUNNING, internal timers cleared)."""
 
-    def act(self, world: WorldState, robot: int) -> np.ndarray:
-        """Return a (5,) float32 action for ``robot`` (index in team ``world.frame``)."""
+    def act(self, world: WorldState, robot: int, team: str | None = None) -> np.ndarray:
+        """Return a (5,) float32 action for ``robot`` (index in team ``world.frame``, or in
+        ``team`` when ``world`` is a field-frame snapshot)."""
+
+
+def in_team_frame(world: WorldState, team: str | None) -> WorldState:
+    """``world`` in the robot's team frame: converted with :func:`to_team_frame` when it
+    is a field-frame snapshot and ``team`` is given, returned as is when it already is in
+    ``team``'s frame (or ``team`` is None). ValueError saying what to do otherwise."""
+    if team is not None and team not in TEAMS:
+        raise ValueError(f"team: unknown team {team!r}; expected 'blue' or 'yellow'")
+    if world.frame == "field":
+        if team is None:
+            raise ValueError("a skill acts in its robot's team frame, but this snapshot is in the field frame: "
+                             "pass the robot's team, e.g. skill.act(env.world_state(), robot, team='blue'), "
+                             "or give a team-frame snapshot (env.vision_state('blue') or "
+                             "ssl_marl.physics.state.to_team_frame(world, 'blue'))")
+        return to_team_frame(world, team)
+    if team is not None and world.frame != team:
+        raise ValueError(f"team={team!r} but the snapshot is in {world.frame!r}'s frame; pass a field-frame "
+                         f"snapshot (env.world_state()) or the {team!r} frame (env.vision_state({team!r}))")
+    return world
+
+
+def _accepting_team(act):
+    """Wrap a skill's ``act(world, robot)`` so it also takes ``team=`` (see :func:`in_team_frame`)."""
+    if getattr(act, "_accepts_team", False):
+        return act
+
+    @functools.wraps(act)
+    def wrapped(self, world: WorldState, robot: int, team: str | None = None) -> np.ndarray:
+        return act(self, in_team_frame(world, team), robot)
+
+    wrapped._accepts_team = True
+    return wrapped
 
 
 class SkillBase:
-    """Plumbing every skill shares: field, robot and ball parameters, and a status."""
+    """Plumbing every skill shares: field, robot and ball parameters, and a status.
+
+    Every subclass's ``act(world, robot)`` also accepts ``team=`` (the robot's team),
+    so a field-frame snapshot can be passed directly; see :func:`in_team_frame`.
+    """
 
     name = "skill"
+
+    def __init_subclass__(cls, **kwargs) -> None:
+        super().__init_subclass__(**kwargs)
+        if "act" in cls.__dict__:
+            cls.act = _accepting_team(cls.__dict__["act"])
 
     def __init__(self, field: FieldGeometry, robot: RobotParams | None = None, ball: BallParams | None = None):
         self.field = field

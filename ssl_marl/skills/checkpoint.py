@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import datetime as _dt
 import os
+import pickle
 import subprocess
 import warnings
 from collections.abc import Mapping
@@ -79,22 +80,45 @@ def atomic_torch_save(obj: Any, path: str | os.PathLike[str]) -> Path:
     return Path(path)
 
 
+#: What a valid file is, per kind (shown in every "is not a valid ..." error).
+VALID_FILES = {
+    "ssl_marl checkpoint": "a valid one is an actor file written by ssl_marl's trainer (RUN/actor.pt from "
+                           "`ssl-marl train` / `python -m train`, or `python -m train.export`), like the shipped "
+                           "ssl_marl/skills/pretrained/go_to_ball.pt",
+    "ssl_marl training checkpoint": "a valid one is RUN/checkpoint.pt written by `ssl-marl train` / "
+                                    "`python -m train`",
+}
+_ZIP_MAGIC = b"PK\x03\x04"
+
+
 def safe_torch_load(path: str | os.PathLike[str], what: str = "ssl_marl checkpoint") -> Any:
     """``torch.load(weights_only=True)`` with clear errors.
 
     Raises FileNotFoundError naming ``path`` if it is missing, ValueError
-    "... is not a valid <what> ..." if it cannot be unpickled safely.
+    "<path> is not a valid <what>: <what the file is not>; <what a valid one is>"
+    if it cannot be unpickled safely. PyTorch's own message is not repeated: it
+    suggests ``weights_only=False``, i.e. running code from the file, which a
+    user must never do with a checkpoint that fails this check.
     """
     path = Path(path)
     if not path.is_file():
-        raise FileNotFoundError(f"checkpoint not found: {path}")
+        raise FileNotFoundError(f"checkpoint not found: {path}" + (" (it is a folder)" if path.is_dir() else ""))
+    valid = VALID_FILES.get(what, f"a valid one is written by ssl_marl with torch.save")
+    with open(path, "rb") as fh:
+        head = fh.read(4)
+    if head != _ZIP_MAGIC:
+        kind = "an empty file" if not head else "not a PyTorch file (torch.save writes a zip archive)"
+        raise ValueError(f"{path} is not a valid {what}: it is {kind}; {valid}")
     try:
         with warnings.catch_warnings():  # torch warns about foreign pickle protocols before failing
             warnings.filterwarnings("ignore", message="Detected pickle protocol")
             return torch.load(path, map_location="cpu", weights_only=True)
-    except Exception as exc:  # UnpicklingError, RuntimeError (zip), EOFError, ...
-        raise ValueError(f"{path} is not a valid {what} (could not be read safely: "
-                         f"{type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''})") from exc
+    except pickle.UnpicklingError as exc:
+        raise ValueError(f"{path} is not a valid {what}: it holds Python objects other than tensors and plain "
+                         f"containers, which are never loaded (loading them could run code); {valid}") from exc
+    except Exception as exc:  # RuntimeError / OSError from a truncated or damaged zip, EOFError, KeyError, ...
+        raise ValueError(f"{path} is not a valid {what}: it is a damaged or truncated PyTorch archive "
+                         f"({type(exc).__name__}); {valid}") from exc
 
 
 def save_actor(path: str | os.PathLike[str], actor: Actor, metadata: Mapping[str, Any]) -> Path:
@@ -126,8 +150,9 @@ def load_actor(path: str | os.PathLike[str], expected_skill: str | None = None,
     """
     blob = safe_torch_load(path)
     bad = f"{path} is not a valid ssl_marl checkpoint"
+    valid = VALID_FILES["ssl_marl checkpoint"]
     if not isinstance(blob, dict) or blob.get("format") != FORMAT:
-        raise ValueError(f"{bad} (missing format tag {FORMAT!r})")
+        raise ValueError(f"{bad}: it is a PyTorch file without the format tag {FORMAT!r}; {valid}")
     if blob.get("version") != VERSION:
         raise ValueError(f"{bad} (unsupported version {blob.get('version')!r}, expected {VERSION})")
     meta, state = blob.get("metadata"), blob.get("state_dict")

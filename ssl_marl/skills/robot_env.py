@@ -33,6 +33,7 @@ import gymnasium
 import numpy as np
 from gymnasium.utils import EzPickle
 
+from ..envs.observation import clip_to_bounds
 from ..envs.ssl_env import SSLParallelEnv
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
@@ -249,7 +250,7 @@ class RobotSkillEnv(gymnasium.Env):
         for d in self.drivers:
             d.reset()
         self.task.begin()
-        return self.task.observe(self.seen(), self.robot), {"reward_terms": {}}
+        return self._observe(), {"reward_terms": {}}
 
     def step(self, action):
         a = check_action(action, self.action_space.shape[0])
@@ -267,8 +268,13 @@ class RobotSkillEnv(gymnasium.Env):
         info: dict[str, Any] = {"reward_terms": j.terms, "t": self.t, **j.info}
         if terminated or truncated:
             info.update(is_success=success, failure_reason=None if success else reason, time_s=self.t)
-        obs = self.task.observe(self.seen(), self.robot)
-        return obs, float(sum(j.terms.values())), terminated, truncated, info
+        return self._observe(), float(sum(j.terms.values())), terminated, truncated, info
+
+    def _observe(self) -> np.ndarray:
+        """The task's features of what the robot sees, clipped into ``observation_space``
+        (finite bounds wide enough that they never bind in play)."""
+        obs = np.asarray(self.task.observe(self.seen(), self.robot), dtype=np.float32)
+        return clip_to_bounds(obs, self.observation_space.low, self.observation_space.high)
 
     def render(self):
         return self.env.render()

@@ -21,6 +21,9 @@ import gymnasium
 import numpy as np
 from gymnasium.utils import EzPickle
 
+from ..envs.observation import position_extent, speed_caps
+from ..physics.field import FieldGeometry
+from ..physics.params import RobotParams
 from ..physics.state import WorldState
 from .base import make_action
 from .features import (BALL_LOST_DISTANCE, GO_TO_BALL_SPEC, ORIENTATION_FORMS, aim_to_shoot_env_action,
@@ -30,6 +33,27 @@ from .registry import get_task
 from .robot_env import Judgement, OneRobotSkillEnv, SkillTask, Start
 
 AGENT = "blue_0"
+
+
+
+def skill_observation_bounds(skill: str, field: FieldGeometry, robot: RobotParams) -> tuple[np.ndarray, np.ndarray]:
+    """(low, high) float32 bounds of a skill task's observation (``"go-to-ball"`` or
+    ``"aim-to-shoot"``), from the same rules as the full-field env
+    (:mod:`ssl_marl.envs.observation`): any robot-frame point lies within D, the
+    largest distance between two observable positions; velocities within the speed
+    caps x safety factor; distances in [0, D]; sin/cos in [-1, 1]."""
+    x, y = position_extent(field)
+    d = math.hypot(2 * x, 2 * y)
+    v, w, vb = speed_caps(robot)
+    if skill == "go-to-ball":  # ball xy, robot v, omega, dist, 4 closest line points
+        high = [d, d, v, v, w, d] + [d] * 8
+        low = [-d, -d, -v, -v, -w, 0.0] + [-d] * 8
+    elif skill == "aim-to-shoot":  # ball xy, ball v, omega, dist to goal, sin/cos of the post angles
+        high = [d, d, vb, vb, w, d, 1, 1, 1, 1]
+        low = [-d, -d, -vb, -vb, -w, 0.0, -1, -1, -1, -1]
+    else:
+        raise ValueError(f"unknown skill task {skill!r}; expected 'go-to-ball' or 'aim-to-shoot'")
+    return np.array(low, dtype=np.float32), np.array(high, dtype=np.float32)
 
 
 class GoToBallTask(SkillTask):
@@ -62,8 +86,13 @@ class GoToBallTask(SkillTask):
             raise ValueError(f"max_time_s must be positive, got {max_time_s!r}")
         self.max_time_s = max_time_s
         self.orientation_form = orientation_form
-        self.observation_space = gymnasium.spaces.Box(-np.inf, np.inf, (14,), np.float32)
+        self.observation_space = gymnasium.spaces.Box(-np.inf, np.inf, (14,), np.float32)  # bounded in bind()
         self.action_space = gymnasium.spaces.Box(-1.0, 1.0, (3,), np.float32)
+
+    def bind(self, field, robot, ball, dt) -> None:
+        super().bind(field, robot, ball, dt)
+        self.observation_space = gymnasium.spaces.Box(*skill_observation_bounds("go-to-ball", field, robot),
+                                                      (14,), np.float32)
 
     def sample_start(self, rng: np.random.Generator, options: dict) -> Start:
         f = self.field
@@ -143,13 +172,15 @@ class AimToShootTask(SkillTask):
         self.reward_form, self.success_bonus = reward_form, float(success_bonus)
         self.max_time_s, self.post_kick_time_s, self.lost_distance = max_time_s, post_kick_time_s, lost_distance
         self._spawn_x = spawn_x
-        self.observation_space = gymnasium.spaces.Box(-np.inf, np.inf, (10,), np.float32)
+        self.observation_space = gymnasium.spaces.Box(-np.inf, np.inf, (10,), np.float32)  # bounded in bind()
         self.action_space = gymnasium.spaces.Box(-1.0, 1.0, (3,), np.float32)
         self.kick_t: float | None = None
 
     def bind(self, field, robot, ball, dt) -> None:
         super().bind(field, robot, ball, dt)
         self.spawn_x = self._spawn_x or (0.5, field.half_length - 0.5)
+        self.observation_space = gymnasium.spaces.Box(*skill_observation_bounds("aim-to-shoot", field, robot),
+                                                      (10,), np.float32)
 
     def sample_start(self, rng: np.random.Generator, options: dict) -> Start:
         f = self.field
