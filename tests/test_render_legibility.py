@@ -56,7 +56,7 @@ def test_robot_numbers_fit_at_the_default_match_size():
 def test_match_video_has_the_caption(tmp_path):
     import imageio.v3 as iio
 
-    from ssl_marl.plays.match import play_match
+    from ssl_marl.runners.match import play_match
 
     out = tmp_path / "m.gif"
     play_match(blue="learned", yellow="baseline", robots=2, seconds=0.5, render=out, render_fps=4,

@@ -37,7 +37,7 @@ import numpy as np
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState, wrap_angle
-from .base import SkillStatus
+from .base import SkillBase, SkillStatus
 from .baseline import approach_speed, velocity_command
 
 
@@ -192,7 +192,7 @@ def other_robots(world: WorldState, robot: int) -> np.ndarray:
     return np.concatenate([own[:robot], own[robot + 1:], opp], axis=0)
 
 
-class NavigateToPoint:
+class NavigateToPoint(SkillBase):
     """Skill-protocol mover: go to ``target`` facing ``facing`` (rad, None = keep),
     around robots and out of forbidden defense areas (see the module docstring).
 
@@ -208,19 +208,13 @@ class NavigateToPoint:
                  params: NavParams | None = None, tolerance: float = 0.03, turn_gain: float = 6.0,
                  max_speed: float | None = None, dribble: bool = False, target=(0.0, 0.0),
                  facing: float | None = None, facing_tolerance: float | None = None) -> None:
-        self.field = field
-        self.rp = robot or RobotParams()
-        self.bp = ball or BallParams()
+        super().__init__(field, robot, ball)
         self.params = params or NavParams()
         self.tolerance, self.turn_gain, self.max_speed, self.dribble = tolerance, turn_gain, max_speed, dribble
         self.facing_tolerance = facing_tolerance
         self.target = np.asarray(target, float)
         self.facing: float | None = facing
         self.waypoint = np.zeros(2)
-        self.status = SkillStatus.RUNNING
-
-    def reset(self) -> None:
-        self.status = SkillStatus.RUNNING
 
     def act(self, world: WorldState, robot: int) -> np.ndarray:
         ts = world.team(world.frame)
