@@ -11,8 +11,9 @@ registered skill (``"go_to_ball"``, ``"aim_to_shoot"``, ...) and get an object w
 The swappable skills (those with a learned implementation) come from the skill
 registry (:func:`ssl_marl.skills.registry.learned_skills`).
 
-Construction goes through the registry record's ``build`` (what
-``ssl_marl.skills.make_skill`` calls).
+Construction goes through the skills package factory
+``ssl_marl.skills.make_skill(name, kind, field, robot, ball)`` (which reads the
+registry record).
 
 Learned skills load their actor from disk when built. Tactics are built often (a
 robot that changes role gets a fresh tactic), so a learned skill is built through
@@ -28,7 +29,7 @@ from typing import Any, Mapping, Union
 
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
-from ..skills.registry import SKILL_KINDS, get_skill, learned_skills
+from ..skills.registry import SKILL_KINDS, learned_skills
 
 SkillsSpec = Union[str, Mapping[str, str]]
 
@@ -93,4 +94,6 @@ def clear_skill_cache() -> None:
 
 
 def _build(name: str, kind: str, field: FieldGeometry, robot: RobotParams | None, ball: BallParams | None):
-    return get_skill(name).build(kind, field, robot, ball)
+    from .. import skills  # looked up at call time: the factory is the one construction path
+
+    return skills.make_skill(name, kind, field, robot, ball)
