@@ -17,7 +17,7 @@ from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState
 from .base import AimToShootSkill, GoToBallSkill
 from .features import aim_to_shoot_env_action, aim_to_shoot_features, go_to_ball_env_action, go_to_ball_features
-from .registry import PRETRAINED_DIR, get_skill, learned_skills
+from .registry import PRETRAINED_DIR, get_skill, learned_skills  # noqa: F401  (PRETRAINED_DIR: old import path)
 
 
 def __getattr__(name: str):
