@@ -56,7 +56,8 @@ def test_every_registered_algorithm_implements_the_interface() -> None:
     assert {"ddpg", "td3"} <= set(ALGOS)
     for name in ALGOS:
         torch.manual_seed(0)
-        agent = make_agent(4, 2, TrainConfig(algo=name, actor_hidden=(8,), critic_hidden=(8,), batch_size=16))
+        agent = make_agent(4, 2, TrainConfig(algo=name, actor_hidden=(8,), critic_hidden=(8,), batch_size=16,
+                                             autocast_bf16=False))
         assert isinstance(agent, Agent)
         assert agent.act(np.zeros((3, 4), np.float32)).shape == (3, 2)
         for _ in range(4):
@@ -112,6 +113,17 @@ def test_td3_updates_actor_and_targets_every_delay_th_step_only() -> None:
     assert moved == [(True, True), (False, False), (False, False)] * 2
     losses = agent.read_losses()
     assert set(losses) == {"critic", "actor"}
+
+
+def test_td3_bf16_autocast_update_tracks_float32() -> None:
+    losses = {}
+    for bf16 in (False, True):
+        torch.manual_seed(0)
+        agent = TD3(4, 2, TrainConfig(actor_hidden=(32, 32), critic_hidden=(32, 32), batch_size=16, autocast_bf16=bf16))
+        for _ in range(20):
+            agent.update(_batch())
+        losses[bf16] = list(agent.read_losses().values())
+    assert np.allclose(losses[True], losses[False], rtol=0.05, atol=1e-3), losses
 
 
 def test_td3_learns_the_toy_task_and_ships_like_ddpg(tmp_path) -> None:
