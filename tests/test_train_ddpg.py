@@ -15,6 +15,11 @@ from train.replay import Batch
 torch.set_num_threads(1)
 
 
+def fp32_config(**kw) -> DDPGConfig:
+    """A config in float32 whatever the CPU (autocast_bf16's default follows the CPU's features)."""
+    return DDPGConfig(**{"autocast_bf16": False, **kw})
+
+
 def test_td_target_terminal_does_not_bootstrap_truncated_does() -> None:
     rew = torch.tensor([1.0, 1.0, -2.0])
     terminated = torch.tensor([1.0, 0.0, 0.0])  # terminal, truncated (stored as not terminated), ordinary
@@ -44,7 +49,7 @@ def _batch(n: int = 16, terminated: float = 0.0) -> Batch:
 
 def test_update_moves_networks_and_targets_by_tau() -> None:
     torch.manual_seed(0)
-    cfg = DDPGConfig(actor_hidden=(8, 8), critic_hidden=(8, 8), tau=0.1, batch_size=16, buffer_size=100)
+    cfg = fp32_config(actor_hidden=(8, 8), critic_hidden=(8, 8), tau=0.1, batch_size=16, buffer_size=100)
     agent = DDPG(4, 2, cfg)
     before = {k: v.clone() for k, v in agent.state_dict()["actor_target"].items()}
     agent.update(_batch())
@@ -63,7 +68,7 @@ def test_update_moves_networks_and_targets_by_tau() -> None:
 def test_critic_fits_terminal_rewards_exactly() -> None:
     """With terminated = 1 the target is r alone, so the critic regresses Q(s, a) onto r."""
     torch.manual_seed(0)
-    cfg = DDPGConfig(actor_hidden=(16,), critic_hidden=(64, 64), critic_lr=3e-3, batch_size=16, buffer_size=100)
+    cfg = fp32_config(actor_hidden=(16,), critic_hidden=(64, 64), critic_lr=3e-3, batch_size=16, buffer_size=100)
     agent = DDPG(4, 2, cfg)
     b = _batch(terminated=1.0)
     for _ in range(300):
@@ -111,7 +116,7 @@ def test_config_errors_and_overrides(tmp_path) -> None:
 
 def test_behaviour_cloning_term_pulls_the_actor_to_the_demonstrations() -> None:
     torch.manual_seed(0)
-    cfg = DDPGConfig(actor_hidden=(32,), critic_hidden=(32,), batch_size=16, bc_weight=10.0, actor_lr=1e-3)
+    cfg = fp32_config(actor_hidden=(32,), critic_hidden=(32,), batch_size=16, bc_weight=10.0, actor_lr=1e-3)
     agent = DDPG(4, 2, cfg)
     demo = Batch(torch.randn(16, 4), torch.full((16, 2), 0.8), torch.zeros(16), torch.randn(16, 4), torch.zeros(16))
     before = float(((agent.actor(demo.obs) - demo.act) ** 2).mean().detach())
@@ -124,13 +129,13 @@ def test_behaviour_cloning_term_pulls_the_actor_to_the_demonstrations() -> None:
 def test_actor_step_does_not_touch_the_critic() -> None:
     """The actor step freezes the critic (no weight gradients) and unfreezes it afterwards."""
     torch.manual_seed(0)
-    agent = DDPG(4, 2, DDPGConfig(actor_hidden=(8,), critic_hidden=(8,), batch_size=16))
+    agent = DDPG(4, 2, fp32_config(actor_hidden=(8,), critic_hidden=(8,), batch_size=16))
     b = _batch()
     crit = agent.critic_loss(b)
     crit.backward()
     expected = [p.grad.clone() for p in agent.critic.parameters()]
     torch.manual_seed(0)
-    agent2 = DDPG(4, 2, DDPGConfig(actor_hidden=(8,), critic_hidden=(8,), batch_size=16))
+    agent2 = DDPG(4, 2, fp32_config(actor_hidden=(8,), critic_hidden=(8,), batch_size=16))
     agent2.update(b)  # critic grads left by update() must be the critic loss's alone
     for p, g in zip(agent2.critic.parameters(), expected):
         assert p.requires_grad
@@ -154,7 +159,7 @@ def test_compiled_update_matches_eager() -> None:
     states = []
     for compiled in (False, True):
         torch.manual_seed(0)
-        agent = DDPG(4, 2, DDPGConfig(actor_hidden=(16,), critic_hidden=(16,), batch_size=16, compile=compiled))
+        agent = DDPG(4, 2, fp32_config(actor_hidden=(16,), critic_hidden=(16,), batch_size=16, compile=compiled))
         for _ in range(5):
             agent.update(_batch())
         states.append(agent.actor.state_dict())

@@ -56,7 +56,8 @@ def toy_config(**kw: Any) -> DDPGConfig:
     base = dict(skill="toy", env_id=TOY, actor_hidden=(64, 64), critic_hidden=(64, 64), actor_lr=1e-3, critic_lr=1e-3,
                 gamma=0.95, tau=0.02, ou_sigma=0.5, buffer_size=20_000, batch_size=64, total_samples=2_000,
                 warmup_samples=250,
-                eval_interval=0, eval_episodes=10, checkpoint_interval=10_000, torch_threads=1, log_interval=50)
+                eval_interval=0, eval_episodes=10, checkpoint_interval=10_000, torch_threads=1, log_interval=50,
+                autocast_bf16=False)  # float32 whatever the CPU (tiny networks: bf16 casts would only cost)
     base.update(kw)
     return DDPGConfig(**base)
 

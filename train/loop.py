@@ -49,6 +49,7 @@ from ssl_marl.skills.checkpoint import atomic_torch_save, save_actor
 from .algos import make_agent
 from .checkpoints import CHECKPOINT, FORMAT, VERSION, actor_metadata, load_run_config, read_train_state
 from .config import TrainConfig
+from .demos import fill_replay
 from .evaluate import ActionScaler, evaluate_actor, make_env, run_episodes
 from .exploration import make_exploration
 from .logs import EVAL_FIELDS, CsvLog, TensorBoardLog, progress_fields
@@ -82,26 +83,6 @@ def _masked(info: Mapping[str, Any], key: str, i: int) -> Any:
     if key not in info or not bool(info.get("_" + key, np.ones(i + 1, bool))[i]):
         return None
     return info[key][i]
-
-
-def check_demo(tr: Any, n: int, obs_dim: int, scaler: ActionScaler) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Demonstration transition ``n`` as (obs, action in [-1, 1], next_obs); ValueError naming what
-    does not fit the env's spaces."""
-    obs = np.asarray(tr.obs, np.float32)
-    next_obs = np.asarray(tr.next_obs, np.float32)
-    act = np.asarray(tr.action, np.float64)
-    problems = []
-    if obs.shape != (obs_dim,) or next_obs.shape != (obs_dim,):
-        problems.append(f"obs shapes {obs.shape}/{next_obs.shape} != ({obs_dim},)")
-    if act.shape != scaler.low.shape:
-        problems.append(f"action shape {act.shape} != {scaler.low.shape}")
-    elif np.any(act < scaler.low - 1e-5) or np.any(act > scaler.high + 1e-5):
-        problems.append(f"action {act} outside [{scaler.low}, {scaler.high}]")
-    if not (np.all(np.isfinite(obs)) and np.all(np.isfinite(next_obs)) and np.isfinite(tr.reward)):
-        problems.append("non-finite obs or reward")
-    if problems:
-        raise ValueError(f"demo transition {n} does not fit the env's spaces: " + "; ".join(problems))
-    return obs, scaler.from_env(np.clip(act, scaler.low, scaler.high)), next_obs
 
 
 class Trainer:
@@ -193,44 +174,15 @@ class Trainer:
         if self.demo_done or self.demo_fn is None or cfg.demo_steps <= 0:
             self.demo_done = True
             return
-        chunk: dict[str, list[Any]] = {k: [] for k in ("obs", "act", "rew", "next_obs", "term")}
-        ret, length, terms = 0.0, 0, {}  # type: ignore[var-annotated]
+        start = self.transitions
 
-        def flush() -> None:
-            if chunk["obs"]:
-                self.buffer.add(np.stack(chunk["obs"]), np.stack(chunk["act"]),
-                                np.asarray(chunk["rew"]) * cfg.reward_scale, np.stack(chunk["next_obs"]),
-                                np.asarray(chunk["term"]))
-                for v in chunk.values():
-                    v.clear()
+        def on_episode(stored: int, ret: float, length: int, success: Any, terms: Mapping[str, float]) -> None:
+            self.transitions = start + stored
+            self._log_episode("demo", ret, length, success, terms)
 
-        bar = tqdm(total=cfg.demo_steps, desc="demo burn-in", unit="step", disable=not self.progress,
-                   dynamic_ncols=True)
-        n = 0
-        for n, tr in enumerate(self.demo_fn(n_steps=cfg.demo_steps, seed=self.seed, **cfg.env_kwargs), 1):
-            obs, act, next_obs = check_demo(tr, n, self.obs_dim, self.scaler)
-            chunk["obs"].append(obs)
-            chunk["act"].append(act)
-            chunk["rew"].append(float(tr.reward))
-            chunk["next_obs"].append(next_obs)
-            chunk["term"].append(float(bool(tr.terminated)))
-            self.transitions += 1
-            ret, length = ret + float(tr.reward), length + 1
-            info = tr.info if isinstance(tr.info, Mapping) else {}
-            for k, v in (info.get("reward_terms") or {}).items():
-                terms[k] = terms.get(k, 0.0) + float(v)
-            if tr.terminated or tr.truncated:
-                self._log_episode("demo", ret, length, info.get("is_success"), terms)
-                ret, length, terms = 0.0, 0, {}
-            if len(chunk["obs"]) >= 4096:
-                flush()
-            bar.update(1)
-            if n >= cfg.demo_steps:
-                break
-        flush()
-        bar.close()
-        if n < cfg.demo_steps:
-            raise ValueError(f"demo source produced {n} transitions, expected {cfg.demo_steps}")
+        demos = self.demo_fn(n_steps=cfg.demo_steps, seed=self.seed, **cfg.env_kwargs)
+        self.transitions = start + fill_replay(demos, cfg.demo_steps, self.buffer, self.scaler, self.obs_dim,
+                                               cfg.reward_scale, on_episode, self.progress)
         self.demo_done = True
 
     # --- collection -----------------------------------------------------------
