@@ -136,7 +136,7 @@ def test_missing_output_folders_are_created_for_every_command(tmp_path, capsys):
     capsys.readouterr()
     with pytest.raises(SystemExit):
         build_parser().parse_args(["--help"])
-    assert "missing parent folders are created" in capsys.readouterr().out
+    assert "missing parent folders are created" in " ".join(capsys.readouterr().out.split())
 
 
 # ----------------------------------------------------------- argparse checks
