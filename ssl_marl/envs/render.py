@@ -3,7 +3,8 @@
 :class:`FieldRenderer` draws a :class:`~ssl_marl.physics.state.WorldState` onto an
 off-screen ``pygame.Surface`` and returns an ``(H, W, 3)`` ``uint8`` RGB frame
 ("rgb_array" mode).  :meth:`FieldRenderer.show` additionally blits frames into a
-window ("human" mode).
+window ("human" mode, :mod:`ssl_marl.envs.window`); :func:`write_animation` (from
+:mod:`ssl_marl.envs.animation`) writes frames to a GIF or MP4.
 
 Headless operation: drawing never touches the SDL video subsystem (it only needs
 ``pygame.Surface``, ``pygame.draw`` and ``pygame.font``), so the off-screen path
@@ -49,6 +50,7 @@ if sys.platform.startswith("linux") and not (os.environ.get("DISPLAY") or os.env
 import pygame  # noqa: E402  (pygame-ce)
 
 from .animation import write_animation  # noqa: E402  (re-exported: frames -> GIF/MP4)
+from .window import Window  # noqa: E402  (human mode)
 
 __all__ = ["FieldRenderer", "write_animation", "BLUE", "YELLOW", "BALL_ORANGE"]
 
@@ -176,9 +178,7 @@ class FieldRenderer:
         self._trails: dict[tuple[str, int], deque] = {}
         self._last_t: float | None = None
 
-        self._window: pygame.Surface | None = None
-        self._window_failed = False
-        self._clock: pygame.time.Clock | None = None
+        self._window = Window(f"ssl_marl - {field.name}", render_fps)
         self._closed = False
 
     # ------------------------------------------------------------ coordinates
@@ -483,74 +483,30 @@ class FieldRenderer:
     @property
     def window_available(self) -> bool:
         """False once opening the window failed (then :meth:`show` is a no-op)."""
-        return not self._window_failed
-
-    def _open_window(self, size: tuple[int, int]) -> bool:
-        if self._window_failed:
-            return False
-        if self._window is not None and self._window.get_size() == size and pygame.display.get_init():
-            return True
-        try:
-            if not pygame.display.get_init():
-                pygame.display.init()
-            self._window = pygame.display.set_mode(size)
-            pygame.display.set_caption(f"ssl_marl - {self.field.name}")
-            self._clock = pygame.time.Clock()
-            return True
-        except Exception as exc:  # pygame.error: no video device, no display, ...
-            self._window_failed = True
-            self._window = None
-            warnings.warn(f"FieldRenderer.show: cannot open a window ({exc}); continuing without one "
-                          "(frames are still returned by draw(), as in 'rgb_array' mode)",
-                          RuntimeWarning, stacklevel=3)
-            return False
+        return self._window.available
 
     def show(self, frame_or_world) -> None:
         """Blit a frame (``(H, W, 3)`` uint8 array) or a freshly drawn :class:`WorldState`
-        into a window, pump window events and tick at ``render_fps``.
+        into a window (:class:`~ssl_marl.envs.window.Window`), pump window events and tick
+        at ``render_fps``.
 
         Without a usable display this warns once and does nothing."""
         if self._closed:
             raise RuntimeError("FieldRenderer.show: renderer is closed")
         if isinstance(frame_or_world, WorldState):
             self.draw(frame_or_world)
-            src = self._surface
-            keep = None
-        else:
-            frame = np.ascontiguousarray(frame_or_world, dtype=np.uint8)
-            if frame.ndim != 3 or frame.shape[2] != 3:
-                raise ValueError(f"FieldRenderer.show: expected an (H, W, 3) frame or a WorldState, "
-                                 f"got shape {frame.shape}")
-            keep = frame  # the surface below borrows this buffer
-            src = pygame.image.frombuffer(keep, (frame.shape[1], frame.shape[0]), "RGB")
-        if not self._open_window(src.get_size()):
+            self._window.present(self._surface)
             return
-        try:
-            self._window.blit(src, (0, 0))
-            pygame.display.flip()
-            for event in pygame.event.get():
-                if event.type == pygame.QUIT:
-                    self._close_window()
-                    self._window_failed = True  # user closed it: stop showing
-                    return
-            self._clock.tick(self.render_fps)
-        except pygame.error as exc:
-            self._window_failed = True
-            warnings.warn(f"FieldRenderer.show: window error ({exc}); continuing without a window",
-                          RuntimeWarning, stacklevel=2)
-        del keep
-
-    def _close_window(self) -> None:
-        if self._window is not None:
-            self._window = None
-            try:
-                pygame.display.quit()
-            except Exception:
-                pass
+        frame = np.ascontiguousarray(frame_or_world, dtype=np.uint8)
+        if frame.ndim != 3 or frame.shape[2] != 3:
+            raise ValueError(f"FieldRenderer.show: expected an (H, W, 3) frame or a WorldState, "
+                             f"got shape {frame.shape}")
+        # the surface borrows the frame's buffer: keep ``frame`` alive until presented
+        self._window.present(pygame.image.frombuffer(frame, (frame.shape[1], frame.shape[0]), "RGB"))
 
     def close(self) -> None:
         """Close the window (if any) and drop the surfaces. Idempotent."""
-        self._close_window()
+        self._window.close()
         self._trails.clear()
         self._id_cache.clear()
         self._closed = True

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import enum
 import functools
-from typing import Protocol, runtime_checkable
+from typing import Callable, Protocol, runtime_checkable
 
 import numpy as np
 
@@ -72,7 +72,7 @@ def in_team_frame(world: WorldState, team: str | None) -> WorldState:
     return world
 
 
-def _accepting_team(act):
+def _accepting_team(act: Callable[..., np.ndarray]) -> Callable[..., np.ndarray]:
     """Wrap a skill's ``act(world, robot)`` so it also takes ``team=`` (see :func:`in_team_frame`)."""
     if getattr(act, "_accepts_team", False):
         return act
