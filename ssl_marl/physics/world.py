@@ -188,7 +188,8 @@ class PhysicsWorld:
         vmax, acc, brk = rp.max_speed, rp.max_accel * dt, rp.max_brake * dt
         wmax, alpha = rp.max_omega, rp.max_alpha * dt
         bx, by = float(self.ball_pos[0]), float(self.ball_pos[1])
-        ball_sp = math.hypot(float(self.ball_vel[0]), float(self.ball_vel[1]))
+        bvx, bvy = float(self.ball_vel[0]), float(self.ball_vel[1])
+        ball_sp = math.sqrt(bvx * bvx + bvy * bvy)
         near_base = rp.radius + rp.front_distance + self.ball_params.radius + 0.05 + (ball_sp + 2 * rp.max_accel * dt) * dt
         near: list[int] = []
         cmd_v, cmd_w = v_body.tolist(), omega.tolist()
@@ -197,12 +198,12 @@ class PhysicsWorld:
                 self.omega.tolist())):
             c, sn = math.cos(h), math.sin(h)
             dx, dy = c * ux - sn * uy, sn * ux + c * uy  # desired field-frame velocity
-            sp = math.hypot(dx, dy)
+            sp = math.sqrt(dx * dx + dy * dy)  # sqrt, not hypot: bit-equal to the batched numpy path
             if sp > vmax:
                 dx, dy, sp = dx * vmax / sp, dy * vmax / sp, vmax
             ex, ey = dx - vx, dy - vy
-            en = math.hypot(ex, ey)
-            cur = math.hypot(vx, vy)
+            en = math.sqrt(ex * ex + ey * ey)
+            cur = math.sqrt(vx * vx + vy * vy)
             lim = brk if sp < cur else acc
             if en > lim:
                 ex, ey = ex * lim / en, ey * lim / en
@@ -211,7 +212,8 @@ class PhysicsWorld:
             dw = w_des - w
             dw = alpha if dw > alpha else (-alpha if dw < -alpha else dw)
             b.angularVelocity = w + dw
-            if math.hypot(px - bx, py - by) < near_base + cur * dt:
+            qx, qy = px - bx, py - by
+            if math.sqrt(qx * qx + qy * qy) < near_base + cur * dt:
                 near.append(i)
         # --- kicker -------------------------------------------------------------
         self.kick_cooldown = np.maximum(self.kick_cooldown - dt, 0.0)  # new array: snapshots stay intact
@@ -271,7 +273,7 @@ class PhysicsWorld:
             tx += c * pull_l - s * cent_l
             ty += s * pull_l + c * cent_l
             ddx, ddy = tx - vbx, ty - vby
-            dn = math.hypot(ddx, ddy)
+            dn = math.sqrt(ddx * ddx + ddy * ddy)
             lim = rp.dribbler_max_accel * dt
             if dn > lim:
                 ddx, ddy = ddx * lim / dn, ddy * lim / dn
@@ -296,7 +298,7 @@ class PhysicsWorld:
         bp, S = self.ball_params, SCALE
         v = self._ball_body.linearVelocity
         vx, vy = v[0] / S, v[1] / S
-        sp = math.hypot(vx, vy)
+        sp = math.sqrt(vx * vx + vy * vy)
         if sp <= 0.0:
             return
         if sp > self._slide_until:
