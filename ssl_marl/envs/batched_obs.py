@@ -1,0 +1,72 @@
+"""Observations of every robot of K worlds in one numpy pass.
+
+:func:`batched_observations` is :func:`ssl_marl.envs.observation.all_observations`
+with a leading world axis: the same layout (see that module's table), the same
+operations in the same order, so world k's rows equal ``all_observations`` of
+world k's snapshot (tested).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..physics.field import FieldGeometry
+from .observation import SELF_DIM, SLOT_DIM, _category_offset, obs_dim
+
+
+def batched_observations(pos: np.ndarray, heading: np.ndarray, vel: np.ndarray, omega: np.ndarray,
+                         ball_pos: np.ndarray, ball_vel: np.ndarray, on_dribbler: np.ndarray, kick_ready: np.ndarray,
+                         ball_visible: np.ndarray | bool, field: FieldGeometry, n_blue: int, n_yellow: int,
+                         max_teammates: int, max_opponents: int) -> np.ndarray:
+    """(K, n, obs_dim) float32 observations, blue robots first, each in its team frame.
+
+    Args (field frame, SI units): pos (K, n, 2), heading (K, n), vel (K, n, 2),
+    omega (K, n), ball_pos (K, 2), ball_vel (K, 2), on_dribbler (K, n) bool,
+    kick_ready (K, n) bool, ball_visible (K,) bool or one bool for all worlds.
+    """
+    K, n = pos.shape[0], n_blue + n_yellow
+    nb, ny = n_blue, n_yellow
+    out = np.zeros((K, n, obs_dim(max_teammates, max_opponents)), dtype=np.float64)
+    sgn = np.concatenate([np.ones(nb), -np.ones(ny)])
+    s2 = sgn[:, None]
+    cos_h, sin_h = np.cos(heading), np.sin(heading)
+    p = pos * s2
+    out[..., 0:2] = p
+    out[..., 2] = cos_h * sgn
+    out[..., 3] = sin_h * sgn
+    out[..., 4:6] = vel * s2
+    out[..., 6] = omega
+    out[..., 7:9] = ball_pos[:, None, :] * s2 - p
+    out[..., 9:11] = ball_vel[:, None, :] * s2
+    out[..., 11] = on_dribbler
+    out[..., 12] = kick_ready
+    out[..., 13] = np.asarray(ball_visible, dtype=np.float64).reshape(-1, 1) if np.ndim(ball_visible) else \
+        (1.0 if ball_visible else 0.0)
+    out[..., 14] = field.half_length - p[..., 0]
+    out[..., 15] = -p[..., 1]
+    out[..., 16] = -field.half_length - p[..., 0]
+    out[..., 17] = -p[..., 1]
+    out[..., 18] = field.half_length
+    out[..., 19] = field.half_width
+    out[..., 20] = field.goal_width / 2
+    if n > 1 and (max_teammates or max_opponents):
+        rel = (pos[:, None, :, :] - pos[:, :, None, :]) * s2[None, :, :, None]  # (k, i, j): j seen from i
+        d2 = rel[..., 0] * rel[..., 0] + rel[..., 1] * rel[..., 1]
+        order = np.argsort(d2 + _category_offset(nb, ny), axis=2, kind="stable")
+        feat = np.empty((K, n, n, SLOT_DIM))
+        feat[..., 0] = 1.0
+        feat[..., 1:3] = rel
+        feat[..., 3:5] = vel[:, None, :, :] * s2[None, :, :, None]
+        feat[..., 5] = cos_h[:, None, :] * s2
+        feat[..., 6] = sin_h[:, None, :] * s2
+        g = np.take_along_axis(feat, order[..., None], axis=2)
+        t_start, o_start = SELF_DIM, SELF_DIM + SLOT_DIM * max_teammates
+        for rows, n_mates, n_opp in ((slice(0, nb), nb - 1, ny), (slice(nb, n), ny - 1, nb)):
+            km, ko = min(max(n_mates, 0), max_teammates), min(n_opp, max_opponents)
+            nr = len(range(n)[rows])
+            if km > 0:
+                out[:, rows, t_start:t_start + SLOT_DIM * km] = g[:, rows, :km].reshape(K, nr, SLOT_DIM * km)
+            if ko > 0:
+                om = max(n_mates, 0)
+                out[:, rows, o_start:o_start + SLOT_DIM * ko] = g[:, rows, om:om + ko].reshape(K, nr, SLOT_DIM * ko)
+    return out.astype(np.float32)
