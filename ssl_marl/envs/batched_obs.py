@@ -26,7 +26,9 @@ def batched_observations(pos: np.ndarray, heading: np.ndarray, vel: np.ndarray, 
     """
     K, n = pos.shape[0], n_blue + n_yellow
     nb, ny = n_blue, n_yellow
-    out = np.zeros((K, n, obs_dim(max_teammates, max_opponents)), dtype=np.float64)
+    # float32 output written directly: every value is computed in float64 and rounded
+    # once on assignment, as all_observations' final astype does
+    out = np.zeros((K, n, obs_dim(max_teammates, max_opponents)), dtype=np.float32)
     sgn = np.concatenate([np.ones(nb), -np.ones(ny)])
     s2 = sgn[:, None]
     cos_h, sin_h = np.cos(heading), np.sin(heading)
@@ -52,21 +54,24 @@ def batched_observations(pos: np.ndarray, heading: np.ndarray, vel: np.ndarray, 
     if n > 1 and (max_teammates or max_opponents):
         rel = (pos[:, None, :, :] - pos[:, :, None, :]) * s2[None, :, :, None]  # (k, i, j): j seen from i
         d2 = rel[..., 0] * rel[..., 0] + rel[..., 1] * rel[..., 1]
-        order = np.argsort(d2 + _category_offset(nb, ny), axis=2, kind="stable")
-        feat = np.empty((K, n, n, SLOT_DIM))
-        feat[..., 0] = 1.0
-        feat[..., 1:3] = rel
-        feat[..., 3:5] = vel[:, None, :, :] * s2[None, :, :, None]
-        feat[..., 5] = cos_h[:, None, :] * s2
-        feat[..., 6] = sin_h[:, None, :] * s2
-        g = np.take_along_axis(feat, order[..., None], axis=2)
-        t_start, o_start = SELF_DIM, SELF_DIM + SLOT_DIM * max_teammates
-        for rows, n_mates, n_opp in ((slice(0, nb), nb - 1, ny), (slice(nb, n), ny - 1, nb)):
+        order = np.argsort(d2 + _category_offset(nb, ny), axis=2, kind="stable")  # mates, opponents, self
+        # per-robot values gathered in each observer's order: one row-take over all worlds
+        q = np.concatenate([pos, vel, cos_h[..., None], sin_h[..., None]], axis=2).reshape(K * n, 6)
+        g = np.take(q, order + (np.arange(K) * n)[:, None, None], axis=0)  # (K, i, rank, 6)
+        slots = out[..., SELF_DIM:].reshape(K, n, max_teammates + max_opponents, SLOT_DIM)
+        for lo, hi, n_mates, n_opp, sg in ((0, nb, nb - 1, ny, 1.0), (nb, n, ny - 1, nb, -1.0)):
+            if hi == lo:
+                continue
             km, ko = min(max(n_mates, 0), max_teammates), min(n_opp, max_opponents)
-            nr = len(range(n)[rows])
-            if km > 0:
-                out[:, rows, t_start:t_start + SLOT_DIM * km] = g[:, rows, :km].reshape(K, nr, SLOT_DIM * km)
-            if ko > 0:
-                om = max(n_mates, 0)
-                out[:, rows, o_start:o_start + SLOT_DIM * ko] = g[:, rows, om:om + ko].reshape(K, nr, SLOT_DIM * ko)
-    return out.astype(np.float32)
+            om = max(n_mates, 0)
+            own = pos[:, lo:hi, None, :]
+            for s0, r0, cnt in ((0, 0, km), (max_teammates, om, ko)):  # (slot start, rank start, count)
+                if cnt <= 0:
+                    continue
+                gg = g[:, lo:hi, r0:r0 + cnt]
+                dst = slots[:, lo:hi, s0:s0 + cnt]
+                dst[..., 0] = 1.0
+                dst[..., 1:3] = (gg[..., 0:2] - own) * sg
+                dst[..., 3:5] = gg[..., 2:4] * sg
+                dst[..., 5:7] = gg[..., 4:6] * sg
+    return out

@@ -35,6 +35,11 @@ from .state import TeamState, WorldState, wrap_angle
 from .world import _FACE_PENETRATION_TOL, POS_ITERS, SCALE, VEL_ITERS, PhysicsWorld
 
 
+_R19 = np.arange(19)
+_R_VW = np.array([16, 17, 18])
+_R_V = np.array([16, 17])
+
+
 class BatchedPhysics:
     """K independent SSL worlds (same field, robots and parameters).
 
@@ -75,15 +80,19 @@ class BatchedPhysics:
         self.t = np.zeros(K)
         self.kicker = np.full(K, -1)
         self.kick_speed = np.zeros(K)
-        self._views: list[np.ndarray | None] = [None] * K
+        self._fast = bm.layout_ok()
+        self._addr = np.zeros((K, n + 1), np.int64)
+        self._span_dirty = True
+        self._mem = self._slot = None
 
     # ------------------------------------------------------------------ syncing
     def pull(self, k: int) -> None:
         """Copy world k's state from its :class:`PhysicsWorld` (after a reset or a
         teleport done through it) and refresh its memory view."""
         w = self.worlds[k]
-        bodies = w._robot_bodies + [w._ball_body]
-        self._views[k] = bm.bodies_view(bodies)
+        if self._fast:
+            self._addr[k] = [bm.address(b) for b in w._robot_bodies + [w._ball_body]]
+            self._span_dirty = True
         self.pos[k], self.heading[k], self.vel[k], self.omega[k] = w.pos, w.heading, w.vel, w.omega
         self.ball_pos[k], self.ball_vel[k] = w.ball_pos, w.ball_vel
         self.on_face_now[k] = w._on_face_now
@@ -119,57 +128,66 @@ class BatchedPhysics:
         self.pull(k)
 
     # --------------------------------------------------------------- body I/O
-    def _raw_state(self, idx: np.ndarray) -> np.ndarray:
-        """(len(idx), n + 1, 19) float32-valued Box2D state of the bodies of worlds idx."""
-        views = self._views
-        out = []
-        for k in idx:
-            v = views[k]
-            if v is None:
-                w = self.worlds[k]
-                rows = np.zeros((self.n + 1, 19))
-                for i, b in enumerate(w._robot_bodies + [w._ball_body]):
-                    p, lv = b.position, b.linearVelocity
-                    rows[i, 3:5] = p[0], p[1]
-                    rows[i, bm.ANGLE] = b.angle
-                    rows[i, 16:18] = lv[0], lv[1]
-                    rows[i, bm.OMEGA] = b.angularVelocity
-                out.append(rows)
-            else:
-                out.append(v[:, :19])
-        return np.stack(out).astype(np.float64)
+    # Fast path: one flat float32 view spanning every body of every world
+    # (body_memory.span_view) and the index of each body's first slot, so that reading
+    # all bodies or writing all velocities is one numpy gather / scatter. Fallback
+    # (layout check failed): SWIG, body by body.
+    def _span(self) -> tuple[np.ndarray, np.ndarray]:
+        if self._span_dirty:
+            self._mem, self._slot = bm.span_view(self._addr)
+            self._span_dirty = False
+        return self._mem, self._slot
 
-    def _write_robot_vel(self, idx: np.ndarray, vals: np.ndarray) -> None:
-        """vals (len(idx), n, 3): linear velocity (Box2D units) and angular velocity."""
-        n = self.n
-        v32 = vals.astype(np.float32)
+    def _raw_state(self, idx: np.ndarray, full: bool) -> np.ndarray:
+        """(len(idx), n + 1, 19) Box2D state (float32 values as float64) of worlds idx."""
+        if self._fast:
+            mem, slot = self._span()
+            s = slot if full else slot[idx]
+            return mem[s[..., None] + _R19].astype(np.float64)
+        out = np.zeros((len(idx), self.n + 1, 19))
         for j, k in enumerate(idx):
-            v = self._views[k]
-            if v is None:
-                for b, (vx, vy, w) in zip(self.worlds[k]._robot_bodies, vals[j].tolist()):
-                    b.linearVelocity = (vx, vy)
-                    b.angularVelocity = w
-            else:
-                v[:n, bm.VEL_OMEGA] = v32[j]
-
-    def _ball_vel_raw(self, idx: np.ndarray) -> np.ndarray:
-        n = self.n
-        out = np.empty((len(idx), 2))
-        for j, k in enumerate(idx):
-            v = self._views[k]
-            if v is None:
-                lv = self.worlds[k]._ball_body.linearVelocity
-                out[j] = lv[0], lv[1]
-            else:
-                out[j] = v[n, bm.VEL]
+            w = self.worlds[k]
+            for i, b in enumerate(w._robot_bodies + [w._ball_body]):
+                p, lv = b.position, b.linearVelocity
+                out[j, i, 3:5] = p[0], p[1]
+                out[j, i, bm.ANGLE] = b.angle
+                out[j, i, 16:18] = lv[0], lv[1]
+                out[j, i, bm.OMEGA] = b.angularVelocity
         return out
 
-    def _set_ball_vel_raw(self, k: int, vx: float, vy: float) -> None:
-        v = self._views[k]
-        if v is None:
+    def _write_robot_vel(self, idx: np.ndarray, full: bool, vals: np.ndarray) -> None:
+        """vals (len(idx), n, 3): linear velocity (Box2D units) and angular velocity."""
+        n = self.n
+        if self._fast:
+            mem, slot = self._span()
+            s = slot[:, :n] if full else slot[idx, :n]
+            mem[s[..., None] + _R_VW] = vals
+            return
+        for j, k in enumerate(idx):
+            for b, (vx, vy, w) in zip(self.worlds[k]._robot_bodies, vals[j].tolist()):
+                b.linearVelocity = (vx, vy)
+                b.angularVelocity = w
+
+    def _ball_vel_raw(self, idx: np.ndarray, full: bool) -> np.ndarray:
+        """(len(idx), 2) ball velocities (Box2D units)."""
+        if self._fast:
+            mem, slot = self._span()
+            s = slot[:, self.n] if full else slot[idx, self.n]
+            return mem[s[:, None] + _R_V].astype(np.float64)
+        out = np.empty((len(idx), 2))
+        for j, k in enumerate(idx):
+            lv = self.worlds[k]._ball_body.linearVelocity
+            out[j] = lv[0], lv[1]
+        return out
+
+    def _set_ball_vel_raw(self, worlds: np.ndarray, vals: np.ndarray) -> None:
+        """Set the ball velocity (Box2D units) of ``worlds`` (world indices) to vals (m, 2)."""
+        if self._fast:
+            mem, slot = self._span()
+            mem[slot[worlds, self.n][:, None] + _R_V] = vals
+            return
+        for k, (vx, vy) in zip(worlds.tolist(), vals.tolist()):
             self.worlds[k]._ball_body.linearVelocity = (vx, vy)
-        else:
-            v[self.n, bm.VEL] = (vx, vy)
 
     # ------------------------------------------------------------------ step
     def step(self, v_body: np.ndarray, omega: np.ndarray, dribble: np.ndarray, kick: np.ndarray,
@@ -220,7 +238,7 @@ class BatchedPhysics:
         cmd[..., 0] = (vx + ex) * S
         cmd[..., 1] = (vy + ey) * S
         cmd[..., 2] = om + dw
-        self._write_robot_vel(idx, cmd)
+        self._write_robot_vel(idx, full, cmd)
         qx, qy = pos[..., 0] - ball_pos[:, None, 0], pos[..., 1] - ball_pos[:, None, 1]
         near = np.sqrt(qx * qx + qy * qy) < near_base[:, None] + cur * dt  # (k, n)
         any_near = near.any(axis=1)
@@ -231,14 +249,15 @@ class BatchedPhysics:
         kicker = np.where(kicked, np.argmax(fire, axis=1), -1)
         kick_speed = np.zeros(len(idx))
         slide_until = get(self.slide_until).copy()
-        for j in np.flatnonzero(kicked):
-            i = int(kicker[j])
-            speed = float(min(kick[j, i], 1.0)) * rp.kick_speed_max
-            h = heading[j, i]
-            self._set_ball_vel_raw(int(idx[j]), speed * math.cos(h) * S, speed * math.sin(h) * S)
-            slide_until[j] = self.ball_params.slide_to_roll_ratio * speed if speed > 0 else math.inf
-            cool[j, i] = rp.kick_recharge_s
-            kick_speed[j] = speed
+        kj = np.flatnonzero(kicked)
+        if kj.size:
+            ki = kicker[kj]
+            speed = np.minimum(kick[kj, ki], 1.0) * rp.kick_speed_max
+            h = heading[kj, ki]
+            self._set_ball_vel_raw(idx[kj], np.stack([speed * np.cos(h) * S, speed * np.sin(h) * S], axis=1))
+            slide_until[kj] = np.where(speed > 0, self.ball_params.slide_to_roll_ratio * speed, math.inf)
+            cool[kj, ki] = rp.kick_recharge_s
+            kick_speed[kj] = speed
         # --- sub-steps: dribbler, ball friction, Box2D ------------------------------
         drib = near & dribble & ~kicked[:, None]
         drib_worlds = np.flatnonzero(drib.any(axis=1))
@@ -251,7 +270,7 @@ class BatchedPhysics:
             for k, lst in drib_lists:
                 self.worlds[k]._apply_dribblers(lst)
             # two-phase ball friction (PhysicsWorld._apply_ball_friction, vectorised)
-            raw = self._ball_vel_raw(idx)
+            raw = self._ball_vel_raw(idx, full)
             bx_, by_ = raw[:, 0] / S, raw[:, 1] / S
             bsp = np.sqrt(bx_ * bx_ + by_ * by_)
             moving = bsp > 0.0
@@ -260,15 +279,15 @@ class BatchedPhysics:
             slide_until = np.where(moving & ~sliding, math.inf, slide_until)
             new = np.maximum(bsp - dec * self.sub_dt, 0.0)
             kf = new / np.where(moving, bsp, 1.0) * S
-            nvx, nvy = bx_ * kf, by_ * kf
-            for j in np.flatnonzero(moving).tolist():
-                self._set_ball_vel_raw(int(idx[j]), float(nvx[j]), float(nvy[j]))
+            mv = np.flatnonzero(moving)
+            if mv.size:
+                self._set_ball_vel_raw(idx[mv], np.stack([bx_[mv] * kf[mv], by_[mv] * kf[mv]], axis=1))
             for w in b2worlds:
                 w.Step(self.sub_dt, VEL_ITERS, POS_ITERS)
             if near_pairs[0].size and sub < self.substeps - 1:
                 self._mark_touches(idx, near_pairs, touched)
         # --- read back --------------------------------------------------------------
-        raw = self._raw_state(idx)
+        raw = self._raw_state(idx, full)
         new_pos = raw[:, :n, 3:5] / S
         new_heading = wrap_angle(raw[:, :n, bm.ANGLE])
         on_face = self.ball_on_face(new_pos, new_heading, raw[:, n, 3:5] / S)
@@ -291,18 +310,19 @@ class BatchedPhysics:
         (PhysicsWorld._mark_touches: the raw, unwrapped Box2D angle)."""
         wj, ri = near_pairs
         S, n = SCALE, self.n
-        rows = np.empty((wj.size, 5))
-        for m, (j, i) in enumerate(zip(wj.tolist(), ri.tolist())):
-            k = int(idx[j])
-            v = self._views[k]
-            if v is None:
-                w = self.worlds[k]
+        if self._fast:
+            mem, slot = self._span()
+            ks = idx[wj]
+            r = mem[slot[ks, ri][:, None] + _R19[[3, 4, bm.ANGLE]]].astype(np.float64)
+            q = mem[slot[ks, n][:, None] + _R19[[3, 4]]].astype(np.float64)
+            rows = np.concatenate([r, q], axis=1)
+        else:
+            rows = np.empty((wj.size, 5))
+            for m, (j, i) in enumerate(zip(wj.tolist(), ri.tolist())):
+                w = self.worlds[int(idx[j])]
                 b, ball = w._robot_bodies[i], w._ball_body
                 p, q = b.position, ball.position
                 rows[m] = p[0], p[1], b.angle, q[0], q[1]
-            else:
-                rows[m, 0:3] = v[i, 3], v[i, 4], v[i, bm.ANGLE]
-                rows[m, 3:5] = v[n, bm.POS]
         hit = self.ball_on_face(rows[:, 0:2] / S, rows[:, 2], rows[:, 3:5] / S)
         touched[wj, ri] |= hit
 

@@ -41,6 +41,11 @@ VEL_OMEGA = slice(16, 19)
 _SLOTS = 48  # float32 slots viewed per body (sizeof(b2Body) is 192 bytes in 2.3.10)
 
 
+def address(body) -> int:
+    """Address of a body's C++ ``b2Body`` (bytes)."""
+    return int(body.this)
+
+
 def _address(body) -> int:
     return int(body.this)
 
@@ -69,9 +74,32 @@ def layout_ok() -> bool:
         view[1, OMEGA] = -3.0
         if tuple(bodies[1].linearVelocity) != (4.0, 5.0) or bodies[1].angularVelocity != -3.0:
             return False
-        return True
+        mem, slot = span_view(np.array([address(b) for b in bodies]))
+        mem[slot[2] + OMEGA] = 1.25
+        return bool(bodies[2].angularVelocity == 1.25 and mem[slot[0] + ANGLE] == np.float32(bodies[0].angle))
     except Exception:  # any surprise (other Box2D build): use SWIG
         return False
+
+
+class _Span:
+    """Minimal ``__array_interface__`` provider: n_floats float32 starting at address base."""
+
+    def __init__(self, base: int, n_floats: int) -> None:
+        self.__array_interface__ = {"shape": (n_floats,), "typestr": "<f4", "data": (base, False), "version": 3}
+
+
+def span_view(addresses: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """One flat float32 view covering every body at ``addresses`` (bytes, any shape),
+    and the index of each body's first slot in it.
+
+    The view spans the whole address range, including memory that belongs to other
+    objects or is not mapped: only ever index it at ``slot0 + [0, 48)`` of live bodies.
+    """
+    a = np.asarray(addresses, dtype=np.int64)
+    base = int(a.min()) & ~15
+    n_floats = (int(a.max()) - base) // 4 + _SLOTS
+    view = np.asarray(_Span(base, n_floats))
+    return view, (a - base) // 4
 
 
 def bodies_view(bodies: list, check: bool = True) -> np.ndarray | None:
