@@ -34,6 +34,7 @@ from datetime import datetime, timezone
 from pathlib import Path
 
 import numpy as np
+from Box2D._Box2D import b2World_Step
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
@@ -85,7 +86,7 @@ class Floor:
             self.mem[self.slot[:, :n, None] + np.array([16, 17, 18])] = vals
         for _ in range(self.substeps):
             for w in self.b2:
-                w.Step(self.sub_dt, VEL_ITERS, POS_ITERS)
+                b2World_Step(w, self.sub_dt, VEL_ITERS, POS_ITERS)
         if self.swig:
             out = np.empty((self.K, n + 1, 6))
             for k, bodies in enumerate(self.bodies):

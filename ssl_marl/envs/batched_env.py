@@ -155,10 +155,10 @@ class BatchedSSLEnv:
                                f"{np.flatnonzero(~self._was_reset).tolist()})")
         a = self.check_actions(actions)
         resetting = np.flatnonzero(self.needs_reset)
+        live = np.flatnonzero(~self.needs_reset) if resetting.size else None
         for k in resetting:
             self.reset_world(int(k))
-        live = np.flatnonzero(~np.isin(np.arange(self.K), resetting))
-        obs, rew, term, trunc, info = self._step_worlds(a, None if resetting.size == 0 else live)
+        obs, rew, term, trunc, info = self._step_worlds(a, live)
         info["autoreset"] = np.zeros(self.K, bool)
         info["autoreset"][resetting] = True
         self.needs_reset = term | trunc

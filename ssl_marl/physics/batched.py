@@ -27,6 +27,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from Box2D._Box2D import b2World_Step as Box2D_step
 
 from . import body_memory as bm
 from .field import FieldGeometry
@@ -81,6 +82,7 @@ class BatchedPhysics:
         self.kicker = np.full(K, -1)
         self.kick_speed = np.zeros(K)
         self._fast = bm.layout_ok()
+        self._b2: list = [w.world for w in worlds]
         self._addr = np.zeros((K, n + 1), np.int64)
         self._span_dirty = True
         self._mem = self._slot = None
@@ -90,6 +92,7 @@ class BatchedPhysics:
         """Copy world k's state from its :class:`PhysicsWorld` (after a reset or a
         teleport done through it) and refresh its memory view."""
         w = self.worlds[k]
+        self._b2[k] = w.world
         if self._fast:
             self._addr[k] = [bm.address(b) for b in w._robot_bodies + [w._ball_body]]
             self._span_dirty = True
@@ -264,7 +267,8 @@ class BatchedPhysics:
         drib_lists = [(int(idx[j]), np.flatnonzero(drib[j]).tolist()) for j in drib_worlds]
         touched = np.zeros(near.shape, bool)
         near_pairs = np.nonzero(near)
-        b2worlds = [self.worlds[k].world for k in idx]
+        b2worlds = self._b2 if full else [self._b2[k] for k in idx.tolist()]
+        b2step = Box2D_step
         bp = self.ball_params
         for sub in range(self.substeps):
             for k, lst in drib_lists:
@@ -283,7 +287,7 @@ class BatchedPhysics:
             if mv.size:
                 self._set_ball_vel_raw(idx[mv], np.stack([bx_[mv] * kf[mv], by_[mv] * kf[mv]], axis=1))
             for w in b2worlds:
-                w.Step(self.sub_dt, VEL_ITERS, POS_ITERS)
+                b2step(w, self.sub_dt, VEL_ITERS, POS_ITERS)
             if near_pairs[0].size and sub < self.substeps - 1:
                 self._mark_touches(idx, near_pairs, touched)
         # --- read back --------------------------------------------------------------
