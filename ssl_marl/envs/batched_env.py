@@ -122,16 +122,22 @@ class BatchedSSLEnv:
 
     def reset_world(self, k: int, seed: int | None = None, options: dict | None = None) -> np.ndarray:
         """Reset world k alone (the single env's ``reset``); return its (n, D) observation."""
+        self.envs[k].reset(seed=seed, options=options)
+        self.adopt_world(k)
+        return self.obs[k]
+
+    def adopt_world(self, k: int) -> None:
+        """Take over world k after its single env was reset directly (the skill vector
+        envs reset through their task envs)."""
         env = self.envs[k]
-        obs, _ = env.reset(seed=seed, options=options)
         self.physics.pull(k)
         self.score[k] = 0
         self.prev_ball_x[k] = self.physics.ball_pos[k, 0]
         self.needs_reset[k] = False
         self._was_reset[k] = True
-        self.obs[k] = np.stack([obs[a] for a in self.possible_agents])
         self._seen[k] = env._seen
-        return self.obs[k]
+        cfg = self.config
+        self.obs[k] = all_observations(env._seen, self.field, cfg.obs_max_teammates, cfg.obs_max_opponents)
 
     # ------------------------------------------------------------------- step
     def check_actions(self, actions: Any, n_worlds: int | None = None) -> np.ndarray:
