@@ -286,3 +286,30 @@ def test_skill_vector_env_api_and_bad_inputs():
     with pytest.raises(ValueError, match="opponent_policy"):
         SkillVectorEnv("go-to-ball", 2, n_opponents=1, opponent_policy="chase")
     env.close()
+
+
+def test_sharded_env_matches_one_batched_env():
+    from ssl_marl.envs.sharded import ShardedBatchedEnv
+
+    config = dict(n_blue=2, n_yellow=2, max_time_s=0.5, randomize_reset=True)
+    sharded = ShardedBatchedEnv(2, 2, **config)
+    try:
+        ref = BatchedSSLEnv(4, **config)
+        o1, _ = sharded.reset(seed=4)
+        o2, _ = ref.reset(seed=4)
+        np.testing.assert_array_equal(o1, o2)
+        rng = np.random.default_rng(0)
+        for _ in range(80):  # 30 steps per episode: autoresets included
+            a = rng.uniform(-1, 1, (4, 4, 5))
+            r1, r2 = sharded.step(a), ref.step(a)
+            for x, y in zip(r1[:4], r2[:4]):
+                np.testing.assert_array_equal(x, y)
+            for k in ("goal", "kicker", "t", "autoreset", "score"):
+                np.testing.assert_array_equal(r1[4][k], r2[4][k])
+        a[3, 1, 0] = np.nan
+        with pytest.raises(ValueError, match="world 3: action for agent 'blue_1'"):
+            sharded.step(a)
+        with pytest.raises(ValueError, match="shape"):
+            sharded.step(a[:2])
+    finally:
+        sharded.close()
