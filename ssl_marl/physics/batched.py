@@ -33,7 +33,7 @@ from . import body_memory as bm
 from .field import FieldGeometry
 from .params import BallParams, RobotParams
 from .state import TeamState, WorldState, wrap_angle
-from .world import _FACE_PENETRATION_TOL, POS_ITERS, SCALE, VEL_ITERS, PhysicsWorld
+from .world import _FACE_PENETRATION_TOL, POS_ITERS, SCALE, VEL_ITERS, PhysicsWorld, cap_velocities
 
 
 _R19 = np.arange(19)
@@ -292,6 +292,7 @@ class BatchedPhysics:
                 self._mark_touches(idx, near_pairs, touched)
         # --- read back --------------------------------------------------------------
         raw = self._raw_state(idx, full)
+        self._enforce_caps(idx, full, raw)
         new_pos = raw[:, :n, 3:5] / S
         new_heading = wrap_angle(raw[:, :n, bm.ANGLE])
         on_face = self.ball_on_face(new_pos, new_heading, raw[:, n, 3:5] / S)
@@ -308,6 +309,31 @@ class BatchedPhysics:
             for name, v in vals.items():
                 getattr(self, name)[idx] = v
             self.t[idx] = t
+
+    def _enforce_caps(self, idx: np.ndarray, full: bool, raw: np.ndarray) -> None:
+        """PhysicsWorld's hard speed caps (world.cap_velocities) on worlds idx; raw is
+        patched to what the bodies now hold."""
+        rp, S, n = self.robot, SCALE, self.n
+        vel, om, changed = cap_velocities(raw[:, :n, 16:18], raw[:, :n, bm.OMEGA], rp.max_speed * S, rp.max_omega)
+        bvel, _, bch = cap_velocities(raw[:, n, 16:18], None, rp.kick_speed_max * S)
+        if not (changed.any() or bch.any()):
+            return
+        raw[:, :n, 16:18], raw[:, :n, bm.OMEGA], raw[:, n, 16:18] = vel, om, bvel
+        wj, ri = np.nonzero(changed)
+        bj = np.flatnonzero(bch)
+        if self._fast:
+            mem, slot = self._span()
+            if wj.size:
+                mem[slot[idx[wj], ri][:, None] + _R_VW] = raw[wj, ri, 16:19]
+            if bj.size:
+                mem[slot[idx[bj], n][:, None] + _R_V] = raw[bj, n, 16:18]
+            return
+        for j, i in zip(wj.tolist(), ri.tolist()):
+            b = self.worlds[int(idx[j])]._robot_bodies[i]
+            b.linearVelocity = (float(raw[j, i, 16]), float(raw[j, i, 17]))
+            b.angularVelocity = float(raw[j, i, bm.OMEGA])
+        for j in bj.tolist():
+            self.worlds[int(idx[j])]._ball_body.linearVelocity = (float(raw[j, n, 16]), float(raw[j, n, 17]))
 
     def _mark_touches(self, idx: np.ndarray, near_pairs: tuple[np.ndarray, np.ndarray], touched: np.ndarray) -> None:
         """touched[j, i] |= ball on robot i's face now, for the near (j, i) pairs
