@@ -55,23 +55,24 @@ def batched_observations(pos: np.ndarray, heading: np.ndarray, vel: np.ndarray, 
         rel = (pos[:, None, :, :] - pos[:, :, None, :]) * s2[None, :, :, None]  # (k, i, j): j seen from i
         d2 = rel[..., 0] * rel[..., 0] + rel[..., 1] * rel[..., 1]
         order = np.argsort(d2 + _category_offset(nb, ny), axis=2, kind="stable")  # mates, opponents, self
-        # per-robot values gathered in each observer's order: one row-take over all worlds
+        # per-robot values gathered in each observer's order (one row-take over all worlds),
+        # then made relative to the observer and turned into its team frame. The sign
+        # flip is exact (x * -1.0 == -x), so the values equal all_observations'.
         q = np.concatenate([pos, vel, cos_h[..., None], sin_h[..., None]], axis=2).reshape(K * n, 6)
         g = np.take(q, order + (np.arange(K) * n)[:, None, None], axis=0)  # (K, i, rank, 6)
-        slots = out[..., SELF_DIM:].reshape(K, n, max_teammates + max_opponents, SLOT_DIM)
-        for lo, hi, n_mates, n_opp, sg in ((0, nb, nb - 1, ny, 1.0), (nb, n, ny - 1, nb, -1.0)):
+        g[..., 0:2] -= pos[:, :, None, :]
+        if ny:
+            g[:, nb:] *= -1.0
+        n_slots = max_teammates + max_opponents
+        blk = np.zeros((K, n, n_slots, SLOT_DIM))
+        for lo, hi, n_mates, n_opp in ((0, nb, nb - 1, ny), (nb, n, ny - 1, nb)):
             if hi == lo:
                 continue
             km, ko = min(max(n_mates, 0), max_teammates), min(n_opp, max_opponents)
             om = max(n_mates, 0)
-            own = pos[:, lo:hi, None, :]
             for s0, r0, cnt in ((0, 0, km), (max_teammates, om, ko)):  # (slot start, rank start, count)
-                if cnt <= 0:
-                    continue
-                gg = g[:, lo:hi, r0:r0 + cnt]
-                dst = slots[:, lo:hi, s0:s0 + cnt]
-                dst[..., 0] = 1.0
-                dst[..., 1:3] = (gg[..., 0:2] - own) * sg
-                dst[..., 3:5] = gg[..., 2:4] * sg
-                dst[..., 5:7] = gg[..., 4:6] * sg
+                if cnt > 0:
+                    blk[:, lo:hi, s0:s0 + cnt, 0] = 1.0
+                    blk[:, lo:hi, s0:s0 + cnt, 1:] = g[:, lo:hi, r0:r0 + cnt]
+        out[..., SELF_DIM:] = blk.reshape(K, n, n_slots * SLOT_DIM)
     return out
