@@ -75,6 +75,8 @@ class BatchedSSLEnv:
             if cfg.render_mode is not None:
                 raise ValueError("render_mode: not supported by the batched env (use SSLParallelEnv)")
             envs = [SSLParallelEnv(**config) for _ in range(n_worlds)]
+        elif config:
+            raise ValueError(f"pass either envs or env options, not both (got options {sorted(config)})")
         elif len(envs) != n_worlds:
             raise ValueError(f"got {len(envs)} envs for n_worlds={n_worlds}")
         self.envs = list(envs)
@@ -114,7 +116,8 @@ class BatchedSSLEnv:
         return self.obs.copy(), {"t": self.physics.t.copy()}
 
     def _per_world(self, value: Any, name: str, spread) -> list:
-        if isinstance(value, (list, tuple)) and not (name == "options" and isinstance(value, dict)):
+        """A list/tuple gives one value per world; anything else is spread over the worlds."""
+        if isinstance(value, (list, tuple)):
             if len(value) != self.K:
                 raise ValueError(f"{name}: expected one value per world ({self.K}), got {len(value)}")
             return list(value)
