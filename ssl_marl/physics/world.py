@@ -340,13 +340,22 @@ class PhysicsWorld:
         S = SCALE
         n = self.n
         buf = np.empty((n, 6))
-        for i, b in enumerate(self._robot_bodies):
+        rows = []
+        for b in self._robot_bodies:
             p, v = b.position, b.linearVelocity
-            buf[i] = (p[0], p[1], b.angle, v[0], v[1], b.angularVelocity)
+            rows.append((p[0], p[1], b.angle, v[0], v[1], b.angularVelocity))
+        if n:
+            buf[:] = rows
         bp, bv = self._ball_body.position, self._ball_body.linearVelocity
         ball_v = np.array(((bv[0], bv[1]),))
+        rp = self.robot
+        if caps:  # cheap float pre-check (slightly conservative); cap_velocities decides exactly
+            v2 = (rp.max_speed * S) ** 2 * (1 - 1e-9)
+            b2 = (rp.kick_speed_max * S) ** 2 * (1 - 1e-9)
+            bvx, bvy = ball_v[0]
+            caps = bvx * bvx + bvy * bvy > b2 or any(
+                r[3] * r[3] + r[4] * r[4] > v2 or abs(r[5]) > rp.max_omega for r in rows)
         if caps:
-            rp = self.robot
             vel, om, changed = cap_velocities(buf[:, 3:5], buf[:, 5], rp.max_speed * S, rp.max_omega)
             for i in np.flatnonzero(changed).tolist():
                 b = self._robot_bodies[i]
