@@ -136,7 +136,7 @@ def check(env: BatchedSSLEnv, obs: np.ndarray, rew: np.ndarray) -> dict[str, np.
 
 def run(args) -> dict:
     state_path = Path(args.state)
-    combos = [(c, r) for c in CONFIGS for r in REALISM]
+    combos = [(c, r) for c in args.configs for r in args.realism]
     per_combo = args.steps // len(combos)
     state = None
     if state_path.exists() and not args.fresh:
@@ -147,11 +147,13 @@ def run(args) -> dict:
         state = {"steps": args.steps, "worlds": args.worlds, "seed": args.seed, "done": {}, "wall_s": {},
                  "counts": {}, "max": {}, "examples": []}
     total_done = sum(state["done"].values())
-    bar = tqdm(total=per_combo * len(combos), initial=total_done, unit="world-step", unit_scale=True, smoothing=0.05)
-    for ci, (cname, realism) in enumerate(combos):
+    bar = tqdm(total=per_combo * len(combos), initial=total_done, unit="world-step", unit_scale=True, smoothing=0.05,
+               disable=args.report_only)
+    for cname, realism in combos:
+        ci = list(CONFIGS).index(cname) * len(REALISM) + REALISM.index(realism)  # seeds as in a full soak
         key = f"{cname}/{realism}"
         done = state["done"].get(key, 0)
-        if done >= per_combo:
+        if done >= per_combo or args.report_only:
             continue
         env = BatchedSSLEnv(args.worlds, **CONFIGS[cname], realism=realism, max_time_s=20.0, randomize_reset=True)
         rng = np.random.default_rng([args.seed, ci, done])
@@ -187,7 +189,7 @@ def run(args) -> dict:
     wall = sum(state["wall_s"].values())
     return {"date_utc": datetime.now(timezone.utc).isoformat(timespec="seconds"),
             "machine": f"{platform.machine()}, {os.cpu_count()} cores", "python": platform.python_version(),
-            "requested_world_steps": args.steps, "world_steps_run": total, "wall_s": round(wall, 1),
+            "requested_world_steps": args.steps, "combinations": [f"{c}/{r}" for c, r in combos], "world_steps_run": total, "wall_s": round(wall, 1),
             "world_steps_per_s": round(total / wall) if wall else None, "worlds": args.worlds, "seed": args.seed,
             "totals": {c: sum(v[c] for v in state["counts"].values()) for c in CHECKS},
             "per_combination": {k: {"world_steps": state["done"][k], "wall_s": round(state["wall_s"][k], 1),
@@ -203,6 +205,12 @@ def main(argv: list[str] | None = None) -> dict:
     p.add_argument("--out", default="results/soak.json", help="result JSON (default results/soak.json)")
     p.add_argument("--state", default="runs/soak/state.json", help="progress file for resuming (default runs/soak/state.json)")
     p.add_argument("--fresh", action="store_true", help="ignore an existing progress file and start over")
+    p.add_argument("--configs", nargs="+", choices=list(CONFIGS), default=list(CONFIGS),
+                   help="configurations to soak (default: all three); --steps is split over the chosen combinations")
+    p.add_argument("--realism", nargs="+", choices=list(REALISM), default=list(REALISM),
+                   help="realism presets to soak (default: both)")
+    p.add_argument("--report-only", action="store_true",
+                   help="write --out from the progress file as it stands (e.g. of an interrupted soak), run nothing")
     args = p.parse_args(argv)
     if args.steps < 1 or args.worlds < 1:
         p.error("--steps and --worlds must be positive")
