@@ -133,7 +133,7 @@ class TrainConfig:
     ou_dt: float = 1.0
     # --- envs, evaluation, logging -------------------------------------------
     num_envs: int = 1
-    vector_mode: str = "sync"  #: "sync" (SyncVectorEnv) or "async" (AsyncVectorEnv)
+    vector_mode: str = "sync"  #: "sync" (SyncVectorEnv), "async" (AsyncVectorEnv) or "batched" (ssl_marl SkillVectorEnv)
     eval_interval: int = 25_000  #: env samples between deterministic evaluations (0: none)
     eval_episodes: int = 10
     checkpoint_interval: int = 50_000  #: env samples between resumable checkpoints
@@ -186,8 +186,8 @@ class TrainConfig:
             problems.append(f"algo must be one of {sorted(ALGOS)} (got {self.algo!r})")
         if self.exploration not in EXPLORATIONS:
             problems.append(f"exploration must be one of {sorted(EXPLORATIONS)} (got {self.exploration!r})")
-        if self.vector_mode not in ("sync", "async"):
-            problems.append(f"vector_mode must be 'sync' or 'async' (got {self.vector_mode!r})")
+        if self.vector_mode not in ("sync", "async", "batched"):
+            problems.append(f"vector_mode must be 'sync', 'async' or 'batched' (got {self.vector_mode!r})")
         if self.demo_steps > 0 and not self.demo_fn:
             problems.append("demo_steps > 0 needs demo_fn ('module:function')")
         if self.demo_steps > self.buffer_size:

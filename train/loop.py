@@ -112,8 +112,15 @@ class Trainer:
         self.buffer = ReplayBuffer(cfg.buffer_size, self.obs_dim, self.act_dim, cfg.batch_size, replay_rng)
         self.noise = make_exploration(cfg, cfg.num_envs, self.act_dim, noise_rng)
         env_fns = [lambda: make_env(cfg.env_id, cfg.env_kwargs, cfg.max_episode_steps)] * cfg.num_envs
-        vec_cls = SyncVectorEnv if cfg.vector_mode == "sync" else AsyncVectorEnv
-        self.envs = vec_cls(env_fns, autoreset_mode=AutoresetMode.NEXT_STEP)
+        if cfg.vector_mode == "batched":  # the skill tasks' worlds stepped together (ssl_marl.skills.vector)
+            from ssl_marl.skills.vector import make_skill_vector_env
+
+            if cfg.max_episode_steps:
+                raise ValueError("vector_mode 'batched' does not take max_episode_steps (the tasks time out themselves)")
+            self.envs = make_skill_vector_env(cfg.env_id, cfg.num_envs, cfg.env_kwargs)
+        else:
+            vec_cls = SyncVectorEnv if cfg.vector_mode == "sync" else AsyncVectorEnv
+            self.envs = vec_cls(env_fns, autoreset_mode=AutoresetMode.NEXT_STEP)
 
         # counters (all saved in the checkpoint)
         self.samples = 0  # env samples stored by the learner (excludes demos)
