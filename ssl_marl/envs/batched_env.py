@@ -36,6 +36,7 @@ the agent, as the single env names the agent.
 
 from __future__ import annotations
 
+import math
 from typing import Any, Sequence
 
 import gymnasium
@@ -50,9 +51,23 @@ from .config import EnvConfig, make_config
 from .observation import all_observations, state_vector
 from .referee import clear_robots_from, kickoff_poses, placement_point
 from .ssl_env import SSLParallelEnv
+from .tasks import FreePlayTask, MatchRules, MatchTask
 
 TEAMS = ("blue", "yellow")
 
+
+
+def _batched_rules(env: SSLParallelEnv) -> MatchRules:
+    """The rules the batched env vectorises, from the single env's task: a
+    :class:`MatchTask`'s own rules, or for :class:`FreePlayTask` no referee, no rewards
+    and no end. Other tasks are refused (their logic is not vectorised)."""
+    task = env.task
+    if isinstance(task, MatchTask):
+        return task.rules
+    if isinstance(task, FreePlayTask):
+        return MatchRules(referee=False, after_goal="kickoff", max_time_s=math.inf,
+                          reward_scales={"goal": 0.0, "ball_progress": 0.0, "possession": 0.0})
+    raise ValueError(f"task: the batched env runs the 'match' and 'free_play' tasks, got {type(task).__name__}")
 
 class BatchedSSLEnv:
     """K SSL worlds with one set of options (see :class:`~ssl_marl.envs.config.EnvConfig`).
@@ -101,7 +116,8 @@ class BatchedSSLEnv:
         self._realism = cfg.realism.enabled
         self._seen: list[WorldState | None] = [None] * K
         self._is_blue = np.arange(self.n) < cfg.n_blue
-        scales = cfg.reward_scales
+        self.rules = _batched_rules(self.envs[0])
+        scales = self.rules.reward_scales
         self._scales = (float(scales["goal"]), float(scales["ball_progress"]), float(scales["possession"]))
 
     # ------------------------------------------------------------------ reset
@@ -188,7 +204,7 @@ class BatchedSSLEnv:
         ph.step(v.reshape(m, n, 2), w.reshape(m, n), drib.reshape(m, n), kick.reshape(m, n), worlds=worlds)
         goal = np.zeros(K, np.int64)
         ball_out = np.zeros(K, bool)
-        if cfg.referee:
+        if self.rules.referee:
             self._referee(idx, goal, ball_out)
         # rewards (SSLParallelEnv._rewards)
         bx = ph.ball_pos[idx, 0]
@@ -212,10 +228,10 @@ class BatchedSSLEnv:
         t_now = ph.t[idx]
         terminated = np.zeros(K, bool)
         truncated = np.zeros(K, bool)
-        term_now = (g != 0) & (cfg.after_goal == "terminate")
+        term_now = (g != 0) & (self.rules.after_goal == "terminate")
         terminated[idx] = term_now
-        truncated[idx] = (t_now >= cfg.max_time_s - 1e-9) & ~term_now
-        if cfg.after_goal == "kickoff":
+        truncated[idx] = (t_now >= self.rules.max_time_s - 1e-9) & ~term_now
+        if self.rules.after_goal == "kickoff":
             for j in np.flatnonzero(g != 0):
                 self._kickoff(int(idx[j]))
         self._observe(idx)
