@@ -106,7 +106,7 @@ def cmd_match(args: argparse.Namespace) -> int:
     from .plays.match import play_match, play_series
 
     common = dict(robots=args.robots, field=args.field, seconds=args.seconds, realism=args.realism,
-                  realtime=args.realtime)
+                  realtime=args.realtime, tracker=args.tracker)
     render = None if str(args.render).lower() == "none" else args.render
     if args.matches == 1:
         res = play_match(blue=args.blue, yellow=args.yellow, seed=args.seed, render=render,
@@ -136,7 +136,7 @@ def cmd_eval_skill(args: argparse.Namespace) -> int:
 
     s = evaluate_skill(args.skill, args.policy, episodes=args.episodes, seed=args.seed, workers=args.workers,
                        out=args.out, realism=args.realism, field=args.field, progress=not args.quiet,
-                       realtime=args.realtime)
+                       realtime=args.realtime, tracker=args.tracker)
     t = s["time_to_success_s"]
     lo, hi = s["success_ci95"]
     mean = "n/a" if t["mean"] is None else f"{t['mean']:.2f} +/- {t['std']:.2f} s"
@@ -151,7 +151,8 @@ def cmd_eval_tactic(args: argparse.Namespace) -> int:
     from .plays.evaluate import evaluate_tactic
 
     s = evaluate_tactic(skills=args.skills, episodes=args.episodes, seed=args.seed, workers=args.workers,
-                        realism=args.realism, out=args.out, field=args.field, progress=not args.quiet)
+                        realism=args.realism, out=args.out, field=args.field, progress=not args.quiet,
+                        tracker=args.tracker)
     t = s["time_s"]
     lo, hi = s["success_ci95"]
     mean = "n/a" if t["mean"] is None else f"{t['mean']:.2f} +/- {t['std']:.2f} s"
@@ -166,6 +167,13 @@ def cmd_bench(args: argparse.Namespace) -> int:
 
     bench.main(args.rest)
     return 0
+
+
+def _add_tracker_option(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--tracker", choices=("auto", "on", "off"), default="auto",
+                   help="vision tracker between the env's vision and the skills/tactics (Kalman filters, latency "
+                        "compensation, ball on the dribbler, outlier gates): auto = on unless --realism none "
+                        "(default auto)")
 
 
 # -------------------------------------------------------------------- parser
@@ -213,6 +221,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="parallel worker processes for a series (default 1)")
     m.add_argument("--json", default=None, metavar="PATH", help="also write the result as JSON to PATH")
     m.add_argument("--quiet", action="store_true", help="no progress bar")
+    _add_tracker_option(m)
     m.set_defaults(func=cmd_match)
 
     e = sub.add_parser("eval-skill", help="the paper's skill evaluation protocol (section 5.1)",
@@ -230,6 +239,7 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("--realtime", action="store_true", help="run in real-time mode (slow: 60 steps per second)")
     e.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")
     e.add_argument("--quiet", action="store_true", help="no progress bar")
+    _add_tracker_option(e)
     e.set_defaults(func=cmd_eval_skill)
 
     t = sub.add_parser("eval-tactic", help="the paper's go-to-ball-and-shoot tactic evaluation (section 5.2)",
@@ -243,6 +253,7 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--out", default=None, help="output directory")
     t.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")
     t.add_argument("--quiet", action="store_true", help="no progress bar")
+    _add_tracker_option(t)
     t.set_defaults(func=cmd_eval_tactic)
 
     b = sub.add_parser("bench", help="env throughput benchmark (JSON); options: ssl-marl bench -- --help",

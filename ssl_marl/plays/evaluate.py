@@ -52,24 +52,26 @@ def sample_scene(rng: np.random.Generator, field) -> tuple[np.ndarray, np.ndarra
 _ENV_CACHE: dict[tuple, Any] = {}
 
 
-def _env(field: str, realism: Any, max_time_s: float):
+def _env(field: str, realism: Any, max_time_s: float, tracker: Any = "auto"):
     from ..envs import parallel_env
+    from ..envs.tracking import with_tracker
 
-    key = (field if isinstance(field, str) else repr(field), repr(realism), float(max_time_s))
+    key = (field if isinstance(field, str) else repr(field), repr(realism), float(max_time_s), repr(tracker))
     env = _ENV_CACHE.get(key)
     if env is None:
-        env = _ENV_CACHE[key] = parallel_env(n_blue=1, n_yellow=0, field=field, realism=realism, referee=True,
-                                             after_goal="terminate", max_time_s=float(max_time_s))
+        env = _ENV_CACHE[key] = with_tracker(parallel_env(n_blue=1, n_yellow=0, field=field, realism=realism,
+                                                          referee=True, after_goal="terminate",
+                                                          max_time_s=float(max_time_s)), tracker)
     return env
 
 
 def run_episode(index: int, seed: int, skills: Any = "baseline", realism: Any = "none", field: Any = "div_b",
-                max_time_s: float = 15.0, realtime: bool = False) -> dict:
+                max_time_s: float = 15.0, realtime: bool = False, tracker: Any = "auto") -> dict:
     """One evaluation episode; returns a dict (index, seed, success, outcome, time_s,
     kicks, ball, robot, missed_deadlines)."""
     from .shoot import GoToBallAndShoot
 
-    env = _env(field, realism, max_time_s)
+    env = _env(field, realism, max_time_s, tracker)
     es = episode_seed(seed, index)
     rng = np.random.default_rng(es)
     ball, pose = sample_scene(rng, env.field)
@@ -123,7 +125,7 @@ def write_time_histogram(times: list[float], path: Path, title: str, max_time_s:
 def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0, workers: int = 1,
                     realism: Any = "none", out: str | os.PathLike | None = None, field: Any = "div_b",
                     max_time_s: float = 15.0, realtime: bool = False, progress: bool = True,
-                    start_method: str = "spawn") -> dict:
+                    start_method: str = "spawn", tracker: Any = "auto") -> dict:
     """Evaluate go-to-ball-and-shoot as in the paper's section 5.2 (see the module docstring).
 
     Args:
@@ -138,6 +140,8 @@ def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0,
         realtime: drop a command whose computation exceeds the 1/60 s deadline.
         progress: tqdm bar.
         start_method: multiprocessing start method for workers > 1.
+        tracker: "auto" (on unless realism is "none"), "on" or "off": the tactic reads
+            :class:`~ssl_marl.envs.tracking.TrackedVisionEnv`'s tracked state.
 
     Returns: the results dict (also written to ``out/results.json``).
     """
@@ -153,7 +157,10 @@ def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0,
         if skill_kind(skills, name) == "learned":
             make_tactic_skill(name, skills, FieldGeometry.from_name(field))
     t0 = time.perf_counter()
-    jobs = [(i, seed, skills, realism, field, max_time_s, realtime) for i in range(episodes)]
+    from ..envs.tracking import resolve_tracker
+
+    use_tracker = resolve_tracker(tracker, realism)
+    jobs = [(i, seed, skills, realism, field, max_time_s, realtime, use_tracker) for i in range(episodes)]
     eps = run_pool(_episode_worker, jobs, workers, f"eval go-to-ball-and-shoot ({skills})", progress,
                    start_method, unit="ep")
     eps.sort(key=lambda e: e["index"])
@@ -169,7 +176,7 @@ def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0,
         "skills": skills if isinstance(skills, str) else dict(skills),
         "episodes": episodes, "seed": seed,
         "config": {"field": field_name, "realism": realism if isinstance(realism, str) else repr(realism),
-                   "max_time_s": max_time_s, "realtime": realtime, "workers": workers,
+                   "max_time_s": max_time_s, "realtime": realtime, "workers": workers, "tracker": use_tracker,
                    "scene_margin_m": SCENE_MARGIN_M, "min_robot_ball_dist_m": MIN_ROBOT_BALL_DIST_M},
         "success_rate": k / episodes, "successes": k, "success_ci95": [lo, hi],
         "time_s": time_summary(succ_times), "failures": failures,

@@ -213,7 +213,7 @@ def play_match(blue: str = "baseline", yellow: str = "baseline", robots: int = 6
                seconds: float = 300.0, seed: int = 0, realism: Any = "none", realtime: bool = False,
                render: str | os.PathLike | None = None, progress: bool = True, render_fps: float = 30.0,
                render_width_px: int = 640, start_jitter_m: float = 0.05, controller_kwargs: dict | None = None,
-               env_kwargs: dict | None = None) -> MatchResult:
+               env_kwargs: dict | None = None, tracker: Any = "auto") -> MatchResult:
     """Play one match and return its :class:`MatchResult`.
 
     Args:
@@ -235,6 +235,8 @@ def play_match(blue: str = "baseline", yellow: str = "baseline", robots: int = 6
             with different seeds differ; 0 = the exact formation.
         controller_kwargs: extra TeamController options for both teams.
         env_kwargs: extra env options.
+        tracker: "auto" (on unless realism is "none"), "on" or "off": both teams read
+            :class:`~ssl_marl.envs.tracking.TrackedVisionEnv`'s tracked state.
     """
     from ..envs import parallel_env
 
@@ -248,7 +250,9 @@ def play_match(blue: str = "baseline", yellow: str = "baseline", robots: int = 6
     if render is not None:
         env_opts.update(render_mode="rgb_array", render_width_px=int(render_width_px))
     env_opts.update(env_kwargs or {})
-    env = parallel_env(**env_opts)
+    from ..envs.tracking import with_tracker
+
+    env = with_tracker(parallel_env(**env_opts), tracker)
     geom = env.field
     ck = dict(controller_kwargs or {})
     ck.setdefault("robot", env.config.robot)
@@ -323,7 +327,7 @@ def play_match(blue: str = "baseline", yellow: str = "baseline", robots: int = 6
     label = {t: k if isinstance(k, str) else type(k).__name__ for t, k in (("blue", blue), ("yellow", yellow))}
     config = dict(blue=label["blue"], yellow=label["yellow"], robots=robots, field=geom.name,
                   seconds=float(seconds), seed=seed, realism=realism if isinstance(realism, str) else repr(realism),
-                  realtime=realtime, start_jitter_m=start_jitter_m,
+                  realtime=realtime, start_jitter_m=start_jitter_m, tracker=hasattr(env, "raw_vision_state"),
                   render=str(render) if render is not None else None)
     return MatchResult(score=dict(env.score), goals=goals, shots=shots,
                        possession={k: v / max(steps, 1) for k, v in held.items()}, steps=steps,

@@ -54,7 +54,13 @@ def _run_episodes(args: tuple) -> list[dict]:
     from . import make_skill
     from .wrappers import task_action
 
+    env_kwargs = dict(env_kwargs)
+    tracked = env_kwargs.pop("tracker", False)
     env = _make_env(task, env_kwargs)
+    if tracked:  # the skill reads tracked, latency-compensated vision (env.seen() -> inner vision_state)
+        from ..envs.tracking import TrackedVisionEnv
+
+        env.env = TrackedVisionEnv(env.env)
     skill = make_skill(_skill_name(task), kind, env.field, env.robot_params, env.ball_params, checkpoint=checkpoint)
     out = []
     for i in indices:
@@ -76,15 +82,19 @@ def _run_episodes(args: tuple) -> list[dict]:
 
 def evaluate_skill(task: str, policy: str = "baseline", episodes: int = 1000, seed: int = 0, workers: int = 1,
                    out: str | Path | None = None, realism: str = "none", field: str = "div_b",
-                   progress: bool = True, realtime: bool = False) -> dict[str, Any]:
+                   progress: bool = True, realtime: bool = False, tracker: Any = "auto") -> dict[str, Any]:
     """Run the protocol; returns the summary dict (and writes ``out/results.json`` and
-    ``out/time_hist.png`` when ``out`` is given)."""
+    ``out/time_hist.png`` when ``out`` is given). ``tracker``: "auto" (on unless realism
+    is "none"), "on" or "off" (:class:`~ssl_marl.envs.tracking.TrackedVisionEnv`)."""
     kind, checkpoint = resolve_policy(task, policy)
     if not isinstance(episodes, int) or episodes < 1:
         raise ValueError(f"episodes must be a positive integer, got {episodes!r}")
     if not isinstance(workers, int) or workers < 1:
         raise ValueError(f"workers must be a positive integer, got {workers!r}")
-    env_kwargs = {"field": field, "realism": realism, "realtime": realtime}
+    from ..envs.tracking import resolve_tracker
+
+    env_kwargs = {"field": field, "realism": realism, "realtime": realtime,
+                  "tracker": resolve_tracker(tracker, realism)}
     chunk = max(1, min(25, episodes // (workers * 4) or 1))
     jobs = [(task, kind, checkpoint, env_kwargs, seed, list(range(s, min(s + chunk, episodes))))
             for s in range(0, episodes, chunk)]
