@@ -315,7 +315,10 @@ class VisionTracker:
         _, side, i = best
         st.holder = (side, i)
         st.offset = self._clip_offset(self._local(st, side, i, point))
-        self._pin(st)
+        if vis:  # the estimate at capture time is the (mm-accurate) measurement
+            st.ball.p[0], st.ball.v[0] = frame.ball_pos, frame.ball_vel
+        else:
+            self._pin(st)
         st.ball.P[:] = 0.0
         st.ball.P[0, :, 0, 0] = P.ball_pos_sigma ** 2
         st.ball.P[0, :, 1, 1] = P.vel_sigma ** 2
@@ -344,8 +347,12 @@ class VisionTracker:
                     kicked = float(np.hypot(*zv)) > float(np.hypot(*v)) + P.kick_speed_jump
                     self._restart_ball(st, zp, zv, kicked, c)
                     return
-                st.offset = 0.5 * st.offset + 0.5 * self._clip_offset(self._local(st, side, i, zp))
-            self._pin(st)
+                # seen on the dribbler: the measurement is the estimate at capture time (its
+                # noise is mm); the offset carries it forward with the robot
+                st.offset = self._clip_offset(self._local(st, side, i, zp))
+                st.ball.p[0], st.ball.v[0] = zp, zv
+            else:
+                self._pin(st)
             st.ball_tick = c
             return
         if self._take_ball(st, frame, c):
@@ -453,9 +460,13 @@ class VisionTracker:
 
     def _world(self, st: _State, t: float) -> WorldState:
         teams = {}
+        gate = self.params.dribbler_gate
         for side, name in ((OWN, self.team), (OPP, self.other)):
             R = st.robots[side]
-            held = np.zeros(R.xy.n, bool)
+            # on the dribbler: the holder, and any robot whose face touches the ball (two
+            # robots can press on one ball)
+            gap, ly, _ = face_geometry(R.xy.p, R.th.p[:, 0], st.ball.p[0], self.rp, self.bp)
+            held = (np.abs(gap) <= gate) & (np.abs(ly) <= self.rp.dribbler_half_width)
             if st.holder is not None and st.holder[0] == side:
                 held[st.holder[1]] = True
             ready = st.kick_ready if side == OWN else self._opp_ready
