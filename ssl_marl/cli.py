@@ -184,7 +184,8 @@ def cmd_match(args: argparse.Namespace) -> int:
     blue, blue_skills = _resolve_team("blue", args.blue, args.skill + args.blue_skill)
     yellow, yellow_skills = _resolve_team("yellow", args.yellow, args.skill + args.yellow_skill)
     common = dict(robots=args.robots, field=args.field, seconds=args.seconds, realism=args.realism,
-                  realtime=args.realtime, blue_skills=blue_skills, yellow_skills=yellow_skills)
+                  realtime=args.realtime, blue_skills=blue_skills, yellow_skills=yellow_skills,
+                  tracker=args.tracker)
     render = None if str(args.render).lower() == "none" else args.render
     if render is not None and args.matches == 1:
         prepare_output_file(render, VIDEO_SUFFIXES, "--render")
@@ -222,7 +223,7 @@ def cmd_eval_skill(args: argparse.Namespace) -> int:
         prepare_output_dir(args.out, "--out")
     s = evaluate_skill(args.skill, args.policy, episodes=args.episodes, seed=args.seed, workers=_workers(args),
                        out=args.out, realism=args.realism, field=args.field, progress=not args.quiet,
-                       realtime=args.realtime, backend=args.backend, address=args.address)
+                       realtime=args.realtime, backend=args.backend, address=args.address, tracker=args.tracker)
     t = s["time_to_success_s"]
     lo, hi = s["success_ci95"]
     mean = "n/a" if t["mean"] is None else f"{t['mean']:.2f} +/- {t['std']:.2f} s"
@@ -243,7 +244,7 @@ def cmd_eval_tactic(args: argparse.Namespace) -> int:
     skills = team_skills(args.skills, dict(args.skill), where="--skill") if args.skill else args.skills
     s = evaluate_tactic(skills=skills, episodes=args.episodes, seed=args.seed, workers=_workers(args),
                         realism=args.realism, out=args.out, field=args.field, progress=not args.quiet,
-                        backend=args.backend, address=args.address)
+                        backend=args.backend, address=args.address, tracker=args.tracker)
     t = s["time_s"]
     lo, hi = s["success_ci95"]
     mean = "n/a" if t["mean"] is None else f"{t['mean']:.2f} +/- {t['std']:.2f} s"
@@ -290,6 +291,13 @@ def cmd_export_onnx(args: argparse.Namespace) -> int:
     print(f"{args.checkpoint} ({meta['skill']}, {meta['obs_spec']}, obs {meta['obs_dim']} -> act {meta['act_dim']})"
           f" -> {args.out}")
     return 0
+
+
+def _add_tracker_option(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--tracker", choices=("auto", "on", "off"), default="auto",
+                   help="vision tracker between the env's vision and the skills/tactics (Kalman filters, latency "
+                        "compensation, ball on the dribbler, outlier gates): auto = on unless --realism none "
+                        "(default auto)")
 
 
 # -------------------------------------------------------------------- parser
@@ -354,6 +362,7 @@ def build_parser() -> argparse.ArgumentParser:
     m.add_argument("--json", default=None, metavar="PATH",
                    help="also write the result as JSON to PATH (missing folders are created)")
     m.add_argument("--quiet", action="store_true", help="no progress bar")
+    _add_tracker_option(m)
     m.set_defaults(func=cmd_match)
 
     e = sub.add_parser("eval-skill", help="the paper's skill evaluation protocol (section 5.1)",
@@ -376,6 +385,7 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")
     _add_backend(e, "the episodes")
     e.add_argument("--quiet", action="store_true", help="no progress bar")
+    _add_tracker_option(e)
     e.set_defaults(func=cmd_eval_skill)
 
     t = sub.add_parser("eval-tactic", help="the paper's go-to-ball-and-shoot tactic evaluation (section 5.2)",
@@ -395,6 +405,7 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")
     _add_backend(t, "the episodes")
     t.add_argument("--quiet", action="store_true", help="no progress bar")
+    _add_tracker_option(t)
     t.set_defaults(func=cmd_eval_tactic)
 
     b = sub.add_parser("bench", help="env throughput benchmark (JSON); options: ssl-marl bench --help",

@@ -92,7 +92,8 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
                seconds: float = 300.0, seed: int = 0, realism: Any = "none", realtime: bool = False,
                render: str | os.PathLike | None = None, progress: bool = True, render_fps: float = 30.0,
                render_width_px: int = 640, start_jitter_m: float = 0.05, controller_kwargs: dict | None = None,
-               env_kwargs: dict | None = None, blue_skills: Any = None, yellow_skills: Any = None) -> MatchResult:
+               env_kwargs: dict | None = None, blue_skills: Any = None, yellow_skills: Any = None,
+               tracker: Any = "auto") -> MatchResult:
     """Play one match and return its :class:`MatchResult`.
 
     Args:
@@ -115,6 +116,8 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
             with different seeds differ; 0 = the exact formation.
         controller_kwargs: extra TeamController options for both teams.
         env_kwargs: extra env options.
+        tracker: "auto" (on unless realism is "none"), "on" or "off": both teams read
+            :class:`~ssl_marl.envs.tracking.TrackedVisionEnv`'s tracked state.
         blue_skills, yellow_skills: an STP team's skills as a
             :mod:`~ssl_marl.plays.skillset` spec (e.g. from
             :func:`~ssl_marl.runners.controllers.team_skills`: a trained actor for one
@@ -130,7 +133,9 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
                         render_team_labels={t: f"{k} skills" if k in ("learned", "baseline") else str(k)
                                             for t, k in (("blue", blue), ("yellow", yellow)) if isinstance(k, str)})
     env_opts.update(env_kwargs or {})
-    env = parallel_env(**env_opts)
+    from ..envs.tracking import with_tracker
+
+    env = with_tracker(parallel_env(**env_opts), tracker)
     geom = env.field
     ck = dict(controller_kwargs or {})
     ck.setdefault("robot", env.config.robot)
@@ -195,6 +200,7 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
     config = dict(blue=controller_label(blue, blue_skills), yellow=controller_label(yellow, yellow_skills),
                   robots=robots, field=geom.name, seconds=float(seconds), seed=seed,
                   realism=realism if isinstance(realism, str) else repr(realism), realtime=realtime,
+                  tracker=hasattr(env, "raw_vision_state"),
                   start_jitter_m=start_jitter_m, render=str(render) if render is not None else None)
     return MatchResult(score=dict(env.score), goals=stats.goals, shots=stats.shots, possession=stats.possession(),
                        steps=steps, sim_time_s=steps * dt, wall_time_s=wall,

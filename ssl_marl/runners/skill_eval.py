@@ -56,8 +56,14 @@ def _run_episodes(args: tuple) -> list[dict]:
     from ..skills import make_skill
     from ..skills.registry import get_task
 
+    env_kwargs = dict(env_kwargs)
+    tracked = env_kwargs.pop("tracker", False)
     env = _make_env(task, env_kwargs)
     task_action = get_task(task).to_task_action
+    if tracked:  # the skill reads tracked, latency-compensated vision (env.seen() -> inner vision_state)
+        from ..envs.tracking import TrackedVisionEnv
+
+        env.env = TrackedVisionEnv(env.env)
     skill = make_skill(_skill_name(task), kind, env.field, env.robot_params, env.ball_params, checkpoint=checkpoint)
     out = []
     for i in indices:
@@ -80,22 +86,27 @@ def _run_episodes(args: tuple) -> list[dict]:
 def evaluate_skill(task: str, policy: str = "baseline", episodes: int = 1000, seed: int = 0, workers: int = 1,
                    out: str | Path | None = None, realism: str = "none", field: str = "div_b",
                    progress: bool = True, realtime: bool = False, backend: str = "local",
-                   address: str | None = None) -> dict[str, Any]:
+                   address: str | None = None, tracker: Any = "auto") -> dict[str, Any]:
     """Run the protocol; returns the summary dict (and writes ``out/results.json`` and
     ``out/time_hist.png`` when ``out`` is given).
 
     ``workers`` processes (local) or Ray tasks in flight (``backend="ray"``, None: the
-    cluster's CPUs; ``address``: the cluster, None = a local Ray instance)."""
+    cluster's CPUs; ``address``: the cluster, None = a local Ray instance). ``tracker``:
+    "auto" (on unless realism is "none"), "on" or "off"
+    (:class:`~ssl_marl.envs.tracking.TrackedVisionEnv`)."""
     kind, checkpoint = resolve_policy(task, policy)
     if not isinstance(episodes, int) or episodes < 1:
         raise ValueError(f"episodes must be a positive integer, got {episodes!r}")
     validate_backend(backend, workers, address)
+    from ..envs.tracking import resolve_tracker
+
+    use_tracker = resolve_tracker(tracker, realism)
     meta: dict[str, Any] = {}
     if kind == "learned":  # a wrong-skill checkpoint fails here, not in every worker
         from ..skills.learned import load_policy
 
         meta = dict(load_policy(_skill_name(task), checkpoint)[1])
-    env_kwargs = {"field": field, "realism": realism, "realtime": realtime}
+    env_kwargs = {"field": field, "realism": realism, "realtime": realtime, "tracker": use_tracker}
     jobs = [(task, kind, checkpoint, env_kwargs, seed, chunk) for chunk in chunk_indices(episodes, workers)]
     t0 = time.perf_counter()
     results = [r for chunk in run_pool(_run_episodes, jobs, workers, f"eval {task} ({policy})", progress, unit="ep",

@@ -54,24 +54,26 @@ def sample_scene(rng: np.random.Generator, field) -> tuple[np.ndarray, np.ndarra
 _ENV_CACHE: dict[tuple, Any] = {}
 
 
-def _env(field: str, realism: Any, max_time_s: float):
+def _env(field: str, realism: Any, max_time_s: float, tracker: Any = "auto"):
     from ..envs import parallel_env
+    from ..envs.tracking import with_tracker
 
-    key = (field if isinstance(field, str) else repr(field), repr(realism), float(max_time_s))
+    key = (field if isinstance(field, str) else repr(field), repr(realism), float(max_time_s), repr(tracker))
     env = _ENV_CACHE.get(key)
     if env is None:
-        env = _ENV_CACHE[key] = parallel_env(n_blue=1, n_yellow=0, field=field, realism=realism, referee=True,
-                                             after_goal="terminate", max_time_s=float(max_time_s))
+        env = _ENV_CACHE[key] = with_tracker(parallel_env(n_blue=1, n_yellow=0, field=field, realism=realism,
+                                                          referee=True, after_goal="terminate",
+                                                          max_time_s=float(max_time_s)), tracker)
     return env
 
 
 def run_episode(index: int, seed: int, skills: Any = "baseline", realism: Any = "none", field: Any = "div_b",
-                max_time_s: float = 15.0, realtime: bool = False) -> dict:
+                max_time_s: float = 15.0, realtime: bool = False, tracker: Any = "auto") -> dict:
     """One evaluation episode; returns a dict (index, seed, success, outcome, time_s,
     kicks, ball, robot, missed_deadlines)."""
     from ..plays.shoot import GoToBallAndShoot
 
-    env = _env(field, realism, max_time_s)
+    env = _env(field, realism, max_time_s, tracker)
     es = episode_seed(seed, index)
     rng = np.random.default_rng(es)
     ball, pose = sample_scene(rng, env.field)
@@ -105,7 +107,7 @@ def _episodes_worker(job: tuple) -> list[dict]:
 def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0, workers: int = 1,
                     realism: Any = "none", out: str | os.PathLike | None = None, field: Any = "div_b",
                     max_time_s: float = 15.0, realtime: bool = False, progress: bool = True,
-                    backend: str = "local", address: str | None = None) -> dict:
+                    backend: str = "local", address: str | None = None, tracker: Any = "auto") -> dict:
     """Evaluate go-to-ball-and-shoot as in the paper's section 5.2 (see the module docstring).
 
     Args:
@@ -123,6 +125,8 @@ def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0,
         progress: tqdm bar.
         backend: "local" (process pool) or "ray"; ``address``: Ray cluster address
             (None: a local Ray instance). See :mod:`~ssl_marl.runners.pool`.
+        tracker: "auto" (on unless realism is "none"), "on" or "off": the tactic reads
+            :class:`~ssl_marl.envs.tracking.TrackedVisionEnv`'s tracked state.
 
     Returns: the results dict (also written to ``out/results.json``).
     """
@@ -134,7 +138,11 @@ def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0,
 
     check_skills(skills, FieldGeometry.from_name(field))  # fail here (e.g. a bad checkpoint), not in every worker
     t0 = time.perf_counter()
-    jobs = [(chunk, seed, skills, realism, field, max_time_s, realtime) for chunk in chunk_indices(episodes, workers)]
+    from ..envs.tracking import resolve_tracker
+
+    use_tracker = resolve_tracker(tracker, realism)
+    jobs = [(chunk, seed, skills, realism, field, max_time_s, realtime, use_tracker)
+            for chunk in chunk_indices(episodes, workers)]
     eps = [e for chunk in run_pool(_episodes_worker, jobs, workers, f"eval go-to-ball-and-shoot ({skills})",
                                    progress, unit="ep", backend=backend, address=address, size=len, total=episodes)
            for e in chunk]
@@ -151,6 +159,7 @@ def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0,
         "episodes": episodes, "seed": seed,
         "config": {"field": field_name, "realism": realism if isinstance(realism, str) else repr(realism),
                    "max_time_s": max_time_s, "realtime": realtime, "workers": workers, "backend": backend,
+                   "tracker": use_tracker,
                    "scene_margin_m": SCENE_MARGIN_M, "min_robot_ball_dist_m": MIN_ROBOT_BALL_DIST_M},
         "success_rate": k / episodes, "successes": k, "success_ci95": [lo, hi],
         "time_s": time_summary(succ_times), "failures": failures,
