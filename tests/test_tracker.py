@@ -317,8 +317,8 @@ def test_cli_exposes_the_tracker_option():
 
 
 def test_evaluations_run_through_the_tracker(tmp_path):
-    from ssl_marl.plays.evaluate import evaluate_tactic
-    from ssl_marl.skills.evaluation import evaluate_skill
+    from ssl_marl.runners.tactic_eval import evaluate_tactic
+    from ssl_marl.runners.skill_eval import evaluate_skill
 
     r = evaluate_tactic(skills="baseline", episodes=1, seed=20000, realism="realistic", progress=False,
                         max_time_s=2.0)
