@@ -123,7 +123,7 @@ def cmd_demo(args: argparse.Namespace) -> int:
 
     from .envs import parallel_env
     from .io import prepare_output_file
-    from .runners.video import VideoSink
+    from .envs.animation import VideoSink
     from .skills import SkillStatus, make_skill
 
     prepare_output_file(args.out, VIDEO_SUFFIXES, "--out")

@@ -16,7 +16,7 @@ os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
 from ssl_marl.envs.deadline import ControlDeadline  # noqa: E402
 from ssl_marl.runners.controllers import load_team_file, parse_skill_source, team_skills  # noqa: E402
 from ssl_marl.runners.pool import chunk_indices, run_pool  # noqa: E402
-from ssl_marl.runners.video import VideoSink  # noqa: E402
+from ssl_marl.envs.animation import VideoSink  # noqa: E402
 from ssl_marl.skills.learned import PRETRAINED  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -12,12 +12,13 @@ from here). One module per job:
 :mod:`.skill_eval`          the paper's skill protocol: :func:`evaluate_skill`
 :mod:`.tactic_eval`         the paper's tactic protocol: :func:`evaluate_tactic`
 :mod:`.pool`                the one worker pool (local processes or Ray): :func:`run_pool`
-:mod:`.video`               the one video sink (GIF/MP4 streamed to disk): :class:`VideoSink`
 :mod:`.plots`               the one histogram writer: :func:`write_time_histogram`
 ==========================  ========================================================
 
 The real-time deadline object is :class:`ssl_marl.envs.deadline.ControlDeadline`
-(the env uses it too, so it lives below the runners). Names are imported lazily.
+and the one video sink (GIF/MP4 streamed to disk, constant memory) is
+:class:`ssl_marl.envs.animation.VideoSink`: the env and its renderer use them too, so
+they live below the runners. Names are imported lazily.
 """
 
 from __future__ import annotations
@@ -28,7 +29,7 @@ _LAZY = {"TEAM_KINDS": "controllers", "make_controller": "controllers", "team_sk
          "load_team_file": "controllers", "parse_skill_source": "controllers",
          "play_match": "match", "play_series": "series", "MatchResult": "result", "summarize": "result",
          "evaluate_skill": "skill_eval", "evaluate_tactic": "tactic_eval", "run_pool": "pool", "BACKENDS": "pool",
-         "VideoSink": "video", "write_time_histogram": "plots"}
+         "write_time_histogram": "plots"}
 
 
 def __getattr__(name: str) -> Any:

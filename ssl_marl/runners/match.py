@@ -18,7 +18,7 @@ mode (``realtime=False``) is reproducible.
 
 Rendering (``render="match.mp4"`` or ``".gif"``): every k-th env frame
 (``render_fps`` frames per simulated second) is drawn with ``env.render()`` and
-streamed to disk by :class:`~ssl_marl.runners.video.VideoSink` (constant memory).
+streamed to disk by :class:`~ssl_marl.envs.animation.VideoSink` (constant memory).
 """
 
 from __future__ import annotations
@@ -33,7 +33,7 @@ import numpy as np
 from ..envs.deadline import ControlDeadline
 from .controllers import TEAM_KINDS, controller_label, make_controller
 from .result import MatchResult
-from .video import VideoSink
+from ..envs.animation import VideoSink
 
 
 def start_options(env: Any, seed: int, jitter_m: float) -> dict | None:
