@@ -1,6 +1,6 @@
 """Local process pool vs a local Ray instance for the same tactic evaluation, side by side.
 
-    python benchmarks/bench_backends.py [--episodes 1000] [--workers 2] [--skills learned] [--out results/bench_backends.json]
+    python benchmarks/bench_backends.py [--episodes 1000] [--workers 2] [--skills baseline] [--out results/bench_backends.json]
 
 Runs ``evaluate_tactic`` (the ``eval-tactic`` protocol) twice in one process: first
 on the local pool (``--workers`` spawned processes), then on a local Ray instance
@@ -28,7 +28,9 @@ def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--episodes", type=int, default=1000)
     p.add_argument("--workers", type=int, default=2)
-    p.add_argument("--skills", choices=("learned", "baseline"), default="learned")
+    p.add_argument("--skills", choices=("learned", "baseline"), default="baseline",
+                   help="skills inside the tactic (default baseline: ~3x cheaper episodes, so the backend's "
+                        "own overhead weighs more)")
     p.add_argument("--seed", type=int, default=20_000)
     p.add_argument("--out", type=Path, default=ROOT / "results" / "bench_backends.json")
     args = p.parse_args(argv)
@@ -44,6 +46,10 @@ def main(argv: list[str] | None = None) -> int:
     t0 = time.perf_counter()
     local = evaluate_tactic(args.skills, backend="local", **kw)
     t_local = time.perf_counter() - t0
+    partial = args.out.with_name(args.out.stem + "_local_only.json")  # in case the Ray half is interrupted
+    atomic_write_json(partial, {"local_wall_s": round(t_local, 2), "episodes": args.episodes, "workers": args.workers,
+                                "skills": args.skills, "loadavg_1_5_15_before": list(load0),
+                                "loadavg_after_local": list(os.getloadavg())})
 
     t0 = time.perf_counter()
     ray_init(None, num_cpus=args.workers)
