@@ -4,7 +4,8 @@ The go-to-ball skill (learned or baseline) fetches the ball; once it is within
 ``near_ball_m`` (the paper's 35 mm) of the dribbler the robot turns with the dribbler
 on, at most ``turn_rate``, until its heading lies within ``kick_cone`` of +x (towards
 the opponent half), then kicks (:func:`clear_kick_action`). A ball that drifts
-further than :data:`LOST_BALL_M` from the dribbler while turning is lost and
+further than ``BALL_LOST_DISTANCE`` (:mod:`ssl_marl.skills.features`, the skills' own
+"ball lost" distance, a hysteresis over 35 mm) from the dribbler while turning is lost and
 fetched again.
 
 :func:`clear_phase` is the shared part of both tactics' state machines; each tactic
@@ -25,7 +26,6 @@ from ..physics.state import WorldState, wrap_angle
 from ..skills.base import make_action
 from ..skills.features import BALL_LOST_DISTANCE
 
-LOST_BALL_M = BALL_LOST_DISTANCE  # d_{d-b} above which a ball being cleared counts as lost (hysteresis over 35 mm)
 CLEAR_TURN_GAIN = 6.0  # 1/s: omega = gain x heading error, then capped at turn_rate (hand-tuned, no overshoot)
 
 
@@ -55,7 +55,7 @@ def clear_phase(kicking: bool, d_db: float, kicked: bool, params: ClearParams) -
         return ClearPhase.KICK if d_db <= params.near_ball_m else ClearPhase.APPROACH
     if kicked:
         return ClearPhase.DONE
-    return ClearPhase.LOST if d_db > LOST_BALL_M else ClearPhase.KICK
+    return ClearPhase.LOST if d_db > BALL_LOST_DISTANCE else ClearPhase.KICK
 
 
 def clear_kick_action(world: WorldState, robot: int, rp: RobotParams, cone: float, strength: float,

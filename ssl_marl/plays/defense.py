@@ -25,7 +25,7 @@ from ..physics.field import FieldGeometry
 from ..physics.params import RobotParams
 from ..physics.state import WorldState
 from ..skills.features import dribbler_ball_distance
-from .clearing import LOST_BALL_M, BallClearing, ClearPhase, clear_phase
+from .clearing import BallClearing, ClearPhase, clear_phase
 from .navigation import NavigateToPoint, NavParams, defense_rect, facing_towards, push_out_of_rect
 from .tactic_base import NEAR_BALL_M, Tactic
 
