@@ -409,3 +409,18 @@ def test_navigate_to_point_arrives():
     nav.target, nav.facing = np.array([0.0, 0.0]), 0.0
     a = nav.act(scene((0.0, 0.0, 0.0), ball=(1.0, 1.0)), 0)
     assert nav.status is SkillStatus.SUCCEEDED and np.allclose(a[:3], 0.0)
+
+
+def test_goalie_and_defender_share_one_clearing_behaviour():
+    from ssl_marl.plays.clearing import BallClearing, ClearPhase, clear_phase
+    from ssl_marl.plays.defense import Defender, DefenderParams, Goalie, GoalieParams
+    from ssl_marl.skills.features import BALL_LOST_DISTANCE
+
+    p = GoalieParams()
+    assert clear_phase(False, p.near_ball_m, False, p) is ClearPhase.KICK
+    assert clear_phase(False, p.near_ball_m + 0.01, False, p) is ClearPhase.APPROACH
+    assert clear_phase(True, 0.0, True, p) is ClearPhase.DONE
+    assert clear_phase(True, BALL_LOST_DISTANCE + 0.01, False, p) is ClearPhase.LOST
+    assert clear_phase(True, BALL_LOST_DISTANCE, False, DefenderParams()) is ClearPhase.KICK
+    g, d = Goalie(F), Defender(F)
+    assert isinstance(g.clearing, BallClearing) and isinstance(d.clearing, BallClearing)

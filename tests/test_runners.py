@@ -213,6 +213,9 @@ def test_wrong_skill_checkpoint_fails_before_the_match_with_one_line(tmp_path, c
     assert rc == 2 and "missing.pt" in err and "does not exist" in err
     rc = main(["match", "--blue", "random", "--blue-skill", "go-to-ball=learned", "--render", "none", "--quiet"])
     assert rc == 2 and "STP team" in capsys.readouterr().err
+    for argv in (["eval-skill", "go-to-ball"], ["eval-tactic"], ["match", "--matches", "2"]):
+        assert main(argv + ["--address", "10.0.0.1:6379", "--quiet"]) == 2
+        assert "ray" in capsys.readouterr().err
 
 
 def test_a_checkpoint_source_plays_like_the_same_actor_shipped():

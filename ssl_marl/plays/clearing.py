@@ -4,7 +4,8 @@ The go-to-ball skill (learned or baseline) fetches the ball; once it is within
 ``near_ball_m`` (the paper's 35 mm) of the dribbler the robot turns with the dribbler
 on, at most ``turn_rate``, until its heading lies within ``kick_cone`` of +x (towards
 the opponent half), then kicks (:func:`clear_kick_action`). A ball that drifts
-further than :data:`~ssl_marl.skills.features.BALL_LOST_DISTANCE` (5 cm) from the dribbler while turning is lost and
+further than ``BALL_LOST_DISTANCE`` (:mod:`ssl_marl.skills.features`, the skills' own
+"ball lost" distance, a hysteresis over 35 mm) from the dribbler while turning is lost and
 fetched again.
 
 :func:`clear_phase` is the shared part of both tactics' state machines; each tactic
