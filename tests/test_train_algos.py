@@ -252,7 +252,7 @@ def test_tensorboard_logs_the_progress_scalars_and_eval_success(tmp_path) -> Non
     train_rows = [r for r in _rows(tmp_path / "progress.csv") if r["phase"] == "train"]
     returns = [e.value for e in acc.Scalars("train/return")]
     np.testing.assert_allclose(returns, [float(r["return"]) for r in train_rows], rtol=1e-5)
-    assert [e.step for e in acc.Scalars("eval/success_rate")] == [150, 300]
+    assert [e.step for e in acc.Scalars("eval/success_rate")] == [60 + 150, 60 + 300]  # demos + samples
 
 
 @pytest.mark.slow
