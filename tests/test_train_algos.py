@@ -252,7 +252,7 @@ def test_tensorboard_logs_the_progress_scalars_and_eval_success(tmp_path) -> Non
     train_rows = [r for r in _rows(tmp_path / "progress.csv") if r["phase"] == "train"]
     returns = [e.value for e in acc.Scalars("train/return")]
     np.testing.assert_allclose(returns, [float(r["return"]) for r in train_rows], rtol=1e-5)
-    assert [e.step for e in acc.Scalars("eval/success_rate")] == [150, 300]
+    assert [e.step for e in acc.Scalars("eval/success_rate")] == [60 + 150, 60 + 300]  # demos + samples
 
 
 @pytest.mark.slow
@@ -285,3 +285,23 @@ def test_select_reuse_evaluates_only_new_checkpoints(tmp_path, monkeypatch) -> N
     assert calls == ["actor-000001000.pt", "actor-000002000.pt"]  # the first was not evaluated twice
     out = sel.select(tmp_path, episodes=4, seed=6, progress=False, reuse=True)  # another protocol: all again
     assert len(calls) == 4 and [c["algo"] for c in out["candidates"]] == ["td3", "td3"]
+
+
+def test_compare_reports_windows_evaluations_and_samples_to_target(tmp_path, capsys) -> None:
+    import json
+
+    from train.compare import main as compare_main
+
+    run = tmp_path / "r"
+    run.mkdir()
+    (run / "config.json").write_text(json.dumps({"algo": "td3", "seed": 1}))
+    (run / "progress.csv").write_text("phase,samples,return,success\ndemo,0,-1,1\ntrain,400,-10,0\ntrain,900,-5,1\n"
+                                      "train,1500,-2,1\n")
+    (run / "eval.csv").write_text("samples,success_rate\n1000,0.5\n")
+    (run / "selection.json").write_text(json.dumps({"validation_seed": 5000, "episodes": 100, "candidates": [
+        {"samples": 2000, "success_rate": 0.995}, {"samples": 1000, "success_rate": 0.9}]}))
+    compare_main([str(run), "--window", "1000", "--target", "0.99"])
+    out = capsys.readouterr().out
+    assert "| `r` | td3 | 1,000 | 2 | 0.500 | -7.5 |" in out  # demo rows are not training episodes
+    assert "| `r` | td3 | 1,500 | 1 | 1.000 | -2.0 |" in out  # the last, partial window
+    assert "1k: 0.5" in out and "1k: 0.900, 2k: 0.995 | 2,000 |" in out

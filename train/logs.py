@@ -5,8 +5,9 @@ resume they are cut back to the rows the checkpoint counted (:meth:`CsvLog.trunc
 TensorBoard (``pip install -e ".[tb]"``) gets the same scalars under ``OUT/tb/``:
 ``train/*`` and ``demo/*`` per episode (return, length, success, ``r_<term>`` reward
 terms), ``loss/<name>`` per loss read-out and ``eval/*`` per evaluation (mean and std
-return, mean length, success rate). The step axis is env samples (demonstration
-episodes: transitions, since no env sample is spent on them).
+return, mean length, success rate). The step axis is stored transitions (demonstrations
+plus env samples), as in the learning-curve plots: unique and increasing across demo
+burn-in and training, so a resumed run can purge what a crash logged after its checkpoint.
 """
 
 from __future__ import annotations

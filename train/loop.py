@@ -172,7 +172,7 @@ class Trainer:
         if self.tb is not None:
             self.tb.scalars(phase, {"return": ret, "length": length, "success": row["success"],
                                     **{f"r_{k}": v for k, v in terms.items()}},
-                            self.transitions if phase == "demo" else self.samples)
+                            self.transitions)
 
     # --- demonstration burn-in -------------------------------------------------
     def burn_in(self) -> None:
@@ -246,7 +246,7 @@ class Trainer:
                 if losses is not None:
                     self.losses = {**(self.losses or {}), **losses}
                     if self.tb is not None:
-                        self.tb.scalars("loss", losses, self.samples)
+                        self.tb.scalars("loss", losses, self.transitions)
 
     def evaluate(self) -> dict[str, Any]:
         """Deterministic evaluation on the fixed eval start states (seed + 1000); logged to eval.csv."""
@@ -257,7 +257,7 @@ class Trainer:
         self.eval_log.write(row)
         if self.tb is not None:
             self.tb.scalars("eval", {k: res[k] for k in ("mean_return", "std_return", "mean_length", "success_rate")},
-                            self.samples)
+                            self.transitions)
         return res
 
     # --- checkpoints ----------------------------------------------------------
@@ -328,7 +328,7 @@ class Trainer:
             self.log.clear()
             self.eval_log.clear()
             self._reset_envs()
-        self.tb = TensorBoardLog(self.out / "tb", purge_step=self.samples if resume else None)
+        self.tb = TensorBoardLog(self.out / "tb", purge_step=self.transitions if resume else None)
         if not resume:
             self.burn_in()
         bar = tqdm(total=cfg.total_samples, initial=min(self.samples, cfg.total_samples), desc=cfg.skill,

@@ -15,6 +15,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ssl_marl.io import atomic_savefig
+
 
 def read_csv(path: str | Path) -> dict[str, np.ndarray]:
     """Columns of a CSV as arrays (numeric where every non-empty cell parses; blanks -> nan)."""
@@ -83,7 +85,7 @@ def plot_run(run_dir: str | Path, out: str | Path | None = None, window: int = 5
     fig.suptitle(run_dir.name)
     fig.tight_layout()
     out = Path(out) if out is not None else run_dir / "learning_curve.png"
-    fig.savefig(out, dpi=110)
+    atomic_savefig(fig, out, dpi=110)
     plt.close(fig)
     return out
 
