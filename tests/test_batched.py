@@ -211,6 +211,7 @@ def _go_to_ball_policy(rng, obs):
 def test_skill_vector_env_go_to_ball_matches_sync_vector_env():
     ends, successes = _skill_pair("go-to-ball", 4, 400, 3, {"max_time_s": 2.0}, _go_to_ball_policy)
     assert ends >= 4 and successes >= 1
+    _skill_pair("go-to-ball", 2, 150, 4, {"max_time_s": 1.0, "n_opponents": 2}, _go_to_ball_policy)  # static opponents
 
 
 def test_skill_vector_env_aim_to_shoot_matches_sync_vector_env():
