@@ -30,12 +30,19 @@ def _chase_actions(rng: np.random.Generator, pos, heading, ball_pos, kick_p: flo
     return a
 
 
-def test_batched_physics_bit_equal_to_single_worlds():
+@pytest.mark.parametrize("fast_io", [True, False], ids=["memory-views", "swig-fallback"])
+def test_batched_physics_bit_equal_to_single_worlds(fast_io, monkeypatch):
+    from ssl_marl.physics import body_memory
+
+    assert body_memory.layout_ok()  # the fast path is what runs here; the fallback is forced below
+    if not fast_io:
+        monkeypatch.setattr("ssl_marl.physics.batched.bm.layout_ok", lambda: False)
     f, rp, bp = FieldGeometry.div_b(), RobotParams(), BallParams()
     K, nb, ny = 3, 2, 2
     n = nb + ny
     singles = [PhysicsWorld(f, rp, bp, nb, ny) for _ in range(K)]
     batch = BatchedPhysics(f, rp, bp, nb, ny, K)
+    assert batch._fast == fast_io
     rng = np.random.default_rng(3)
     for k in range(K):
         pose = rng.uniform(-0.6, 0.6, (n, 3))
