@@ -8,7 +8,10 @@ Per configuration (1v0 Div B, 6v6 Div B, 11v11 Div A), alternating round by roun
 (2 workers x ``--worlds`` each: twice the worlds, as a user with twice the cores
 would run). Reports world-steps/s (median over rounds), the speed-up
 sharded_2 / sharded_1, the load average and the busiest other processes before and
-after (the machine may be shared). Random actions, ``randomize_reset``.
+after (the machine may be shared), and world-steps per CPU second of the stepping
+processes (workers' ``process_time``): its ratio 2 / 1 says how linear the scaling
+would be with a free core per worker, whatever else runs. Random actions,
+``randomize_reset``.
 """
 
 from __future__ import annotations
@@ -47,15 +50,21 @@ def busiest_processes(k: int = 6) -> list[str]:
         return []
 
 
-def _rate(env, acts: np.ndarray, seconds: float) -> float:
-    calls, t0 = 0, time.perf_counter()
+def _cpu(env) -> float:
+    """CPU seconds used so far by the processes that step ``env``'s worlds."""
+    return float(env.worker_cpu_seconds().sum()) if hasattr(env, "worker_cpu_seconds") else time.process_time()
+
+
+def _rate(env, acts: np.ndarray, seconds: float) -> tuple[float, float]:
+    """(world-steps per wall second, world-steps per CPU second of the stepping processes)."""
+    calls, t0, c0 = 0, time.perf_counter(), _cpu(env)
     while True:
         for _ in range(5):
             env.step(acts[calls % len(acts)])
             calls += 1
         el = time.perf_counter() - t0
         if el >= seconds:
-            return calls * env.K / el
+            return calls * env.K / el, calls * env.K / max(_cpu(env) - c0, 1e-9)
 
 
 def measure(config: dict, worlds: int, seconds: float, rounds: int) -> dict:
@@ -68,18 +77,24 @@ def measure(config: dict, worlds: int, seconds: float, rounds: int) -> dict:
     for e in envs.values():
         e.reset(seed=0)
     rates: dict[str, list[float]] = {k: [] for k in envs}
+    cpu_rates: dict[str, list[float]] = {k: [] for k in envs}
     try:
         for r in range(rounds + 1):
             for k, e in envs.items():
-                x = _rate(e, acts[k], seconds if r else 0.3)
+                x, c = _rate(e, acts[k], seconds if r else 0.3)
                 if r:
                     rates[k].append(x)
+                    cpu_rates[k].append(c)
     finally:
         for k in ("sharded_1", "sharded_2"):
             envs[k].close()
-    out = {k: {"world_steps_per_s": round(statistics.median(v)), "rounds": [round(x) for x in v]}
-           for k, v in rates.items()}
+    out = {k: {"world_steps_per_s": round(statistics.median(v)), "rounds": [round(x) for x in v],
+               "world_steps_per_cpu_s": round(statistics.median(cpu_rates[k]))} for k, v in rates.items()}
     out["speedup_2_over_1"] = round(statistics.median(rates["sharded_2"]) / statistics.median(rates["sharded_1"]), 3)
+    # per CPU second: 1.0 means a second worker costs no extra CPU per world-step, i.e. with a free
+    # core each, 2 workers would run 2x the world-steps of one
+    out["cpu_efficiency_2_over_1"] = round(statistics.median(cpu_rates["sharded_2"]) /
+                                           statistics.median(cpu_rates["sharded_1"]), 3)
     return out
 
 

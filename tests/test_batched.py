@@ -30,12 +30,19 @@ def _chase_actions(rng: np.random.Generator, pos, heading, ball_pos, kick_p: flo
     return a
 
 
-def test_batched_physics_bit_equal_to_single_worlds():
+@pytest.mark.parametrize("fast_io", [True, False], ids=["memory-views", "swig-fallback"])
+def test_batched_physics_bit_equal_to_single_worlds(fast_io, monkeypatch):
+    from ssl_marl.physics import body_memory
+
+    assert body_memory.layout_ok()  # the fast path is what runs here; the fallback is forced below
+    if not fast_io:
+        monkeypatch.setattr("ssl_marl.physics.batched.bm.layout_ok", lambda: False)
     f, rp, bp = FieldGeometry.div_b(), RobotParams(), BallParams()
     K, nb, ny = 3, 2, 2
     n = nb + ny
     singles = [PhysicsWorld(f, rp, bp, nb, ny) for _ in range(K)]
     batch = BatchedPhysics(f, rp, bp, nb, ny, K)
+    assert batch._fast == fast_io
     rng = np.random.default_rng(3)
     for k in range(K):
         pose = rng.uniform(-0.6, 0.6, (n, 3))
@@ -211,6 +218,7 @@ def _go_to_ball_policy(rng, obs):
 def test_skill_vector_env_go_to_ball_matches_sync_vector_env():
     ends, successes = _skill_pair("go-to-ball", 4, 400, 3, {"max_time_s": 2.0}, _go_to_ball_policy)
     assert ends >= 4 and successes >= 1
+    _skill_pair("go-to-ball", 2, 150, 4, {"max_time_s": 1.0, "n_opponents": 2}, _go_to_ball_policy)  # static opponents
 
 
 def test_skill_vector_env_aim_to_shoot_matches_sync_vector_env():

@@ -32,33 +32,36 @@ from .actions import ACTION_DIM
 _STEP, _RESET, _CLOSE, _OK = b"s", b"r", b"c", b"k"
 
 
-def _layout(K: int, n: int, d: int) -> dict[str, tuple[tuple[int, ...], str]]:
-    """Name -> (shape, dtype) of every shared array."""
-    return {"actions": ((K, n, ACTION_DIM), "f8"), "obs": ((K, n, d), "f4"), "rewards": ((K, n), "f8"),
+def _layout(K: int, n: int, d: int, W: int = 1) -> dict[str, tuple[tuple[int, ...], str]]:
+    """Name -> (shape, dtype) of every shared array (W workers)."""
+    return {"cpu_s": ((W,), "f8"), "actions": ((K, n, ACTION_DIM), "f8"), "obs": ((K, n, d), "f4"), "rewards": ((K, n), "f8"),
             "terminated": ((K,), "?"), "truncated": ((K,), "?"), "goal": ((K,), "i8"), "ball_out": ((K,), "?"),
             "kicker": ((K,), "i8"), "kick_speed": ((K,), "f8"), "t": ((K,), "f8"), "autoreset": ((K,), "?"),
             "score": ((K, 2), "i8"), "seeds": ((K,), "i8")}
 
 
-def _map(buf, K: int, n: int, d: int) -> dict[str, np.ndarray]:
+def _map(buf, K: int, n: int, d: int, W: int) -> dict[str, np.ndarray]:
     out, off = {}, 0
-    for name, (shape, dt) in _layout(K, n, d).items():
+    for name, (shape, dt) in _layout(K, n, d, W).items():
         a = np.ndarray(shape, dtype=np.dtype(dt), buffer=buf, offset=off)
         out[name] = a
         off += (a.nbytes + 63) // 64 * 64
     return out
 
 
-def _nbytes(K: int, n: int, d: int) -> int:
-    return sum((int(np.prod(s)) * np.dtype(dt).itemsize + 63) // 64 * 64 for s, dt in _layout(K, n, d).values())
+def _nbytes(K: int, n: int, d: int, W: int) -> int:
+    return sum((int(np.prod(s)) * np.dtype(dt).itemsize + 63) // 64 * 64 for s, dt in _layout(K, n, d, W).values())
 
 
-def _worker(conn, shm_name: str, K_total: int, n: int, d: int, lo: int, hi: int, config: dict) -> None:
+def _worker(conn, shm_name: str, K_total: int, n: int, d: int, W: int, w: int, lo: int, hi: int,
+            config: dict) -> None:
+    import time
+
     from .batched_env import BatchedSSLEnv
 
     shm = shared_memory.SharedMemory(name=shm_name)
     try:
-        arr = _map(shm.buf, K_total, n, d)
+        arr = _map(shm.buf, K_total, n, d, W)
         env = BatchedSSLEnv(hi - lo, **config)
         sl = slice(lo, hi)
         conn.send_bytes(_OK)
@@ -82,6 +85,7 @@ def _worker(conn, shm_name: str, K_total: int, n: int, d: int, lo: int, hi: int,
                     arr["terminated"][sl], arr["truncated"][sl] = term, trunc
                     for k in ("goal", "ball_out", "kicker", "kick_speed", "t", "autoreset", "score"):
                         arr[k][sl] = info[k]
+                arr["cpu_s"][w] = time.process_time()
                 conn.send_bytes(_OK)
             except Exception as e:  # noqa: BLE001  (report to the parent, keep serving)
                 conn.send_bytes(b"e" + f"{type(e).__name__}: {e}".encode())
@@ -132,14 +136,15 @@ class ShardedBatchedEnv:
         d = obs_dim(cfg.obs_max_teammates, cfg.obs_max_opponents)
         self.K = K = n_workers * worlds_per_worker
         self.n_workers, self.worlds_per_worker = n_workers, worlds_per_worker
-        self._shm = shared_memory.SharedMemory(create=True, size=_nbytes(K, self.n, d))
-        self._arr = _map(self._shm.buf, K, self.n, d)
+        self._shm = shared_memory.SharedMemory(create=True, size=_nbytes(K, self.n, d, n_workers))
+        self._arr = _map(self._shm.buf, K, self.n, d, n_workers)
         ctx = mp.get_context("spawn")
         self._conns, self._procs = [], []
         for w in range(n_workers):
             parent, child = ctx.Pipe()
             lo, hi = w * worlds_per_worker, (w + 1) * worlds_per_worker
-            p = ctx.Process(target=_worker, args=(child, self._shm.name, K, self.n, d, lo, hi, dict(config)),
+            p = ctx.Process(target=_worker, args=(child, self._shm.name, K, self.n, d, n_workers, w, lo, hi,
+                                                  dict(config)),
                             daemon=True, name=f"ssl_marl-shard-{w}")
             p.start()
             child.close()
@@ -188,6 +193,10 @@ class ShardedBatchedEnv:
         r = self._arr
         info = self._result(("goal", "ball_out", "kicker", "kick_speed", "t", "autoreset", "score"))
         return r["obs"].copy(), r["rewards"].copy(), r["terminated"].copy(), r["truncated"].copy(), info
+
+    def worker_cpu_seconds(self) -> np.ndarray:
+        """(n_workers,) CPU time (s) each worker process has used, as of its last command."""
+        return self._arr["cpu_s"].copy()
 
     def close(self) -> None:
         """Stop the workers and free the shared memory."""
