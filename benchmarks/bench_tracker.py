@@ -25,8 +25,8 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from ssl_marl.envs import parallel_env  # noqa: E402
-from ssl_marl.envs.tracking import TrackedVisionEnv  # noqa: E402
+from ssl_marl.envs import parallel_env
+from ssl_marl.envs.tracking import TrackedVisionEnv
 
 
 def run(n: int, steps: int, tracked: bool) -> float:
