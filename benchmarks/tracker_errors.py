@@ -29,7 +29,6 @@ from __future__ import annotations
 
 import argparse
 import datetime as _dt
-import json
 import os
 import platform
 import sys
@@ -40,10 +39,10 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from ssl_marl.envs import parallel_env  # noqa: E402
-from ssl_marl.envs.tracking import TrackedVisionEnv  # noqa: E402
-from ssl_marl.io import atomic_write_json, episode_seed  # noqa: E402
-from ssl_marl.physics.state import to_team_frame, wrap_angle  # noqa: E402
+from ssl_marl.envs import parallel_env
+from ssl_marl.envs.tracking import TrackedVisionEnv
+from ssl_marl.io import atomic_write_json, episode_seed
+from ssl_marl.physics.state import to_team_frame, wrap_angle
 
 TELEPORT_STEPS = 6  # vision delay (3) + radio delay (1) + 2
 KINDS = ("raw_target", "tracker_target", "raw_capture", "tracker_capture")

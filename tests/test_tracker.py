@@ -10,10 +10,20 @@ import numpy as np
 import pytest
 
 from ssl_marl.envs import parallel_env
-from ssl_marl.envs.tracking import (TrackedVisionEnv, TrackerParams, VisionTracker, resolve_tracker,
-                                    with_tracker)
+from ssl_marl.envs.tracking import (
+    TrackedVisionEnv,
+    TrackerParams,
+    VisionTracker,
+    resolve_tracker,
+    with_tracker,
+)
 from ssl_marl.physics.params import BallParams, RobotParams
-from ssl_marl.physics.state import WorldState, make_team_state, to_team_frame, wrap_angle
+from ssl_marl.physics.state import (
+    WorldState,
+    make_team_state,
+    to_team_frame,
+    wrap_angle,
+)
 
 DT = 1.0 / 60.0
 RP, BP = RobotParams(), BallParams()
@@ -102,7 +112,7 @@ def test_latency_compensation_reduces_error_along_the_run_and_at_contact():
     rows = []
     for seed in (1, 2):
         rows += _run_tactic(seed)
-    err = lambda a, b: float(np.hypot(*(a - b)))  # noqa: E731
+    err = lambda a, b: float(np.hypot(*(a - b)))
     trk = [err(tr.blue.pos[0], tru.blue.pos[0]) for tr, _, tru in rows]
     raw = [err(rw.blue.pos[0], tru.blue.pos[0]) for _, rw, tru in rows]
     assert np.sqrt(np.mean(np.square(trk))) < 0.3 * np.sqrt(np.mean(np.square(raw)))
@@ -111,7 +121,7 @@ def test_latency_compensation_reduces_error_along_the_run_and_at_contact():
     contact = [k for k in range(1, len(rows)) if rows[k][2].blue.ball_on_dribbler[0]
                and not rows[k - 1][2].blue.ball_on_dribbler[0]]
     assert contact
-    rel = lambda w: w.ball_pos - w.blue.pos[0]  # noqa: E731
+    rel = lambda w: w.ball_pos - w.blue.pos[0]
     e_trk = np.mean([err(rel(rows[k][0]), rel(rows[k][2])) for k in contact])
     e_raw = np.mean([err(rel(rows[k][1]), rel(rows[k][2])) for k in contact])
     assert e_trk < 0.5 * e_raw

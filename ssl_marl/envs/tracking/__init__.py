@@ -13,4 +13,4 @@ from .env import TRACKER_MODES, TrackedVisionEnv, resolve_tracker, with_tracker
 from .params import TrackerParams
 from .tracker import VisionTracker
 
-__all__ = ["TrackerParams", "VisionTracker", "TrackedVisionEnv", "with_tracker", "resolve_tracker", "TRACKER_MODES"]
+__all__ = ["TRACKER_MODES", "TrackedVisionEnv", "TrackerParams", "VisionTracker", "resolve_tracker", "with_tracker"]

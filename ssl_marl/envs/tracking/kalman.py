@@ -35,7 +35,7 @@ class PVFilter:
         self.v = np.zeros((n, k))
         self.P = np.zeros((n, k, 2, 2))
 
-    def copy(self) -> "PVFilter":
+    def copy(self) -> PVFilter:
         out = PVFilter.__new__(PVFilter)
         out.n, out.k, out.angular = self.n, self.k, self.angular
         out.p, out.v, out.P = self.p.copy(), self.v.copy(), self.P.copy()

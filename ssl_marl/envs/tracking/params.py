@@ -129,7 +129,7 @@ class TrackerParams:
             raise ValueError("TrackerParams.release_gate must be >= dribbler_gate (hysteresis)")
 
     @staticmethod
-    def for_realism(realism: Any, dt: float, **overrides: Any) -> "TrackerParams":
+    def for_realism(realism: Any, dt: float, **overrides: Any) -> TrackerParams:
         """Parameters for an env realism config: measurement noise = the preset's
         documented sigmas (teams calibrate theirs; floors keep the filter conditioned
         when realism is off), radio delay = ``cmd_latency_steps * dt``."""

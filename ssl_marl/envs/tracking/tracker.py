@@ -46,7 +46,13 @@ from ...physics.params import BallParams, RobotParams
 from ...physics.state import TEAMS, WorldState, make_team_state, wrap_angle
 from ..actions import ACTION_DIM, scale_actions
 from .kalman import PVFilter
-from .motion import ball_deceleration, ball_position_factor, face_geometry, pinned_ball, robot_response
+from .motion import (
+    ball_deceleration,
+    ball_position_factor,
+    face_geometry,
+    pinned_ball,
+    robot_response,
+)
 from .params import TrackerParams
 
 OWN, OPP = 0, 1
@@ -60,10 +66,10 @@ class _Robots:
     last_tick: np.ndarray
 
     @staticmethod
-    def new(n: int) -> "_Robots":
+    def new(n: int) -> _Robots:
         return _Robots(PVFilter(n, 2), PVFilter(n, 1, angular=True), np.zeros(n, int), np.zeros(n, int))
 
-    def copy(self) -> "_Robots":
+    def copy(self) -> _Robots:
         return _Robots(self.xy.copy(), self.th.copy(), self.misses.copy(), self.last_tick.copy())
 
 
@@ -81,7 +87,7 @@ class _State:
     ball_tick: int
     kick_ready: np.ndarray
 
-    def copy(self) -> "_State":
+    def copy(self) -> _State:
         return _State(self.tick, (self.robots[0].copy(), self.robots[1].copy()), self.ball.copy(), self.slide_until,
                       self.holder, self.offset.copy(), self.ball_misses, self.ball_tick, self.kick_ready.copy())
 
