@@ -41,9 +41,20 @@ RUNS = {  # name -> ssl-marl arguments (output path appended)
 WALL = ("wall_time_s", "act_time_ms", "wall_time_s_total")
 
 
+def _has_tracker_option() -> bool:
+    """True when this checkout's CLI has ``--tracker`` (issue 13): realistic runs are then
+    recorded with ``--tracker off``, the behaviour of checkouts without a tracker."""
+    helptext = subprocess.run([sys.executable, "-m", "ssl_marl.cli", "eval-skill", "--help"], check=True,
+                              capture_output=True, text=True).stdout
+    return "--tracker" in helptext
+
+
 def record(out: Path) -> None:
     out.mkdir(parents=True, exist_ok=True)
+    tracker_off = ["--tracker", "off"] if _has_tracker_option() else []
     for name, args in RUNS.items():
+        if "realistic" in args:
+            args = args[:-2] + tracker_off + args[-2:]  # before "--quiet", "--out"/"--json"
         cmd = [sys.executable, "-m", "ssl_marl.cli", *args, str(out / name)]
         print("+", " ".join(cmd[2:]), flush=True)
         subprocess.run(cmd, check=True)
