@@ -1,7 +1,7 @@
 """Which skill implementation a tactic uses: the one switch between learned and baseline.
 
 Tactics never import a skill class directly. They ask :func:`make_tactic_skill` for
-``"go_to_ball"`` or ``"aim_to_shoot"`` and get an object with the
+``"go_to_ball"``, ``"aim_to_shoot"``, ``"pass"`` or ``"receive"`` and get an object with the
 :class:`ssl_marl.skills.base.Skill` protocol. ``skills`` selects the kind:
 
 * ``"baseline"`` or ``"learned"`` for every skill, or
@@ -31,7 +31,9 @@ from ..physics.params import BallParams, RobotParams
 
 SkillsSpec = Union[str, Mapping[str, str]]
 SKILL_KINDS = ("baseline", "learned")
-SWAPPABLE = ("go_to_ball", "aim_to_shoot")
+SWAPPABLE = ("go_to_ball", "aim_to_shoot")  #: the skills every team uses (checked when a team is built)
+PASSING_SKILLS = ("pass", "receive")  #: used only by the passing plays' Pass / Receive tactics
+TACTIC_SKILLS = SWAPPABLE + PASSING_SKILLS
 
 
 def validate_skills(skills: SkillsSpec) -> None:
@@ -43,8 +45,8 @@ def validate_skills(skills: SkillsSpec) -> None:
     if not isinstance(skills, Mapping):
         raise ValueError(f"skills must be one of {SKILL_KINDS} or a mapping, got {skills!r}")
     for name, kind in skills.items():
-        if name not in SWAPPABLE:
-            raise ValueError(f"skills: unknown skill {name!r}; expected some of {SWAPPABLE}")
+        if name not in TACTIC_SKILLS:
+            raise ValueError(f"skills: unknown skill {name!r}; expected some of {TACTIC_SKILLS}")
         if kind not in SKILL_KINDS:
             raise ValueError(f"skills[{name!r}] must be one of {SKILL_KINDS}, got {kind!r}")
 
@@ -59,9 +61,9 @@ def skill_kind(skills: SkillsSpec, name: str) -> str:
 
 def make_tactic_skill(name: str, skills: SkillsSpec, field: FieldGeometry, robot: RobotParams | None = None,
                       ball: BallParams | None = None):
-    """Build skill ``name`` ("go_to_ball" or "aim_to_shoot") of the kind ``skills`` selects."""
-    if name not in SWAPPABLE:
-        raise ValueError(f"make_tactic_skill: unknown skill {name!r}; expected one of {SWAPPABLE}")
+    """Build skill ``name`` (one of :data:`TACTIC_SKILLS`) of the kind ``skills`` selects."""
+    if name not in TACTIC_SKILLS:
+        raise ValueError(f"make_tactic_skill: unknown skill {name!r}; expected one of {TACTIC_SKILLS}")
     kind = skill_kind(skills, name)
     if kind == "learned":
         key = (name, field, robot or RobotParams(), ball or BallParams())
@@ -86,7 +88,7 @@ def _build(name: str, kind: str, field: FieldGeometry, robot: RobotParams | None
     try:
         from ..skills import make_skill  # lazy: the learned runtime may pull in torch
     except ImportError as exc:  # pragma: no cover - only without the factory
-        if kind != "baseline":
+        if kind != "baseline" or name not in SWAPPABLE:
             raise RuntimeError("learned skills need ssl_marl.skills.make_skill, which could not be "
                                f"imported ({exc}); use skills='baseline'") from exc
         from ..skills.baseline import AimToShootBaseline, GoToBallBaseline

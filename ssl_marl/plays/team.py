@@ -20,6 +20,7 @@ Each tick:
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Any, Sequence
 
 import numpy as np
@@ -32,6 +33,18 @@ from .assignment import Assignment, RoleSlot, assign
 from .play import Play, PlayContext, PlaySelector, RoleDef, make_context, standard_plays
 from .skillset import SWAPPABLE, SkillsSpec, make_tactic_skill, skill_kind, validate_skills
 from .tactic_base import Tactic
+
+
+def required_skills(plays: Sequence[Play]) -> tuple[str, ...]:
+    """Skills a team running ``plays`` builds: the core ones (go-to-ball, aim-to-shoot)
+    plus every ``uses_skills`` of the plays' tactics (pass, receive for passing plays)."""
+    names = list(SWAPPABLE)
+    for play in plays:
+        for role in play.roles:
+            for name in getattr(role.tactic, "uses_skills", ()):
+                if name not in names:
+                    names.append(name)
+    return tuple(names)
 
 
 class TeamController:
@@ -67,7 +80,7 @@ class TeamController:
         self.selector = PlaySelector(plays if plays is not None else standard_plays(), min_hold_s=min_hold_s,
                                      adaptive=adaptive, seed=seed)
         self.agents = [f"{team}_{i}" for i in range(n_robots)]
-        for name in SWAPPABLE:  # fail now (e.g. a missing checkpoint), not in the first tick
+        for name in required_skills(self.selector.plays):  # fail now (e.g. a missing checkpoint), not in play
             if skill_kind(skills, name) == "learned":
                 make_tactic_skill(name, skills, self.field, self.rp, self.bp)
         self.reset()
@@ -154,7 +167,11 @@ class TeamController:
         if ours.n != self.n:
             raise ValueError(f"TeamController({self.team!r}) was built for {self.n} robots, the world has {ours.n}")
         ctx = make_context(world, self.team, self.field, self.rp)
+        ctx = replace(ctx, role_status={role: tactic.status for role, _, tactic in self._tactics.values()},
+                      role_holders={role: i for i, (role, _, _) in self._tactics.items()})
         play = self.selector.select(ctx, world.t)
+        if play.prepare is not None:
+            play.prepare(ctx)
         active = self._active_roles(play, ctx)
         slots = [RoleSlot(r.name, r.priority, r.unfilled_cost) for r, _ in active]
         cost = np.vstack([r.costs(ctx, tgt) for r, tgt in active]) if active else np.zeros((0, self.n))

@@ -1,0 +1,167 @@
+"""Pass(target robot): get the ball, wait for the receiver, kick it to the receive point.
+
+State machine (team frame; d_{d-b}: dribbler-ball distance)::
+
+    GET_BALL --(d_db <= 35 mm)--> HOLD
+    HOLD --(receiver_ready and a target is set)--> KICK          (the handshake)
+    HOLD --(d_db > 50 mm: ball lost)--> GET_BALL
+    HOLD --(waited max_wait_s)--> FAILED
+    KICK --(kick commanded / pass skill SUCCEEDED)--> DONE
+    KICK --(pass skill FAILED: ball lost before the kick)--> FAILED
+    DONE, FAILED: terminal until :meth:`~ssl_marl.plays.tactic_base.Tactic.reset`
+
+The play sets the parameters every tick: ``target_robot`` (teammate index),
+``target_point`` (where the receiver will take the ball, m) and ``receiver_ready``
+(the receiver's tactic reports READY: the passer commits only then). While it waits
+(HOLD) the robot keeps the ball on the dribbler and turns towards the target at a
+gentle rate, so that the pass skill has little turning left. KICK runs the pass skill
+(learned or baseline, :mod:`ssl_marl.plays.skillset`), which chooses the kick speed
+from the ball model. The play reads :attr:`status` (``state``; ``kicks``).
+"""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..physics.state import WorldState
+from ..skills.base import SkillStatus, make_action
+from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance
+from .navigation import angle_diff, facing_towards
+from .shoot import govern_approach
+from .tactic_base import NEAR_BALL_M, Tactic, skill_status
+
+
+class PassState(enum.Enum):
+    GET_BALL = "get_ball"
+    HOLD = "hold"
+    KICK = "kick"
+    DONE = "done"
+    FAILED = "failed"
+
+
+@dataclass(frozen=True)
+class PassParams:
+    """Attributes:
+        target_robot: the receiver's index in the team (None: no receiver chosen yet).
+        target_point: (x, y) receive point (m, team frame) or None.
+        receiver_ready: the receiver reports READY (handshake; set by the play).
+        max_wait_s: HOLD longer than this without a ready receiver -> FAILED (s).
+        near_ball_m: GET_BALL -> HOLD threshold on d_{d-b} (m; the paper's 35 mm).
+        lost_ball_m: HOLD -> GET_BALL when d_{d-b} exceeds this (m).
+        hold_turn_rate: turn rate towards the target while holding (rad/s; slow
+            enough for the dribbler to keep the ball, cf. aim-to-shoot's 5 rad/s).
+        hold_turn_gain: proportional gain of that turn (1/s).
+        approach_speed, approach_decel: the go-to-ball speed governor (m/s, m/s^2),
+            as in :class:`~ssl_marl.plays.shoot.GoToBallAndShoot`.
+    """
+
+    target_robot: int | None = None
+    target_point: tuple[float, float] | None = None
+    receiver_ready: bool = False
+    max_wait_s: float = 2.0
+    near_ball_m: float = NEAR_BALL_M
+    lost_ball_m: float = BALL_LOST_DISTANCE
+    hold_turn_rate: float = 3.0
+    hold_turn_gain: float = 6.0
+    approach_speed: float | None = 0.8
+    approach_decel: float = 3.0
+
+
+@dataclass(frozen=True)
+class PassInputs:
+    """Attributes: d_db (m), skill_status (the pass skill's, KICK state), kicked (a kick
+    was commanded on the previous tick), receiver_ready, has_target, time_in_state (s)."""
+
+    d_db: float
+    skill_status: SkillStatus = SkillStatus.RUNNING
+    kicked: bool = False
+    receiver_ready: bool = False
+    has_target: bool = True
+    time_in_state: float = 0.0
+
+
+class Pass(Tactic):
+    """Pass the ball to a teammate (see the module docstring)."""
+
+    name = "pass"
+    State = PassState
+    Params = PassParams
+    Inputs = PassInputs
+    initial_state = PassState.GET_BALL
+    uses_skills = ("go_to_ball", "pass")
+
+    def __init__(self, field, robot=None, ball=None, skills="baseline", dt: float = 1.0 / 60.0, **params) -> None:
+        self.go_to_ball = None
+        super().__init__(field, robot, ball, skills, dt, **params)
+        self.go_to_ball = self._skill("go_to_ball")
+        self.pass_skill = self._skill("pass")
+        self.on_enter(self.state)
+
+    def observe(self, world: WorldState, robot: int) -> PassInputs:
+        p = self.params
+        status = skill_status(self.pass_skill) if self.state is PassState.KICK else SkillStatus.RUNNING
+        return PassInputs(d_db=dribbler_ball_distance(world, robot, self.rp, self.bp), skill_status=status,
+                          kicked=self._kicked, receiver_ready=bool(p.receiver_ready),
+                          has_target=p.target_point is not None and p.target_robot is not None,
+                          time_in_state=self._time_in_state)
+
+    @staticmethod
+    def transition(state: PassState, inputs: PassInputs, params: PassParams) -> PassState:
+        S = PassState
+        if state in (S.DONE, S.FAILED):
+            return state
+        if state is S.GET_BALL:
+            return S.HOLD if inputs.d_db <= params.near_ball_m else S.GET_BALL
+        if state is S.HOLD:
+            if inputs.d_db > params.lost_ball_m:
+                return S.GET_BALL
+            if inputs.receiver_ready and inputs.has_target:
+                return S.KICK
+            return S.FAILED if inputs.time_in_state > params.max_wait_s else S.HOLD
+        if state is S.KICK:
+            if inputs.kicked or inputs.skill_status is SkillStatus.SUCCEEDED:
+                return S.DONE
+            if inputs.skill_status is SkillStatus.FAILED:
+                return S.FAILED
+            return S.KICK
+        raise ValueError(f"unknown state {state!r}")
+
+    def on_enter(self, state: PassState) -> None:
+        if self.go_to_ball is None:  # base constructor: skills not built yet
+            return
+        if state is PassState.GET_BALL:
+            self.go_to_ball.reset()
+        elif state is PassState.KICK:
+            self.pass_skill.reset()
+
+    def execute(self, world: WorldState, robot: int, inputs: PassInputs) -> np.ndarray:
+        S, p = PassState, self.params
+        if self.state is S.GET_BALL:
+            a = self.go_to_ball.act(world, robot)
+            if p.approach_speed is not None:
+                a = govern_approach(a, world, robot, self.rp, self.bp, p.approach_speed, p.approach_decel)
+            return a
+        if self.state is S.HOLD:
+            if p.target_point is None:
+                return make_action(dribble=True)
+            ts = world.team(world.frame)
+            err = angle_diff(facing_towards(ts.pos[robot], np.asarray(p.target_point, float)),
+                             float(ts.heading[robot]))
+            omega = float(np.clip(p.hold_turn_gain * err, -p.hold_turn_rate, p.hold_turn_rate))
+            return make_action(omega=omega / self.rp.max_omega, dribble=True)
+        if self.state is S.KICK:
+            self.pass_skill.set_target(np.asarray(p.target_point, float))
+            return self.pass_skill.act(world, robot)
+        return make_action()
+
+
+def heading_error_to(world: WorldState, robot: int, point) -> float:
+    """|heading error| (rad) of ``robot`` towards ``point`` (team frame)."""
+    ts = world.team(world.frame)
+    return abs(angle_diff(facing_towards(ts.pos[robot], np.asarray(point, float)), float(ts.heading[robot])))
+
+
+__all__ = ["PassState", "PassParams", "PassInputs", "Pass", "heading_error_to"]
