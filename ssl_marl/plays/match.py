@@ -5,8 +5,14 @@ out-of-play restarts are the env referee's job) and returns a :class:`MatchResul
 :func:`play_series` runs K matches (match i seeded ``seed + i``) in a process pool.
 
 Controllers (per team): ``"baseline"`` / ``"learned"``: a
-:class:`~ssl_marl.plays.team.TeamController` with those skills; ``"random"``:
-uniform random actions (seeded); ``"idle"``: zero actions.
+:class:`~ssl_marl.plays.team.TeamController` with those skills and the standard
+(no-pass) plays; ``"passing-learned"`` / ``"passing-baseline"``: the same controller
+with the passing plays (:mod:`ssl_marl.plays.passing_play`) and those skills
+(:func:`~ssl_marl.plays.passing_play.passing_team_skills`); ``"random"``: uniform
+random actions (seeded); ``"idle"``: zero actions.
+
+Statistics: a :class:`~ssl_marl.plays.stats.MatchStatsTracker` watches every step
+(passes attempted / completed / intercepted, shots, goals per team: ``MatchResult.stats``).
 
 Real-time mode (``realtime=True``, the paper's evaluation mode, section 4.2): each
 team's ``act`` is timed; if it takes longer than the control period (1/60 s) that
@@ -36,7 +42,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-CONTROLLERS = ("learned", "baseline", "random", "idle")
+CONTROLLERS = ("learned", "baseline", "random", "idle", "passing-learned", "passing-baseline")
 
 
 # ------------------------------------------------------------- controllers
@@ -82,6 +88,13 @@ def make_controller(kind: Any, team: str, n_robots: int, field: Any = "div_b", s
         from .team import TeamController
 
         return TeamController(team, n_robots, field=field, skills=kind, seed=seed, **kwargs)
+    if kind in ("passing-learned", "passing-baseline"):
+        from .passing_play import passing_plays, passing_team_skills
+        from .team import TeamController
+
+        kwargs.setdefault("plays", passing_plays(ball=kwargs.get("ball")))
+        return TeamController(team, n_robots, field=field, skills=passing_team_skills(kind.split("-", 1)[1]),
+                              seed=seed, **kwargs)
     if kind == "random":
         return RandomController(team, n_robots, seed=seed)
     if kind == "idle":
@@ -98,6 +111,9 @@ class MatchResult:
         score: goals per team.
         goals: [{"team": scorer, "t": simulated time (s)}] in order.
         shots: kick events per team (every kick, not only shots on goal).
+        stats: per team, from :class:`~ssl_marl.plays.stats.MatchStatsTracker`: kicks,
+            shots (kicks aimed at the goal), goals, passes attempted / completed /
+            intercepted / lost, interceptions, pass_completion.
         possession: fraction of control steps in which a robot of the team held the
             ball on its dribbler (ground truth; the two may sum to less than 1).
         steps: control steps simulated. sim_time_s: simulated seconds.
@@ -118,6 +134,7 @@ class MatchResult:
     missed_deadlines: dict[str, int] = field(default_factory=dict)
     seed: int = 0
     config: dict = field(default_factory=dict)
+    stats: dict = field(default_factory=dict)
 
     @property
     def winner(self) -> str | None:
@@ -255,7 +272,8 @@ def play_match(blue: str = "baseline", yellow: str = "baseline", robots: int = 6
     ck.setdefault("ball", env.config.ball)
     ck.setdefault("dt", env.config.dt)
     ctrls = {team: make_controller(kind, team, robots, geom, seed=seed + k,
-                                   **(ck if kind in ("learned", "baseline") else {}))
+                                   **(ck if kind in ("learned", "baseline", "passing-learned", "passing-baseline")
+                                      else {}))
              for k, (team, kind) in enumerate((("blue", blue), ("yellow", yellow)))}
     for team, c in ctrls.items():
         if hasattr(c, "reset"):
@@ -265,6 +283,9 @@ def play_match(blue: str = "baseline", yellow: str = "baseline", robots: int = 6
     every = max(int(round(env.config.control_hz / render_fps)), 1)
     sink = _VideoSink(render, env.config.control_hz / every) if render is not None else None
 
+    from .stats import MatchStatsTracker
+
+    tracker = MatchStatsTracker(geom, env.config.ball)
     t_start = time.perf_counter()
     env.reset(seed=seed, options=start_options(env, seed, start_jitter_m))
     prev = {team: {a: np.zeros(5, np.float32) for a in c.agents} for team, c in ctrls.items()}
@@ -304,6 +325,7 @@ def play_match(blue: str = "baseline", yellow: str = "baseline", robots: int = 6
                 elif e["type"] == "goal":
                     goals.append({"team": e["team"], "t": float(e["t"])})
             truth = env.world_state()
+            tracker.observe(truth, events)
             held["blue"] += bool(truth.blue.ball_on_dribbler.any())
             held["yellow"] += bool(truth.yellow.ball_on_dribbler.any())
             if sink is not None and steps % every == 0:
@@ -324,12 +346,17 @@ def play_match(blue: str = "baseline", yellow: str = "baseline", robots: int = 6
     config = dict(blue=label["blue"], yellow=label["yellow"], robots=robots, field=geom.name,
                   seconds=float(seconds), seed=seed, realism=realism if isinstance(realism, str) else repr(realism),
                   realtime=realtime, start_jitter_m=start_jitter_m,
-                  render=str(render) if render is not None else None)
+                  render=str(render) if render is not None else None,
+                  skills={t: _json_safe(getattr(c, "skills", None)) for t, c in ctrls.items()})
     return MatchResult(score=dict(env.score), goals=goals, shots=shots,
                        possession={k: v / max(steps, 1) for k, v in held.items()}, steps=steps,
                        sim_time_s=steps * dt, wall_time_s=wall,
                        act_time_ms={k: 1000.0 * v / max(steps, 1) for k, v in act_time.items()},
-                       missed_deadlines=missed, seed=seed, config=config)
+                       missed_deadlines=missed, seed=seed, config=config, stats=tracker.summary())
+
+
+def _json_safe(skills: Any) -> Any:
+    return dict(skills) if hasattr(skills, "items") else skills
 
 
 # ------------------------------------------------------------------ series
@@ -339,7 +366,10 @@ def _series_worker(job: tuple[int, dict]) -> tuple[int, MatchResult]:
 
 
 def summarize(results: list[MatchResult]) -> dict:
-    """Table summary from blue's side: wins / draws / losses, goals for / against, ..."""
+    """Table summary from blue's side: wins / draws / losses, goals for / against, ...;
+    ``stats``: per-team totals of the match statistics (:func:`~ssl_marl.plays.stats.summarize_stats`)."""
+    from .stats import summarize_stats
+
     n = len(results)
     wins = sum(r.winner == "blue" for r in results)
     losses = sum(r.winner == "yellow" for r in results)
@@ -356,7 +386,8 @@ def summarize(results: list[MatchResult]) -> dict:
             "possession_yellow_mean": mean([r.possession["yellow"] for r in results]),
             "missed_deadlines_blue": sum(r.missed_deadlines["blue"] for r in results),
             "missed_deadlines_yellow": sum(r.missed_deadlines["yellow"] for r in results),
-            "wall_time_s_total": float(sum(r.wall_time_s for r in results))}
+            "wall_time_s_total": float(sum(r.wall_time_s for r in results)),
+            "stats": summarize_stats([r.stats for r in results if r.stats])}
 
 
 def run_pool(worker: Callable, jobs: list, workers: int, desc: str, progress: bool = True,

@@ -68,6 +68,7 @@ their defaults.
 from __future__ import annotations
 
 import enum
+import functools
 import math
 from dataclasses import dataclass
 
@@ -211,13 +212,47 @@ def opponent_reach_time(opponents: np.ndarray, points: np.ndarray, rp: RobotPara
     return params.opp_reaction_s + motion_time(d, v, a)
 
 
-def ball_times(kick_speed: float, s: np.ndarray, t_end: float, bp: BallParams, grid: int = 48) -> np.ndarray:
-    """Times (s) at which a ball kicked at ``kick_speed`` (m/s) has covered the distances
-    ``s`` (m, all reached by ``t_end``): the ball model's distance on a time grid, inverted
-    by interpolation (monotonic while the ball moves; error << 1 ms at 48 points)."""
-    tg = np.linspace(0.0, t_end, grid)
-    dg = np.asarray(ball_model.distance_at(kick_speed, tg, bp), float)
-    return np.interp(s, dg, tg)
+def ball_times(kick_speed, s, bp: BallParams) -> np.ndarray:
+    """Times (s) at which balls kicked at ``kick_speed`` (m/s; scalar or (K, 1)) have
+    covered the distances ``s`` (m; broadcastable, e.g. (K, P)); inf where the ball
+    stops short. The two-phase slide/roll model of :mod:`ssl_marl.physics.ball_model`
+    (its continuous-time form, vectorised over many paths: the tests check it against
+    ``ball_model.time_to_distance`` within 30 ms while the ball is faster than 1 m/s)."""
+    v0 = np.asarray(kick_speed, float)
+    s = np.maximum(np.asarray(s, float), 0.0)
+    a, r = bp.slide_decel, bp.roll_decel
+    v1 = bp.slide_to_roll_ratio * v0
+    t1 = (v0 - v1) / a
+    d1 = (v0 * v0 - v1 * v1) / (2.0 * a)
+    with np.errstate(invalid="ignore"):
+        t_slide = (v0 - np.sqrt(np.maximum(v0 * v0 - 2.0 * a * s, 0.0))) / a
+        disc = v1 * v1 - 2.0 * r * (s - d1)
+        t_roll = t1 + (v1 - np.sqrt(np.maximum(disc, 0.0))) / r
+    return np.where(s <= d1, t_slide, np.where(disc >= 0.0, t_roll, np.inf))
+
+
+def path_margins(start: np.ndarray, ends: np.ndarray, kick_speeds: np.ndarray, opponents: np.ndarray,
+                 rp: RobotParams, bp: BallParams, params: DecisionParams) -> np.ndarray:
+    """(K,) smallest interception-time margin (s) of any opponent along each straight ball
+    path ``start -> ends[k]`` kicked at ``kick_speeds[k]`` (m/s); inf without opponents,
+    -inf where the ball stops short of the end (see the module docstring)."""
+    start = np.asarray(start, float).reshape(2)
+    ends = np.asarray(ends, float).reshape(-1, 2)
+    v0 = np.asarray(kick_speeds, float).reshape(-1, 1)
+    opp = np.asarray(opponents, float).reshape(-1, 2)
+    rel = ends - start
+    length = np.hypot(rel[:, 0], rel[:, 1])[:, None]  # (K, 1)
+    frac = np.linspace(0.0, 1.0, params.path_samples)[None, :]
+    s = np.maximum(frac * length, np.minimum(params.skip_near_m, length))  # (K, P)
+    t_ball = ball_times(v0, s, bp)  # (K, P)
+    stops_short = ~np.isfinite(t_ball[:, -1])
+    if opp.shape[0] == 0:
+        return np.where(stops_short, -np.inf, np.inf)
+    u = rel / np.maximum(length, 1e-9)
+    pts = start[None, None, :] + s[..., None] * u[:, None, :]  # (K, P, 2)
+    t_opp = opponent_reach_time(opp, pts.reshape(-1, 2), rp, bp, params).reshape(opp.shape[0], *s.shape)
+    margin = (t_opp - t_ball[None]).min(axis=(0, 2))
+    return np.where(stops_short, -np.inf, margin)
 
 
 def path_margin(start: np.ndarray, end: np.ndarray, kick_speed: float, opponents: np.ndarray, rp: RobotParams,
@@ -225,21 +260,19 @@ def path_margin(start: np.ndarray, end: np.ndarray, kick_speed: float, opponents
     """Smallest interception-time margin (s) of any opponent along the straight ball path
     ``start -> end`` kicked at ``kick_speed`` (m/s); inf without opponents; -inf if the
     ball stops short of ``end``."""
-    start, end = np.asarray(start, float), np.asarray(end, float)
-    length = float(np.hypot(*(end - start)))
-    t_end = ball_model.time_to_distance(kick_speed, length, bp)
-    if not math.isfinite(t_end):
-        return -math.inf
-    opp = np.asarray(opponents, float).reshape(-1, 2)
-    if opp.shape[0] == 0 or length < 1e-6:
-        return math.inf
-    s = np.linspace(0.0, length, params.path_samples)
-    s = s[s >= min(params.skip_near_m, length)]
-    u = (end - start) / length
-    pts = start[None, :] + s[:, None] * u[None, :]
-    t_ball = ball_times(kick_speed, s, t_end, bp)
-    t_opp = opponent_reach_time(opp, pts, rp, bp, params)
-    return float((t_opp - t_ball[None, :]).min())
+    return float(path_margins(start, np.asarray(end, float)[None, :], np.array([kick_speed]), opponents, rp, bp,
+                              params)[0])
+
+
+def pass_success(start: np.ndarray, points: np.ndarray, opponents: np.ndarray, rp: RobotParams, bp: BallParams,
+                 params: DecisionParams) -> np.ndarray:
+    """(K,) pass success estimate P in [0, 1] from ``start`` to each point (K, 2): the
+    path margin of a pass kicked at :func:`pass_kick_speeds`, mapped as in
+    :func:`evaluate_passes` (no length limits)."""
+    pts = np.asarray(points, float).reshape(-1, 2)
+    length = np.hypot(pts[:, 0] - start[0], pts[:, 1] - start[1])
+    m = path_margins(start, pts, pass_kick_speeds(length, bp, rp, params), opponents, rp, bp, params)
+    return np.clip((m - params.pass_margin_lo) / (params.pass_margin_hi - params.pass_margin_lo), 0.0, 1.0)
 
 
 def open_goal_interval(p: np.ndarray, obstacles: np.ndarray, field: FieldGeometry, rp: RobotParams,
@@ -305,11 +338,29 @@ def shot_value(p: np.ndarray, opponents: np.ndarray, others: np.ndarray, field: 
     return float(f_angle * f_margin * f_dist)
 
 
+KICK_TABLE_STEP_M = 0.05  # m between the distances of the kick-speed table
+
+
+@functools.lru_cache(maxsize=32)
+def _kick_speed_table(bp: BallParams, v_arrive: float, v_max: float) -> tuple[np.ndarray, np.ndarray]:
+    """(distances, kick speeds) of :func:`ball_model.kick_speed_for_arrival` on a 5 cm grid
+    up to 12 m (the model's solve is exact but slow to call per candidate and tick)."""
+    d = np.arange(0.0, 12.0 + KICK_TABLE_STEP_M, KICK_TABLE_STEP_M)
+    v = np.array([ball_model.kick_speed_for_arrival(float(x), v_arrive, bp, v_max=v_max) for x in d])
+    return d, v
+
+
+def pass_kick_speeds(lengths, bp: BallParams, rp: RobotParams, params: DecisionParams) -> np.ndarray:
+    """Kick speeds (m/s) of passes of ``lengths`` m: arriving at ``pass_arrive_speed``
+    (the ball model, tabulated every 5 cm and interpolated), at least ``min_pass_speed``,
+    at most the kicker cap."""
+    d, v = _kick_speed_table(bp, float(params.pass_arrive_speed), float(rp.kick_speed_max))
+    return np.clip(np.interp(np.asarray(lengths, float), d, v), params.min_pass_speed, rp.kick_speed_max)
+
+
 def pass_kick_speed(length: float, bp: BallParams, rp: RobotParams, params: DecisionParams) -> float:
-    """Kick speed (m/s) of a pass of ``length`` m: arrives at ``pass_arrive_speed``,
-    at least ``min_pass_speed``, at most the kicker cap."""
-    v = ball_model.kick_speed_for_arrival(length, params.pass_arrive_speed, bp, v_max=rp.kick_speed_max)
-    return float(min(max(v, params.min_pass_speed), rp.kick_speed_max))
+    """Scalar :func:`pass_kick_speeds`."""
+    return float(pass_kick_speeds(length, bp, rp, params))
 
 
 def keep_value(p: np.ndarray, opponents: np.ndarray, rp: RobotParams, bp: BallParams,
@@ -392,5 +443,5 @@ def decide(p: np.ndarray, carrier: int, teammates: np.ndarray, opponents: np.nda
 
 
 __all__ = ["DecisionParams", "Choice", "PassOption", "Decision", "motion_time", "opponent_reach_time", "ball_times",
-           "path_margin", "open_goal_interval", "shot_value", "pass_kick_speed", "keep_value",
+           "path_margins", "path_margin", "pass_success", "pass_kick_speeds", "open_goal_interval", "shot_value", "pass_kick_speed", "keep_value",
            "valid_receive_point", "evaluate_passes", "decide"]

@@ -3,7 +3,7 @@
 State machine (team frame; d_{d-b}: dribbler-ball distance)::
 
     GET_BALL --(d_db <= 35 mm)--> HOLD
-    HOLD --(receiver_ready and a target is set)--> KICK          (the handshake)
+    HOLD --(receiver_ready, a target set, facing it, nearly still)--> KICK   (the handshake)
     HOLD --(d_db > 50 mm: ball lost)--> GET_BALL
     HOLD --(waited max_wait_s)--> FAILED
     KICK --(kick commanded / pass skill SUCCEEDED)--> DONE
@@ -13,8 +13,10 @@ State machine (team frame; d_{d-b}: dribbler-ball distance)::
 The play sets the parameters every tick: ``target_robot`` (teammate index),
 ``target_point`` (where the receiver will take the ball, m) and ``receiver_ready``
 (the receiver's tactic reports READY: the passer commits only then). While it waits
-(HOLD) the robot keeps the ball on the dribbler and turns towards the target at a
-gentle rate, so that the pass skill has little turning left. KICK runs the pass skill
+(HOLD) the robot keeps the ball on the dribbler, brakes gently (``hold_decel``: the
+dribbler holds the ball up to 5 m/s^2) and turns towards the target at a gentle rate;
+it commits once it faces the target within ``kick_align_tol`` and moves slower than
+``settle_speed``, so the pass skill has little turning left. KICK runs the pass skill
 (learned or baseline, :mod:`ssl_marl.plays.skillset`), which chooses the kick speed
 from the ball model. The play reads :attr:`status` (``state``; ``kicks``).
 """
@@ -22,12 +24,14 @@ from the ball model. The play reads :attr:`status` (``state``; ``kicks``).
 from __future__ import annotations
 
 import enum
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..physics.state import WorldState
 from ..skills.base import SkillStatus, make_action
+from ..skills.baseline import velocity_command
 from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance
 from .navigation import angle_diff, facing_towards
 from .shoot import govern_approach
@@ -56,6 +60,9 @@ class PassParams:
         hold_turn_gain: proportional gain of that turn (1/s).
         approach_speed, approach_decel: the go-to-ball speed governor (m/s, m/s^2),
             as in :class:`~ssl_marl.plays.shoot.GoToBallAndShoot`.
+        kick_align_tol: HOLD -> KICK only with the heading within this of the target (rad).
+        settle_speed: ... and the robot slower than this (m/s).
+        hold_decel: braking while holding (m/s^2).
     """
 
     target_robot: int | None = None
@@ -68,12 +75,16 @@ class PassParams:
     hold_turn_gain: float = 6.0
     approach_speed: float | None = 0.8
     approach_decel: float = 3.0
+    kick_align_tol: float = 0.35
+    settle_speed: float = 0.3
+    hold_decel: float = 2.5
 
 
 @dataclass(frozen=True)
 class PassInputs:
     """Attributes: d_db (m), skill_status (the pass skill's, KICK state), kicked (a kick
-    was commanded on the previous tick), receiver_ready, has_target, time_in_state (s)."""
+    was commanded on the previous tick), receiver_ready, has_target, time_in_state (s),
+    aim_err (|heading error| to the target, rad), speed (m/s)."""
 
     d_db: float
     skill_status: SkillStatus = SkillStatus.RUNNING
@@ -81,6 +92,8 @@ class PassInputs:
     receiver_ready: bool = False
     has_target: bool = True
     time_in_state: float = 0.0
+    aim_err: float = 0.0
+    speed: float = 0.0
 
 
 class Pass(Tactic):
@@ -103,10 +116,12 @@ class Pass(Tactic):
     def observe(self, world: WorldState, robot: int) -> PassInputs:
         p = self.params
         status = skill_status(self.pass_skill) if self.state is PassState.KICK else SkillStatus.RUNNING
+        has_target = p.target_point is not None and p.target_robot is not None
         return PassInputs(d_db=dribbler_ball_distance(world, robot, self.rp, self.bp), skill_status=status,
-                          kicked=self._kicked, receiver_ready=bool(p.receiver_ready),
-                          has_target=p.target_point is not None and p.target_robot is not None,
-                          time_in_state=self._time_in_state)
+                          kicked=self._kicked, receiver_ready=bool(p.receiver_ready), has_target=has_target,
+                          time_in_state=self._time_in_state,
+                          aim_err=heading_error_to(world, robot, p.target_point) if has_target else math.pi,
+                          speed=float(np.hypot(*world.team(world.frame).vel[robot])))
 
     @staticmethod
     def transition(state: PassState, inputs: PassInputs, params: PassParams) -> PassState:
@@ -118,7 +133,8 @@ class Pass(Tactic):
         if state is S.HOLD:
             if inputs.d_db > params.lost_ball_m:
                 return S.GET_BALL
-            if inputs.receiver_ready and inputs.has_target:
+            if (inputs.receiver_ready and inputs.has_target and inputs.aim_err <= params.kick_align_tol
+                    and inputs.speed <= params.settle_speed):
                 return S.KICK
             return S.FAILED if inputs.time_in_state > params.max_wait_s else S.HOLD
         if state is S.KICK:
@@ -145,13 +161,16 @@ class Pass(Tactic):
                 a = govern_approach(a, world, robot, self.rp, self.bp, p.approach_speed, p.approach_decel)
             return a
         if self.state is S.HOLD:
-            if p.target_point is None:
-                return make_action(dribble=True)
             ts = world.team(world.frame)
-            err = angle_diff(facing_towards(ts.pos[robot], np.asarray(p.target_point, float)),
-                             float(ts.heading[robot]))
-            omega = float(np.clip(p.hold_turn_gain * err, -p.hold_turn_rate, p.hold_turn_rate))
-            return make_action(omega=omega / self.rp.max_omega, dribble=True)
+            vel = ts.vel[robot]
+            sp = float(np.hypot(*vel))
+            v = vel * max(0.0, 1.0 - p.hold_decel * self.dt / sp) if sp > 1e-6 else np.zeros(2)
+            omega = 0.0
+            if p.target_point is not None:
+                err = angle_diff(facing_towards(ts.pos[robot], np.asarray(p.target_point, float)),
+                                 float(ts.heading[robot]))
+                omega = float(np.clip(p.hold_turn_gain * err, -p.hold_turn_rate, p.hold_turn_rate))
+            return velocity_command(world, robot, v, omega, self.rp, dribble=True)
         if self.state is S.KICK:
             self.pass_skill.set_target(np.asarray(p.target_point, float))
             return self.pass_skill.act(world, robot)
