@@ -58,8 +58,10 @@ the carrier: holding is worth little when an opponent is about to arrive.
 1. ``shot_value(p) >= shoot_threshold`` -> SHOOT;
 2. else the best pass ``k`` with ``P_k >= min_pass_success`` and
    ``value_k >= max(shot_value(p), keep_value) + pass_gain`` -> PASS to ``k``;
-3. else KEEP (dribble: hold the ball, turn and creep toward the goal), unless the shot
-   value is at least ``shoot_fallback`` -> SHOOT.
+3. else KEEP (dribble: hold the ball, turn and creep toward the goal) while the keep
+   value is at least ``min_keep`` (no opponent about to arrive); otherwise, or when the
+   shot value is at least ``shoot_fallback``, SHOOT (a pressed carrier without a pass
+   gets rid of the ball towards the goal rather than lose it standing).
 
 All thresholds and weights are :class:`DecisionParams` fields with the reason for
 their defaults.
@@ -108,6 +110,7 @@ class DecisionParams:
         min_pass_success: passes with a lower P are not considered.
         pass_gain: a pass must beat both the shot and the keep value by this much.
         shoot_fallback: without a good pass, shoot anyway at or above this shot value.
+        min_keep: without a good pass, keep only at or above this keep value, else shoot.
     """
 
     opp_reaction_s: float = 0.3
@@ -137,9 +140,10 @@ class DecisionParams:
     press_lo: float = 0.25
     press_hi: float = 1.0
     shoot_threshold: float = 0.5
-    min_pass_success: float = 0.6
+    min_pass_success: float = 0.35
     pass_gain: float = 0.05
     shoot_fallback: float = 0.25
+    min_keep: float = 0.1
 
     def __post_init__(self) -> None:
         for name in ("shot_speed", "pass_arrive_speed", "min_pass_speed", "good_open_angle", "far_shot_m",
@@ -437,7 +441,7 @@ def decide(p: np.ndarray, carrier: int, teammates: np.ndarray, opponents: np.nda
     best = max(ok, key=lambda o: o.value) if ok else None
     if best is not None and best.value >= max(shot, keep) + params.pass_gain:
         return Decision(Choice.PASS, shot, keep, passes, best)
-    if shot >= params.shoot_fallback:
+    if shot >= params.shoot_fallback or keep < params.min_keep:
         return Decision(Choice.SHOOT, shot, keep, passes, best)
     return Decision(Choice.KEEP, shot, keep, passes, best)
 

@@ -21,7 +21,10 @@ internals:
    once the receiver reports READY, and only then does the passer kick.
 3. **In flight** (the passer reports DONE): the receiver's RECEIVING state runs the
    receive skill (onto the predicted ball line, cushion); the passer stands.
-4. **End**: receiver CONTROLLED -> completed; receiver FAILED, passer FAILED, an
+4. **End**: receiver CONTROLLED, or the ball on the receiver's dribbler for
+   ``control_s`` (0.1 s: TIGERs call a reception successful 0.1 s after the ball
+   reaches the dribbler; the receive skill's own 0.5 s hold would let the defence
+   re-form before the receiver can shoot) -> completed; receiver FAILED, passer FAILED, an
    opponent on the ball, a setup longer than ``max_setup_s``, a flight longer than
    ``max_flight_s``, or (during setup) a pass lane that became unsafe -> aborted. The
    attacker role returns; after a completed pass the receiver, now nearest the ball,
@@ -96,17 +99,19 @@ class PassingParams:
         cooldown_s: after a dropped pass, no new pass for this long (s).
         settle_s: the attacker's drive-forward duration in the passing plays (s; the
             paper's 1 s lets defenders settle, the passing game moves on faster).
+        control_s: the ball on the receiver's dribbler this long completes the pass (s).
     """
 
     decision: DecisionParams = DecisionParams()
     restart_decision: DecisionParams = RESTART_DECISION
     decide_every: int = 3
-    max_keep_s: float = 1.5
+    max_keep_s: float = 0.8
     max_setup_s: float = 2.5
     max_flight_s: float = 4.0
     abort_margin_s: float = -0.05
     cooldown_s: float = 0.5
-    settle_s: float = 0.3
+    settle_s: float = 0.15
+    control_s: float = 0.1
 
 
 @dataclass
@@ -137,6 +142,7 @@ class PassCoordinator:
         self._cooldown_until = -math.inf
         self._keep_since: float | None = None
         self._carrier: int | None = None
+        self._recv_on_since: float | None = None
 
     @property
     def active(self) -> bool:
@@ -168,12 +174,16 @@ class PassCoordinator:
         self.plan = None
         self.decision = None
         self._keep_since = None
+        self._recv_on_since = None
 
     def _follow(self, ctx: PlayContext, t: float) -> None:
         plan, p = self.plan, self.params
         passer = ctx.role_status.get("passer")
         receiver = ctx.role_status.get("receiver")
-        if receiver is not None and receiver.state is ReceiveState.CONTROLLED:
+        on = plan.phase is PassPhase.IN_FLIGHT and bool(ctx.world.team(ctx.team).ball_on_dribbler[plan.receiver])
+        self._recv_on_since = (self._recv_on_since if self._recv_on_since is not None else t) if on else None
+        if (receiver is not None and receiver.state is ReceiveState.CONTROLLED) or (
+                self._recv_on_since is not None and t - self._recv_on_since >= p.control_s - 1e-9):
             self._drop(t, completed=True)
             return
         if ctx.they_have_ball or (receiver is not None and receiver.state is ReceiveState.FAILED):
