@@ -5,11 +5,13 @@ env's events (``"kick"`` with the kicking agent, ``"goal"``, ``"ball_out"``); it
 nothing of either team's plans, so it rates a passing team and a no-pass team by the
 same rules:
 
-* **Shot**: a kick whose straight path crosses the opponent goal line within the posts
-  widened by ``shot_margin_m`` on each side.
-* **Pass attempt**: any other kick whose straight path passes within ``pass_lane_m``
-  of a teammate (not the kicker) standing between ``min_pass_m`` and the ball's stop
-  distance (+ ``pass_lane_m``) ahead; kicks aimed at nobody (clearances) count only as kicks.
+* **Pass attempt**: a kick whose straight path passes within ``pass_lane_m`` of a
+  teammate (not the kicker) standing between ``min_pass_m`` and the ball's stop
+  distance (+ ``pass_lane_m``) ahead; for a kick towards the goal mouth the teammate
+  must be within ``goal_lane_m`` (it stands right on the line: a pass, not a shot).
+* **Shot**: any other kick whose straight path crosses the opponent goal line within
+  the posts widened by ``shot_margin_m`` on each side. Kicks aimed at nobody and not
+  at the goal (clearances) count only as kicks.
 * **Control**: a robot holds the ball on its dribbler for ``control_steps``
   consecutive steps (0.1 s at 60 Hz), so a deflection is not control.
 * A pass ends at the first control or kick by another robot: a teammate -> **completed**
@@ -39,11 +41,13 @@ from ..physics.state import TEAMS, WorldState
 @dataclass(frozen=True)
 class StatsParams:
     """Attributes: shot_margin_m (m beyond each post that still counts as a shot),
-    pass_lane_m (teammate within this of the kick's path: a pass, m), min_pass_m (m),
+    pass_lane_m (teammate within this of the kick's path: a pass, m), goal_lane_m (the
+    same for kicks towards the goal mouth, m), min_pass_m (m),
     control_steps (consecutive dribbler steps for control), pass_timeout_s (s)."""
 
     shot_margin_m: float = 0.25
     pass_lane_m: float = 0.5
+    goal_lane_m: float = 0.2
     min_pass_m: float = 0.3
     control_steps: int = 6
     pass_timeout_s: float = 4.0
@@ -102,11 +106,12 @@ class MatchStatsTracker:
         u = v / sp
         side = 1.0 if team == "blue" else -1.0
         x_goal = side * self.field.half_length
+        at_goal = False
         if u[0] * side > 1e-6:
             y = p[1] + (x_goal - p[0]) / u[0] * u[1]
-            if abs(y) <= self.field.goal_width / 2.0 + self.params.shot_margin_m:
-                return "shot"
+            at_goal = abs(y) <= self.field.goal_width / 2.0 + self.params.shot_margin_m
         reach = ball_model.stop_distance(sp, self.ball) + self.params.pass_lane_m
+        lane = self.params.goal_lane_m if at_goal else self.params.pass_lane_m
         mates = world.team(team).pos
         for k, m in enumerate(mates):
             if k == kicker:
@@ -114,9 +119,9 @@ class MatchStatsTracker:
             rel = np.asarray(m, float) - p
             along = float(rel @ u)
             lateral = abs(float(rel[0] * u[1] - rel[1] * u[0]))
-            if self.params.min_pass_m <= along <= reach and lateral <= self.params.pass_lane_m:
+            if self.params.min_pass_m <= along <= reach and lateral <= lane:
                 return "pass"
-        return "clear"
+        return "shot" if at_goal else "clear"
 
     def _close(self, outcome: str, by: tuple[str, int] | None, t: float) -> None:
         op = self._open
