@@ -18,7 +18,7 @@ CONFIG_DIR = Path(__file__).resolve().parent / "configs"
 
 #: CLI skill name -> default config file in :data:`CONFIG_DIR`.
 SKILL_CONFIGS = {"go-to-ball": "go_to_ball.json", "aim-to-shoot": "aim_to_shoot.json",
-                 "pendulum": "pendulum.json"}
+                 "pass": "pass.json", "receive": "receive.json", "pendulum": "pendulum.json"}
 
 
 @dataclass

@@ -114,7 +114,7 @@ def robot_travel_time(distance: float, rp: RobotParams) -> float:
 
 
 def receive_feasible(robot_xy: np.ndarray, ball_xy: np.ndarray, ball_vel: np.ndarray, rp: RobotParams,
-                     bp: BallParams, field: FieldGeometry, margin_s: float = 0.2, max_closing: float = 1.5,
+                     bp: BallParams, field: FieldGeometry, margin_s: float = 0.3, max_closing: float = 1.5,
                      ds: float = 0.05) -> bool:
     """True if a robot at rest at ``robot_xy`` can be on the path of a just-kicked ball
     (sliding, at ``ball_xy`` with ``ball_vel``; team frame, m, m/s) at some point before
