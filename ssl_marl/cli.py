@@ -218,7 +218,7 @@ def build_parser() -> argparse.ArgumentParser:
     e = sub.add_parser("eval-skill", help="the paper's skill evaluation protocol (section 5.1)",
                        description="Run a skill from random spawns for N episodes; writes OUT/results.json "
                                    "(success rate with 95%% CI, times, failure reasons) and OUT/time_hist.png.")
-    e.add_argument("skill", choices=("go-to-ball", "aim-to-shoot"), help="which skill")
+    e.add_argument("skill", choices=("go-to-ball", "aim-to-shoot", "pass", "receive"), help="which skill")
     e.add_argument("--policy", default="baseline",
                    help="'baseline' (hand-coded), 'learned' (shipped actor) or a path to an actor checkpoint")
     e.add_argument("--episodes", type=_positive_int("--episodes"), default=1000, help="episodes (default 1000)")

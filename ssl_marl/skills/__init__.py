@@ -12,7 +12,7 @@ from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from .base import Skill, SkillStatus, make_action
 
-SKILL_NAMES = ("go_to_ball", "aim_to_shoot", "drive_forward", "move_to_point")
+SKILL_NAMES = ("go_to_ball", "aim_to_shoot", "drive_forward", "move_to_point", "pass", "receive")
 SKILL_KINDS = ("baseline", "learned")
 
 
@@ -31,6 +31,14 @@ def make_skill(name: str, kind: str, field: FieldGeometry, robot: RobotParams | 
         return baseline.DriveForward(field, robot, ball, **kwargs)
     if name == "move_to_point":
         return baseline.MoveToPoint(field, robot, ball, **kwargs)
+    if name in ("pass", "receive"):  # issue 11: the passing skills (ssl_marl.skills.passing)
+        from . import passing
+
+        if kind == "baseline" and checkpoint is None:
+            cls = passing.PassBaseline if name == "pass" else passing.ReceiveBaseline
+            return cls(field, robot, ball, **kwargs)
+        cls = passing.LearnedPass if name == "pass" else passing.LearnedReceive
+        return cls(field, robot, ball, checkpoint=checkpoint, **kwargs)
     if kind == "baseline" and checkpoint is None:
         cls = baseline.GoToBallBaseline if name == "go_to_ball" else baseline.AimToShootBaseline
         return cls(field, robot, ball, **kwargs)

@@ -18,8 +18,10 @@ import numpy as np
 
 from ..io import atomic_savefig, atomic_write_json, episode_seed, time_summary, wilson_interval
 
-TASKS = ("go-to-ball", "aim-to-shoot")
-PAPER = {"go-to-ball": {"baseline": 1.0, "learned": 0.999}, "aim-to-shoot": {"baseline": 0.71, "learned": 0.772}}
+TASKS = ("go-to-ball", "aim-to-shoot", "pass", "receive")
+PASSING_TASKS = ("pass", "receive")  # issue 11: envs and per-step actions in ssl_marl.skills.pass_tasks
+PAPER = {"go-to-ball": {"baseline": 1.0, "learned": 0.999}, "aim-to-shoot": {"baseline": 0.71, "learned": 0.772},
+         "pass": {"baseline": None, "learned": None}, "receive": {"baseline": None, "learned": None}}
 
 
 def _skill_name(task: str) -> str:
@@ -33,6 +35,9 @@ def resolve_policy(task: str, policy: str) -> tuple[str, str | None]:
     if policy in ("baseline", "learned"):
         if policy == "learned":
             from .learned import PRETRAINED
+            from .passing import PRETRAINED as PASSING_PRETRAINED
+
+            PRETRAINED = {**PRETRAINED, **PASSING_PRETRAINED}
 
             if not PRETRAINED[_skill_name(task)].exists():
                 raise FileNotFoundError(f"no shipped learned actor for {task} at {PRETRAINED[_skill_name(task)]}")
@@ -46,6 +51,10 @@ def resolve_policy(task: str, policy: str) -> tuple[str, str | None]:
 def _make_env(task: str, env_kwargs: dict):
     from .wrappers import AimToShootEnv, GoToBallEnv
 
+    if task in PASSING_TASKS:
+        from .pass_tasks import make_task_env
+
+        return make_task_env(task, env_kwargs)
     return GoToBallEnv(**env_kwargs) if task == "go-to-ball" else AimToShootEnv(**env_kwargs)
 
 
@@ -62,7 +71,12 @@ def _run_episodes(args: tuple) -> list[dict]:
         skill.reset()
         ret, steps = 0.0, 0
         while True:
-            a = task_action(task, skill.act(env.seen(), 0))
+            if task in PASSING_TASKS:
+                from .pass_tasks import skill_task_action
+
+                a = skill_task_action(task, env, skill)
+            else:
+                a = task_action(task, skill.act(env.seen(), 0))
             _, r, term, trunc, info = env.step(a)
             ret += r
             steps += 1
@@ -115,8 +129,10 @@ def evaluate_skill(task: str, policy: str = "baseline", episodes: int = 1000, se
     meta: dict[str, Any] = {}
     if kind == "learned":
         from .learned import load_policy
+        from .passing import load_passing_policy
 
-        meta = dict(load_policy(_skill_name(task), checkpoint)[1])
+        loader = load_passing_policy if task in PASSING_TASKS else load_policy
+        meta = dict(loader(_skill_name(task), checkpoint)[1])
     summary = {
         "skill": task, "policy": policy, "kind": kind, "checkpoint": checkpoint, "episodes": episodes, "seed": seed,
         "success_rate": n_succ / episodes, "success_ci95": [lo, hi], "successes": n_succ,

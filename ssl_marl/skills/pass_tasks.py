@@ -22,7 +22,7 @@ from ..physics import ball_model
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState, to_team_frame
-from .base import SkillStatus, make_action
+from .base import make_action
 from .baseline import velocity_command
 from .demos import Transition
 from .features import BALL_LOST_DISTANCE, dribbler_ball_distance
@@ -443,6 +443,30 @@ class PassEnv(_PassingEnv):
         return self._obs(), float(sum(terms.values())), bool(outcome) and not truncated, truncated, info
 
 
+# ------------------------------------------------------------------ evaluation hooks
+def make_task_env(task: str, env_kwargs: dict | None = None):
+    """The task env of ``task`` ("pass" or "receive")."""
+    if task == "pass":
+        return PassEnv(**(env_kwargs or {}))
+    if task == "receive":
+        return ReceiveEnv(**(env_kwargs or {}))
+    raise ValueError(f"unknown passing task {task!r}; expected 'pass' or 'receive'")
+
+
+def skill_task_action(task: str, env, skill) -> np.ndarray:
+    """One step of a pass / receive skill (hand-coded or learned) in its task env: the
+    skill's (5,) action projected onto the task's action space. The pass skill's target
+    is the receiver's seen position and velocity, updated every step."""
+    seen = env.seen()
+    if task == "pass":
+        tgt, tv = env.target(seen)
+        skill.set_target(env.field.clamp_to_field(tgt), tv)
+        return pass_task_action(skill.act(seen, 0), env.robot_params)
+    if task == "receive":
+        return receive_task_action(skill.act(seen, 0))
+    raise ValueError(f"unknown passing task {task!r}; expected 'pass' or 'receive'")
+
+
 # ------------------------------------------------------------------ demonstrations
 def _baseline_demos(env, skill_step, n_steps: int, seed: int) -> Iterator[Transition]:
     rng = np.random.default_rng(seed)
@@ -475,10 +499,7 @@ def pass_baseline_demos(n_steps: int, seed: int = 0, **env_kwargs: Any) -> Itera
     def step(e: PassEnv, first: bool) -> np.ndarray:
         if first:
             skill.reset()
-        seen = e.seen()
-        tgt, tv = e.target(seen)
-        skill.set_target(e.field.clamp_to_field(tgt), tv)
-        return pass_task_action(skill.act(seen, 0), e.robot_params)
+        return skill_task_action("pass", e, skill)
 
     return _baseline_demos(env, step, n_steps, seed)
 
@@ -492,10 +513,10 @@ def receive_baseline_demos(n_steps: int, seed: int = 0, **env_kwargs: Any) -> It
     def step(e: ReceiveEnv, first: bool) -> np.ndarray:
         if first:
             skill.reset()
-        return receive_task_action(skill.act(e.seen(), 0))
+        return skill_task_action("receive", e, skill)
 
     return _baseline_demos(env, step, n_steps, seed)
 
 
-__all__ = ["PassEnv", "ReceiveEnv", "pass_baseline_demos", "receive_baseline_demos", "receive_feasible",
-           "robot_travel_time", "SkillStatus"]
+__all__ = ["PassEnv", "ReceiveEnv", "make_task_env", "pass_baseline_demos", "receive_baseline_demos",
+           "receive_feasible", "robot_travel_time", "skill_task_action"]
