@@ -1,4 +1,4 @@
-"""The ``ssl-marl`` command line: demo, match, eval-skill, eval-tactic, bench.
+"""The ``ssl-marl`` command line: demo, match, eval-skill, eval-drill, eval-tactic, bench.
 
 Every long-running command shows a progress bar; ``ssl-marl COMMAND --help``
 explains every option.
@@ -146,6 +146,20 @@ def cmd_eval_skill(args: argparse.Namespace) -> int:
     return 0
 
 
+# ---------------------------------------------------------------- eval-drill
+def cmd_eval_drill(args: argparse.Namespace) -> int:
+    from .skills.drills import evaluate_drill
+
+    s = evaluate_drill(args.drill, args.policy, runs=args.runs, seed=args.seed, duration_s=args.duration,
+                       realism=args.realism, field=args.field, out=args.out, progress=not args.quiet)
+    lo, hi = s["completion_ci95"]
+    rate = "n/a" if s["completion_rate"] is None else f"{s['completion_rate']:.3f} [95% CI {lo:.3f}-{hi:.3f}]"
+    print(f"{args.drill} ({args.policy}): {s['completed']} of {s['attempts']} passes completed ({rate}) in "
+          f"{s['runs']} runs of {args.duration:g} s, {s['passes_per_minute']:.1f} per minute, losses {s['losses']}"
+          + (f" -> {args.out}/results.json" if args.out else ""))
+    return 0
+
+
 # --------------------------------------------------------------- eval-tactic
 def cmd_eval_tactic(args: argparse.Namespace) -> int:
     from .plays.evaluate import evaluate_tactic
@@ -231,6 +245,23 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")
     e.add_argument("--quiet", action="store_true", help="no progress bar")
     e.set_defaults(func=cmd_eval_skill)
+
+    dr = sub.add_parser("eval-drill", help="passing drills (pass-endurance: two robots pass back and forth)",
+                        description="Run a drill with the pass and receive skills; writes OUT/results.json "
+                                    "(passes attempted and completed, losses by reason).")
+    dr.add_argument("drill", choices=("pass-endurance",), help="which drill")
+    dr.add_argument("--policy", choices=("baseline", "learned"), default="baseline",
+                    help="hand-coded or shipped learned pass and receive skills (default baseline)")
+    dr.add_argument("--runs", type=_positive_int("--runs"), default=10, help="drill runs (default 10)")
+    dr.add_argument("--duration", type=_positive_float("--duration"), default=60.0,
+                    help="simulated seconds per run (default 60)")
+    dr.add_argument("--seed", type=int, default=10_000, help="seed (default 10000)")
+    dr.add_argument("--out", default=None, help="output directory for results.json")
+    dr.add_argument("--realism", choices=("none", "realistic"), default="none",
+                    help="vision noise / latency preset (default none)")
+    dr.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")
+    dr.add_argument("--quiet", action="store_true", help="no progress bar")
+    dr.set_defaults(func=cmd_eval_drill)
 
     t = sub.add_parser("eval-tactic", help="the paper's go-to-ball-and-shoot tactic evaluation (section 5.2)",
                        description="One robot and the ball at random; run go-to-ball-and-shoot until a goal or "
