@@ -260,3 +260,79 @@ def test_stats_deflection_is_not_control_and_timeout_loses_the_pass():
     assert s["passes_lost"] == 1 and s["pass_completion"] == 0.0
     with pytest.raises(ValueError, match="field-frame"):
         tr.observe(make_world(blue=[(0, 0, 0)], frame="blue"))
+
+
+# ------------------------------------------------------------- in the simulator
+def _run_pass(env, passer, receiver, steps, tracker=None):
+    """Drive blue_0 (Pass) and blue_1 (Receive) with the handshake wired as a play does."""
+    for _ in range(steps):
+        w = env.vision_state("blue")
+        a1 = receiver.act(w, 1)
+        passer.set_params(receiver_ready=receiver.status.state is ReceiveState.READY)
+        a0 = passer.act(w, 0)
+        _, _, _, _, infos = env.step({"blue_0": a0, "blue_1": a1})
+        if tracker is not None:
+            tracker.observe(env.world_state(), next(iter(infos.values()))["events"])
+        if receiver.status.state in (ReceiveState.CONTROLLED, ReceiveState.FAILED):
+            break
+
+
+def test_pass_between_two_baseline_robots_on_an_empty_field_completes():
+    from ssl_marl.envs import parallel_env
+
+    env = parallel_env(n_blue=2, n_yellow=0, field="div_b", max_time_s=30.0)
+    ball = ball_in_front(-1.0, 0.5, 0.3)
+    env.reset(seed=0, options={"ball": {"pos": ball}, "robots": {"blue_0": (-1.0, 0.5, 0.3),
+                                                                   "blue_1": (1.5, -1.0, 2.0)}})
+    target = (1.5, -1.0)
+    passer = Pass(F, RP, BP, target_robot=1, target_point=target)
+    receiver = Receive(F, RP, BP, receive_point=target, ball_from=tuple(ball))
+    tracker = MatchStatsTracker(F, BP)
+    _run_pass(env, passer, receiver, 8 * 60, tracker)
+    assert passer.status.state is PassState.DONE and passer.status.kicks == 1
+    assert receiver.status.state is ReceiveState.CONTROLLED
+    assert bool(env.world_state().blue.ball_on_dribbler[1])
+    s = tracker.summary()["blue"]
+    assert (s["passes_attempted"], s["passes_completed"]) == (1, 1)
+
+
+def test_passer_waits_for_a_receiver_that_is_not_ready():
+    from ssl_marl.envs import parallel_env
+
+    env = parallel_env(n_blue=2, n_yellow=0, field="div_b", max_time_s=30.0)
+    ball = ball_in_front(-1.0, 0.5, 0.0)
+    env.reset(seed=0, options={"ball": {"pos": ball}, "robots": {"blue_0": (-1.0, 0.5, 0.0),
+                                                                   "blue_1": (2.0, 0.5, 0.0)}})
+    passer = Pass(F, RP, BP, target_robot=1, target_point=(2.0, 0.5), max_wait_s=10.0)
+    receiver = Receive(F, RP, BP, receive_point=(-1.0, 2.5), ball_from=tuple(ball))  # far from its point
+    _run_pass(env, passer, receiver, 30)
+    assert passer.status.state is PassState.HOLD and passer.status.kicks == 0
+    assert receiver.status.state is ReceiveState.POSITION
+
+
+def test_passing_team_passes_around_a_blocked_shot():
+    """A passing team (goalie, carrier, free teammate) against a wall of three robots in
+    front of the goal: the carrier passes to the free teammate, who takes the ball."""
+    from ssl_marl.envs import parallel_env
+    from ssl_marl.plays.passing_play import coordinator_of, passing_plays
+    from ssl_marl.plays.team import TeamController
+
+    env = parallel_env(n_blue=3, n_yellow=3, field="div_b", max_time_s=30.0)
+    ball = ball_in_front(1.5, 0.0, 0.0)
+    robots = {"blue_0": (-4.2, 0.0, 0.0), "blue_1": (1.5, 0.0, 0.0), "blue_2": (2.0, 2.2, -1.8),
+              "yellow_0": (3.3, -0.2, math.pi), "yellow_1": (3.3, 0.0, math.pi), "yellow_2": (3.3, 0.2, math.pi)}
+    env.reset(seed=0, options={"ball": {"pos": ball}, "robots": robots})
+    plays = passing_plays()
+    team = TeamController("blue", 3, plays=plays)
+    coord = coordinator_of(plays)
+    tracker = MatchStatsTracker(F, BP)
+    for _ in range(6 * 60):
+        acts = team.act(env)
+        acts.update({f"yellow_{i}": np.zeros(5, np.float32) for i in range(3)})
+        _, _, _, _, infos = env.step(acts)
+        tracker.observe(env.world_state(), next(iter(infos.values()))["events"])
+        if coord.counters.completed:
+            break
+    assert coord.counters.planned >= 1 and coord.counters.kicked >= 1 and coord.counters.completed == 1
+    s = tracker.summary()["blue"]
+    assert s["passes_completed"] == 1 and s["shots"] == 0

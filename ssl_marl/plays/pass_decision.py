@@ -41,7 +41,8 @@ interception times) and ``d`` the distance to the goal centre.
     value_k    = P_k * (w_receiver_shot * shot_value(q_k) + w_progress * progress_k + w_possession)
     progress_k = clip((x_qk - x_p) / progress_scale_m, -1, 1)
 
-``margin_k`` is the path margin of a pass kicked so that it arrives at
+``margin_k`` (less the time the carrier needs to turn towards ``q_k`` at ``turn_rate``
+when its heading is known) is the path margin of a pass kicked so that it arrives at
 ``pass_arrive_speed`` (:func:`~ssl_marl.physics.ball_model.kick_speed_for_arrival`,
 clipped to the kicker's cap), the smallest interception-time margin of any opponent
 along the ball's path. ``w_possession`` is the value of simply keeping the ball in the
@@ -93,7 +94,8 @@ class DecisionParams:
         opp_speed, opp_accel: opponent top speed (m/s) and acceleration (m/s^2); None =
             the robot parameters (3 m/s, 3 m/s^2).
         shot_speed: kick speed of a shot (m/s; the kicker cap).
-        pass_arrive_speed: pass arrival speed (m/s); TIGERs aim <= 3.2, the issue 1-2.
+        pass_arrive_speed: pass arrival speed (m/s); TIGERs aim <= 3.2 and rate 1 from 2,
+            the issue 1-2; the Pass tactic asks its skill for the same.
         min_pass_speed: passes are kicked at least this fast (m/s).
         path_samples: samples along a ball path for the margin.
         skip_near_m: path samples closer than this to the kick point are ignored (m).
@@ -111,13 +113,14 @@ class DecisionParams:
         pass_gain: a pass must beat both the shot and the keep value by this much.
         shoot_fallback: without a good pass, shoot anyway at or above this shot value.
         min_keep: without a good pass, keep only at or above this keep value, else shoot.
+        turn_rate: the passer's turn rate with the ball (rad/s; the Pass tactic's hold rate).
     """
 
     opp_reaction_s: float = 0.3
     opp_speed: float | None = None
     opp_accel: float | None = None
     shot_speed: float = 6.5
-    pass_arrive_speed: float = 1.5
+    pass_arrive_speed: float = 2.0
     min_pass_speed: float = 2.0
     path_samples: int = 10
     skip_near_m: float = 0.15
@@ -144,6 +147,7 @@ class DecisionParams:
     pass_gain: float = 0.05
     shoot_fallback: float = 0.25
     min_keep: float = 0.1
+    turn_rate: float = 4.0
 
     def __post_init__(self) -> None:
         for name in ("shot_speed", "pass_arrive_speed", "min_pass_speed", "good_open_angle", "far_shot_m",
@@ -409,9 +413,11 @@ def valid_receive_point(q: np.ndarray, field: FieldGeometry, margin: float = 0.1
 
 def evaluate_passes(p: np.ndarray, receive_points: dict[int, np.ndarray], teammates: np.ndarray,
                     opponents: np.ndarray, field: FieldGeometry, rp: RobotParams, bp: BallParams,
-                    params: DecisionParams) -> tuple[PassOption, ...]:
+                    params: DecisionParams, heading: float | None = None) -> tuple[PassOption, ...]:
     """Evaluate a pass from ``p`` to each ``{teammate index: receive point}``.
-    ``teammates`` (n, 2) are all own robot positions (they shadow the receivers' shots)."""
+    ``teammates`` (n, 2) are all own robot positions (they shadow the receivers' shots).
+    With the carrier's ``heading`` (rad), the time to turn towards each receiver at
+    ``turn_rate`` is taken off its margin (the opponents move while the passer turns)."""
     p = np.asarray(p, float)
     opp = np.asarray(opponents, float).reshape(-1, 2)
     mates = np.asarray(teammates, float).reshape(-1, 2)
@@ -423,6 +429,9 @@ def evaluate_passes(p: np.ndarray, receive_points: dict[int, np.ndarray], teamma
             continue
         v0 = pass_kick_speed(length, bp, rp, params)
         margin = path_margin(p, q, v0, opp, rp, bp, params)
+        if heading is not None:
+            turn = abs(math.remainder(math.atan2(q[1] - p[1], q[0] - p[0]) - heading, 2.0 * math.pi))
+            margin -= turn / params.turn_rate
         success = min(max((margin - params.pass_margin_lo) / (params.pass_margin_hi - params.pass_margin_lo), 0.0),
                       1.0)
         others = np.delete(mates, k, axis=0) if 0 <= k < len(mates) else mates
@@ -435,7 +444,8 @@ def evaluate_passes(p: np.ndarray, receive_points: dict[int, np.ndarray], teamma
 
 def decide(p: np.ndarray, carrier: int, teammates: np.ndarray, opponents: np.ndarray, field: FieldGeometry,
            rp: RobotParams | None = None, bp: BallParams | None = None, params: DecisionParams | None = None,
-           receive_points: dict[int, np.ndarray] | None = None, candidates: tuple[int, ...] | None = None) -> Decision:
+           receive_points: dict[int, np.ndarray] | None = None, candidates: tuple[int, ...] | None = None,
+           heading: float | None = None) -> Decision:
     """The carrier's choice (module docstring).
 
     Args:
@@ -444,6 +454,7 @@ def decide(p: np.ndarray, carrier: int, teammates: np.ndarray, opponents: np.nda
         teammates: (n, 2) own robot positions; opponents: (O, 2).
         receive_points: ``{k: point}`` where teammate ``k`` would receive (default: its position).
         candidates: teammates that may be passed to (default: all but the carrier).
+        heading: the carrier's heading (rad); passes that need a long turn lose margin.
     """
     rp, bp, params = rp or RobotParams(), bp or BallParams(), params or DecisionParams()
     p = np.asarray(p, float)
@@ -458,7 +469,7 @@ def decide(p: np.ndarray, carrier: int, teammates: np.ndarray, opponents: np.nda
         return Decision(Choice.SHOOT, shot, keep)
     cands = candidates if candidates is not None else tuple(k for k in range(len(mates)) if k != carrier)
     points = {k: (receive_points or {}).get(k, mates[k]) for k in cands if k != carrier}
-    passes = evaluate_passes(p, points, mates, opp, field, rp, bp, params)
+    passes = evaluate_passes(p, points, mates, opp, field, rp, bp, params, heading)
     ok = [o for o in passes if o.success >= params.min_pass_success]
     best = max(ok, key=lambda o: o.value) if ok else None
     if best is not None and best.value >= max(shot, keep) + params.pass_gain:

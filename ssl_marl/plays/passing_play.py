@@ -110,7 +110,7 @@ class PassingParams:
     max_flight_s: float = 4.0
     abort_margin_s: float = -0.05
     cooldown_s: float = 0.5
-    settle_s: float = 0.15
+    settle_s: float = 0.5
     control_s: float = 0.1
 
 
@@ -149,9 +149,10 @@ class PassCoordinator:
         return self.plan is not None
 
     def hold_fire(self) -> bool:
-        """The attacker holds the ball (KEEP) rather than shooting."""
+        """The attacker holds the ball (KEEP) unless the current decision is SHOOT (so
+        that it never shoots before a decision was made)."""
         d = self.decision
-        return d is not None and d.choice is not Choice.SHOOT
+        return d is None or d.choice is not Choice.SHOOT
 
     # ----------------------------------------------------------------- tick
     def prepare(self, ctx: PlayContext, restart: bool = False) -> None:
@@ -227,7 +228,8 @@ class PassCoordinator:
         cands = tuple(k for k in range(ctx.n) if k != carrier and not (ctx.n >= 2 and k == 0))
         if t < self._cooldown_until:
             cands = ()
-        d = decide(ctx.ball, carrier, ours.pos, ctx.opp_pos, ctx.field, ctx.robot, self.bp, params, candidates=cands)
+        d = decide(ctx.ball, carrier, ours.pos, ctx.opp_pos, ctx.field, ctx.robot, self.bp, params, candidates=cands,
+                   heading=float(ours.heading[carrier]))
         if d.choice is Choice.KEEP:
             if self._keep_since is None:
                 self._keep_since = t
