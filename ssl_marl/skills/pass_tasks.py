@@ -198,6 +198,7 @@ class ReceiveEnv(_PassingEnv):
         self._hold_t0: float | None = None
         self.spawn_draws = 0  #: spawns drawn since construction (rejection-sampling statistics)
         self.spawn_accepted = 0
+        self.spawn_off_field = 0  #: draws rejected because the ball would start outside the field
 
     def _sample_spawn(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         f, rng, rp, bp = self.field, self.np_random, self.robot_params, self.ball_params
@@ -208,6 +209,7 @@ class ReceiveEnv(_PassingEnv):
             dist = rng.uniform(*self.distance_range)
             ball = robot + dist * np.array([math.cos(ang), math.sin(ang)])
             if not bool(f.in_field(ball, 0.1)):
+                self.spawn_off_field += 1
                 continue
             side = rng.uniform(-self.max_side_offset, self.max_side_offset)
             to_robot = (robot - ball) / dist
