@@ -10,7 +10,7 @@ import argparse
 import sys
 
 FIELDS = ("div_a", "div_b")
-TEAM_POLICIES = ("learned", "baseline", "random", "idle")
+TEAM_POLICIES = ("learned", "baseline", "random", "idle", "passing-learned", "passing-baseline")
 
 
 def _positive_int(name: str):
@@ -125,6 +125,11 @@ def cmd_match(args: argparse.Namespace) -> int:
     print(f"blue ({args.blue}) vs yellow ({args.yellow}), {summary['matches']} matches: "
           f"W {summary['wins']} D {summary['draws']} L {summary['losses']}, "
           f"goals {summary['goals_for']}-{summary['goals_against']}")
+    for team, st in summary.get("stats", {}).items():
+        pc = "-" if st["pass_completion"] is None else f"{100 * st['pass_completion']:.0f}%"
+        print(f"  {team}: shots {st['shots']}, passes {st['passes_completed']}/{st['passes_attempted']} completed "
+              f"({pc}), intercepted {st['passes_intercepted']}, interceptions {st['interceptions']}, "
+              f"goals {st['goals']}")
     if args.json:
         atomic_write_json(args.json, {"summary": summary, "matches": [r.to_dict() for r in results]})
     return 0
@@ -203,8 +208,9 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Play a full-team STP match in the parallel env: kickoffs, restarts after goals "
                                    "and out-of-play. Prints the score and stats; writes a GIF/MP4 with --render.")
     m.add_argument("--blue", choices=TEAM_POLICIES, default="learned",
-                   help="blue team's skills: learned (shipped DDPG actors), baseline (hand-coded), random, idle "
-                        "(default learned)")
+                   help="blue team's skills: learned (shipped DDPG actors), baseline (hand-coded), random, idle; "
+                        "passing-learned / passing-baseline: the passing plays (shoot, pass or keep by cost, "
+                        "set plays with passes) with those skills (default learned)")
     m.add_argument("--yellow", choices=TEAM_POLICIES, default="baseline", help="yellow team's skills (default baseline)")
     m.add_argument("--robots", type=_robots, default=6, help="robots per team, 1-11 (default 6)")
     m.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")

@@ -219,6 +219,8 @@ class PassCoordinator:
         carrier = int(holders[0])
         attacker = ctx.role_status.get("attacker")
         if ctx.role_holders.get("attacker") != carrier or attacker is None or attacker.state not in SETTLED:
+            if attacker is None or attacker.state not in SETTLED + (ShootState.DRIVE_FORWARD,):
+                self.decision, self._keep_since = None, None  # a new possession: decide afresh
             return  # decide once the carrier has settled the ball (not while it drives or fetches)
         if carrier != self._carrier:
             self._carrier, self._keep_since, self.decision = carrier, None, None
