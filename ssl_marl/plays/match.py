@@ -113,7 +113,8 @@ class MatchResult:
         shots: kick events per team (every kick, not only shots on goal).
         stats: per team, from :class:`~ssl_marl.plays.stats.MatchStatsTracker`: kicks,
             shots (kicks aimed at the goal), goals, passes attempted / completed /
-            intercepted / lost, interceptions, pass_completion.
+            intercepted / lost, interceptions, pass_completion; ``"events"``: the
+            tracker's log of passes (with outcomes) and shots, in time order.
         possession: fraction of control steps in which a robot of the team held the
             ball on its dribbler (ground truth; the two may sum to less than 1).
         steps: control steps simulated. sim_time_s: simulated seconds.
@@ -352,7 +353,8 @@ def play_match(blue: str = "baseline", yellow: str = "baseline", robots: int = 6
                        possession={k: v / max(steps, 1) for k, v in held.items()}, steps=steps,
                        sim_time_s=steps * dt, wall_time_s=wall,
                        act_time_ms={k: 1000.0 * v / max(steps, 1) for k, v in act_time.items()},
-                       missed_deadlines=missed, seed=seed, config=config, stats=tracker.summary())
+                       missed_deadlines=missed, seed=seed, config=config,
+                       stats={**tracker.summary(), "events": tracker.log})
 
 
 def _json_safe(skills: Any) -> Any:

@@ -93,7 +93,7 @@ class MatchStatsTracker:
         self.teams = {t: TeamStats() for t in TEAMS}
         self._open: _OpenPass | None = None
         self._held: dict[tuple[str, int], int] = {}
-        self.log: list[dict] = []  # [{"t", "type", "team", ...}] of passes and shots, in order
+        self.log: list[dict] = []  # [{"t", "type", "team", ...}] of passes, shots and goals, in order
 
     # -------------------------------------------------------------- helpers
     def classify_kick(self, world: WorldState, team: str, kicker: int) -> str:
@@ -176,6 +176,7 @@ class MatchStatsTracker:
                 self._held.clear()
             elif kind == "goal":
                 self.teams[e["team"]].goals += 1
+                self.log.append({"t": t, "type": "goal", "team": e["team"]})
                 self._close("lost", None, t)
                 self._held.clear()
             elif kind == "ball_out":
