@@ -166,3 +166,27 @@ def test_pass_endurance_drill_completes_passes():
     assert 2.0 <= r["home_distance_m"] <= 5.0
     with pytest.raises(ValueError, match="policy"):
         run_pass_endurance("random")
+
+
+def test_cli_eval_skill_and_eval_drill_write_results(tmp_path, capsys):
+    import json
+
+    from ssl_marl.cli import build_parser, main
+
+    assert main(["eval-skill", "pass", "--episodes", "2", "--seed", "1", "--out", str(tmp_path / "p"), "--quiet"]) == 0
+    res = json.loads((tmp_path / "p" / "results.json").read_text())
+    assert res["skill"] == "pass" and res["episodes"] == 2 and res["paper_success_rate"] is None
+    assert main(["eval-drill", "pass-endurance", "--runs", "1", "--duration", "8", "--seed", "1",
+                 "--out", str(tmp_path / "d"), "--quiet"]) == 0
+    res = json.loads((tmp_path / "d" / "results.json").read_text())
+    assert res["drill"] == "pass-endurance" and res["attempts"] >= res["completed"] >= 1
+    assert "passes completed" in capsys.readouterr().out
+    for argv, needle in ((["eval-drill", "juggle"], "invalid choice"),
+                         (["eval-drill", "pass-endurance", "--duration", "-1"], "positive"),
+                         (["eval-drill", "pass-endurance", "--policy", "magic"], "invalid choice")):
+        with pytest.raises(SystemExit):
+            build_parser().parse_args(argv)
+        assert needle in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        build_parser().parse_args(["eval-drill", "--help"])
+    assert "--seed" in capsys.readouterr().out
