@@ -196,11 +196,16 @@ def test_tactics_on_hand_built_scenes():
     assert r2.status.state is ReceiveState.POSITION and np.hypot(a[0], a[1]) > 0.1  # it moves there
 
 
-@pytest.mark.parametrize("bad", [dict(receive_point=(1.0,)), dict(unknown=1)])
-def test_tactic_params_reject_bad_names(bad):
-    if "unknown" in bad:
-        with pytest.raises(ValueError, match="unknown"):
-            Pass(F, RP, BP, **bad)
+def test_tactics_reject_bad_parameters_with_clear_errors():
+    with pytest.raises(ValueError, match="unknown"):
+        Pass(F, RP, BP, unknown=1)
+    with pytest.raises(ValueError, match="Pass.target_point .* outside the div_b field"):
+        Pass(F, RP, BP, target_point=(6.0, 0.0))
+    with pytest.raises(ValueError, match="Receive.receive_point must be two"):
+        Receive(F, RP, BP, receive_point=(1.0,))
+    with pytest.raises(ValueError, match="Receive.ball_from must be two finite"):
+        Receive(F, RP, BP, ball_from=(float("nan"), 0.0))
+    assert Receive(F, RP, BP, receive_point=[1, 2]).params.receive_point == (1.0, 2.0)
 
 
 # --------------------------------------------------------------- attacker KEEP

@@ -35,7 +35,7 @@ from ..skills.baseline import velocity_command
 from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance
 from .navigation import angle_diff, facing_towards
 from .shoot import govern_approach
-from .tactic_base import NEAR_BALL_M, Tactic, skill_status
+from .tactic_base import NEAR_BALL_M, Tactic, check_field_point, skill_status
 
 
 class PassState(enum.Enum):
@@ -121,6 +121,14 @@ class Pass(Tactic):
         self.go_to_ball = self._skill("go_to_ball")
         self.pass_skill = self._skill("pass")
         self.on_enter(self.state)
+
+    def set_params(self, **changes) -> None:
+        """As :meth:`Tactic.set_params`; points (target_point) must be two finite
+        numbers inside the field (ValueError naming the parameter)."""
+        for name in ('target_point',):
+            if changes.get(name) is not None:
+                changes[name] = check_field_point(f"{type(self).__name__}.{name}", changes[name], self.field)
+        super().set_params(**changes)
 
     def observe(self, world: WorldState, robot: int) -> PassInputs:
         p = self.params

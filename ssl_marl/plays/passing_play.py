@@ -44,6 +44,7 @@ import dataclasses
 import enum
 import math
 from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 
@@ -247,7 +248,7 @@ class PassCoordinator:
 
 
 # -------------------------------------------------------------------- roles
-def _only(robot_of) -> callable:
+def _only(robot_of: Callable[[PlayContext], int | None]) -> Callable[[PlayContext, np.ndarray], np.ndarray]:
     """Cost function: 0 for the robot ``robot_of(ctx)`` names, prohibitive for the others."""
 
     def cost(ctx: PlayContext, target: np.ndarray) -> np.ndarray:

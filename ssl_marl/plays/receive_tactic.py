@@ -33,7 +33,7 @@ import numpy as np
 from ..physics.state import WorldState
 from ..skills.base import SkillStatus, make_action
 from .navigation import NavigateToPoint, NavParams, angle_diff, facing_towards
-from .tactic_base import Tactic, skill_status
+from .tactic_base import Tactic, check_field_point, skill_status
 
 
 class ReceiveState(enum.Enum):
@@ -122,6 +122,14 @@ class Receive(Tactic):
 
     def _running_skill(self):
         return {ReceiveState.RECEIVING: self.receive_skill, ReceiveState.FETCH: self.go_to_ball}.get(self.state)
+
+    def set_params(self, **changes) -> None:
+        """As :meth:`Tactic.set_params`; points (receive_point, ball_from) must be two finite
+        numbers inside the field (ValueError naming the parameter)."""
+        for name in ('receive_point', 'ball_from'):
+            if changes.get(name) is not None:
+                changes[name] = check_field_point(f"{type(self).__name__}.{name}", changes[name], self.field)
+        super().set_params(**changes)
 
     def observe(self, world: WorldState, robot: int) -> ReceiveInputs:
         ts = world.team(world.frame)
