@@ -341,3 +341,27 @@ def test_passing_team_passes_around_a_blocked_shot():
     assert coord.counters.planned >= 1 and coord.counters.kicked >= 1 and coord.counters.completed == 1
     s = tracker.summary()["blue"]
     assert s["passes_completed"] == 1 and s["shots"] == 0
+
+
+def test_passing_team_kinds_in_matches_report_stats():
+    from ssl_marl.plays.match import CONTROLLERS, make_controller, play_match, summarize
+    from ssl_marl.plays.passing_play import coordinator_of, passing_team_skills
+    from ssl_marl.plays.team import required_skills
+
+    assert {"passing-learned", "passing-baseline"} <= set(CONTROLLERS)
+    c = make_controller("passing-baseline", "yellow", 6, "div_b")
+    assert coordinator_of(c.selector.plays) is not None
+    assert set(required_skills(c.selector.plays)) == {"go_to_ball", "aim_to_shoot", "pass", "receive"}
+    assert passing_team_skills("baseline") == {k: "baseline" for k in ("go_to_ball", "aim_to_shoot", "pass",
+                                                                         "receive")}
+    learned = passing_team_skills("learned")
+    assert learned["go_to_ball"] == learned["aim_to_shoot"] == "learned"
+    with pytest.raises(ValueError, match="passing team skills"):
+        passing_team_skills("expert")
+    r = play_match("passing-baseline", "baseline", robots=3, seconds=2.0, seed=3, progress=False)
+    assert set(r.stats) >= {"blue", "yellow", "events"}
+    assert r.config["skills"]["blue"]["pass"] == "baseline"
+    for team in ("blue", "yellow"):
+        assert r.stats[team]["goals"] == r.score[team]
+    s = summarize([r, r])
+    assert s["stats"]["blue"]["kicks"] == 2 * r.stats["blue"]["kicks"]
