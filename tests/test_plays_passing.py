@@ -365,3 +365,79 @@ def test_passing_team_kinds_in_matches_report_stats():
         assert r.stats[team]["goals"] == r.score[team]
     s = summarize([r, r])
     assert s["stats"]["blue"]["kicks"] == 2 * r.stats["blue"]["kicks"]
+
+
+# ----------------------------------------------------------- the coordinator
+def _ctx(world, role_status=None, role_holders=None):
+    from dataclasses import replace
+
+    from ssl_marl.plays.play import make_context
+
+    return replace(make_context(world, "blue", F, RP), role_status=role_status or {}, role_holders=role_holders or {})
+
+
+def _status(state):
+    from ssl_marl.plays.tactic_base import TacticStatus
+
+    return TacticStatus(state)
+
+
+BLOCKED = dict(blue=[(-4.2, 0.0, 0.0), (1.5, 0.0, 0.0), (2.0, 2.2, -1.8)],
+               yellow=[(3.3, -0.2, math.pi), (3.3, 0.0, math.pi), (3.3, 0.2, math.pi)],
+               ball=ball_in_front(1.5, 0.0, 0.0), blue_on_dribbler=[False, True, False])
+
+
+def test_coordinator_plans_a_pass_only_once_the_carrier_has_settled():
+    from ssl_marl.plays.passing_play import PassCoordinator, PassPhase
+
+    c = PassCoordinator()
+    w = make_world(**BLOCKED, t=1.0, frame="blue")
+    c.prepare(_ctx(w, {"attacker": _status(ShootState.DRIVE_FORWARD)}, {"attacker": 1}))
+    assert c.plan is None and c.hold_fire()  # no decision yet: the attacker must not shoot
+    for k in range(3):
+        c.prepare(_ctx(make_world(**BLOCKED, t=1.1 + k / 60, frame="blue"), {"attacker": _status(ShootState.KEEP)},
+                       {"attacker": 1}))
+    assert c.plan is not None and (c.plan.passer, c.plan.receiver, c.plan.phase) == (1, 2, PassPhase.SETUP)
+    assert c.counters.planned == 1
+
+
+def test_coordinator_follows_the_handshake_to_completion_and_aborts_on_failure():
+    from ssl_marl.plays.passing_play import PassCoordinator, PassPhase, PassPlan
+
+    c = PassCoordinator()
+    w = make_world(**BLOCKED, t=2.0, frame="blue")
+    c.plan = PassPlan(1, 2, np.array([2.0, 2.2]), PassPhase.SETUP, 1.9)
+    c.prepare(_ctx(w, {"passer": _status(PassState.KICK), "receiver": _status(ReceiveState.READY)}))
+    assert c.plan.phase is PassPhase.SETUP
+    c.prepare(_ctx(make_world(**BLOCKED, t=2.1, frame="blue"),
+                   {"passer": _status(PassState.DONE), "receiver": _status(ReceiveState.RECEIVING)}))
+    assert c.plan.phase is PassPhase.IN_FLIGHT and c.counters.kicked == 1
+    c.prepare(_ctx(make_world(**BLOCKED, t=2.9, frame="blue"),
+                   {"passer": _status(PassState.DONE), "receiver": _status(ReceiveState.CONTROLLED)}))
+    assert c.plan is None and c.counters.completed == 1
+    # a passer that loses the ball before the kick ends the plan
+    c.plan = PassPlan(1, 2, np.array([2.0, 2.2]), PassPhase.SETUP, 3.0)
+    c.prepare(_ctx(make_world(**BLOCKED, t=3.1, frame="blue"),
+                   {"passer": _status(PassState.FAILED), "receiver": _status(ReceiveState.READY)}))
+    assert c.plan is None and c.counters.aborted == 1
+    # a pass in flight that nobody controls times out
+    c.plan = PassPlan(1, 2, np.array([2.0, 2.2]), PassPhase.IN_FLIGHT, 3.2, t_kick=3.3)
+    c.prepare(_ctx(make_world(**BLOCKED, t=3.3 + c.params.max_flight_s + 0.1, frame="blue"),
+                   {"receiver": _status(ReceiveState.RECEIVING)}))
+    assert c.plan is None and c.counters.aborted == 2
+
+
+def test_restart_play_applies_at_the_centre_mark_and_free_kick_spots():
+    from ssl_marl.plays.passing_play import restart_applicable
+
+    mates = [(-4.2, 0.0, 0.0), (-0.8, 0.0, 0.0)]
+    opp = [(4.2, 0.0, math.pi), (1.5, 0.0, math.pi)]
+    assert restart_applicable(_ctx(make_world(blue=mates, yellow=opp, ball=(0.0, 0.0), frame="blue")))
+    assert not restart_applicable(_ctx(make_world(blue=mates, yellow=opp, ball=(0.0, 0.0), ball_vel=(1.0, 0.0),
+                                                  frame="blue")))
+    spot = (-1.0, F.half_width - 0.2)  # where the referee places a ball that left over the touch line
+    assert restart_applicable(_ctx(make_world(blue=mates, yellow=opp, ball=spot, frame="blue")))
+    assert not restart_applicable(_ctx(make_world(blue=mates, yellow=opp, ball=(-1.0, 1.0), frame="blue")))
+    far = [(-4.2, 0.0, 0.0), (-3.0, -2.0, 0.0)]  # they are much closer: no restart for us
+    assert not restart_applicable(_ctx(make_world(blue=far, yellow=[(4.2, 0, math.pi), (-0.8, 2.0, math.pi)],
+                                                  ball=spot, frame="blue")))
