@@ -206,6 +206,7 @@ def test_tactics_reject_bad_parameters_with_clear_errors():
     with pytest.raises(ValueError, match="Receive.ball_from must be two finite"):
         Receive(F, RP, BP, ball_from=(float("nan"), 0.0))
     assert Receive(F, RP, BP, receive_point=[1, 2]).params.receive_point == (1.0, 2.0)
+    assert Receive(F, RP, BP, ball_from=(-0.9, 3.01)).params.ball_from == (-0.9, 3.01)  # ball just over a line
 
 
 # --------------------------------------------------------------- attacker KEEP

@@ -124,11 +124,13 @@ class Receive(Tactic):
         return {ReceiveState.RECEIVING: self.receive_skill, ReceiveState.FETCH: self.go_to_ball}.get(self.state)
 
     def set_params(self, **changes) -> None:
-        """As :meth:`Tactic.set_params`; points (receive_point, ball_from) must be two finite
-        numbers inside the field (ValueError naming the parameter)."""
-        for name in ('receive_point', 'ball_from'):
-            if changes.get(name) is not None:
-                changes[name] = check_field_point(f"{type(self).__name__}.{name}", changes[name], self.field)
+        """As :meth:`Tactic.set_params`; ``receive_point`` must be two finite numbers inside
+        the field, ``ball_from`` two finite numbers (the ball may lie just outside the lines
+        before the referee places it) (ValueError naming the parameter)."""
+        if changes.get("receive_point") is not None:
+            changes["receive_point"] = check_field_point("Receive.receive_point", changes["receive_point"], self.field)
+        if changes.get("ball_from") is not None:
+            changes["ball_from"] = check_field_point("Receive.ball_from", changes["ball_from"], None)
         super().set_params(**changes)
 
     def observe(self, world: WorldState, robot: int) -> ReceiveInputs:

@@ -187,16 +187,16 @@ def _field_names(cls: type) -> frozenset[str]:
     return names
 
 
-def check_field_point(name: str, point: Any, field: FieldGeometry) -> tuple[float, float]:
+def check_field_point(name: str, point: Any, field: FieldGeometry | None) -> tuple[float, float]:
     """``point`` as an (x, y) tuple of floats (m) if it is two finite numbers inside the
-    playing area; ValueError naming ``name`` otherwise."""
+    playing area (anywhere when ``field`` is None); ValueError naming ``name`` otherwise."""
     try:
         p = np.asarray(point, dtype=float)
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be two numbers (x, y) in metres, got {point!r}") from None
     if p.shape != (2,) or not np.isfinite(p).all():
         raise ValueError(f"{name} must be two finite numbers (x, y) in metres, got {point!r}")
-    if not bool(field.in_field(p)):
+    if field is not None and not bool(field.in_field(p)):
         raise ValueError(f"{name} {p.tolist()} lies outside the {field.name} field "
                          f"(|x| <= {field.half_length}, |y| <= {field.half_width} m)")
     return float(p[0]), float(p[1])
