@@ -156,10 +156,11 @@ def cmd_eval_drill(args: argparse.Namespace) -> int:
     from .skills.drills import evaluate_drill
 
     s = evaluate_drill(args.drill, args.policy, runs=args.runs, seed=args.seed, duration_s=args.duration,
-                       realism=args.realism, field=args.field, out=args.out, progress=not args.quiet)
+                       realism=args.realism, field=args.field, out=args.out, progress=not args.quiet,
+                       receive_policy=args.receive_policy)
     lo, hi = s["completion_ci95"]
     rate = "n/a" if s["completion_rate"] is None else f"{s['completion_rate']:.3f} [95% CI {lo:.3f}-{hi:.3f}]"
-    print(f"{args.drill} ({args.policy}): {s['completed']} of {s['attempts']} passes completed ({rate}) in "
+    print(f"{args.drill} (pass {args.policy}, receive {s['receive_policy']}): {s['completed']} of {s['attempts']} passes completed ({rate}) in "
           f"{s['runs']} runs of {args.duration:g} s, {s['passes_per_minute']:.1f} per minute, losses {s['losses']}"
           + (f" -> {args.out}/results.json" if args.out else ""))
     return 0
@@ -258,6 +259,8 @@ def build_parser() -> argparse.ArgumentParser:
     dr.add_argument("drill", choices=("pass-endurance",), help="which drill")
     dr.add_argument("--policy", choices=("baseline", "learned"), default="baseline",
                     help="hand-coded or shipped learned pass and receive skills (default baseline)")
+    dr.add_argument("--receive-policy", choices=("baseline", "learned"), default=None,
+                    help="receive skill, if different from --policy (default: as --policy)")
     dr.add_argument("--runs", type=_positive_int("--runs"), default=10, help="drill runs (default 10)")
     dr.add_argument("--duration", type=_positive_float("--duration"), default=60.0,
                     help="simulated seconds per run (default 60)")

@@ -59,13 +59,17 @@ def _home_spots(rng: np.random.Generator, field, distance_range=(2.0, 5.0)) -> n
 
 def run_pass_endurance(policy: str = "baseline", seed: int = 0, duration_s: float = 60.0, realism: str = "none",
                        field: str = "div_b", pass_timeout_s: float = 4.0, setup_timeout_s: float = 3.0,
-                       pass_checkpoint: str | None = None, receive_checkpoint: str | None = None) -> dict[str, Any]:
+                       pass_checkpoint: str | None = None, receive_checkpoint: str | None = None,
+                       receive_policy: str | None = None) -> dict[str, Any]:
     """One drill run; returns its counts (passes attempted / completed, losses by reason,
-    pass lengths and flight times)."""
+    pass lengths and flight times). ``policy`` ("baseline" or "learned") picks the pass
+    skill and, unless ``receive_policy`` is given, the receive skill."""
     from . import make_skill
 
-    if policy not in ("baseline", "learned"):
-        raise ValueError(f"policy must be 'baseline' or 'learned', got {policy!r}")
+    receive_policy = policy if receive_policy is None else receive_policy
+    for name, value in (("policy", policy), ("receive_policy", receive_policy)):
+        if value not in ("baseline", "learned"):
+            raise ValueError(f"{name} must be 'baseline' or 'learned', got {value!r}")
     if not (math.isfinite(duration_s) and duration_s > 0):
         raise ValueError(f"duration_s must be a positive number of seconds, got {duration_s!r}")
     env = SSLParallelEnv(n_blue=2, n_yellow=0, field=field, realism=realism, referee=False, max_time_s=1e9,
@@ -73,9 +77,8 @@ def run_pass_endurance(policy: str = "baseline", seed: int = 0, duration_s: floa
     f, rp, bp, dt = env.field, env.config.robot, env.config.ball, env.config.dt
     rng = np.random.default_rng(seed)
     homes = _home_spots(rng, f)
-    kind = policy
-    passer = make_skill("pass", kind, f, rp, bp, checkpoint=pass_checkpoint)
-    receiver = make_skill("receive", kind, f, rp, bp, checkpoint=receive_checkpoint)
+    passer = make_skill("pass", policy, f, rp, bp, checkpoint=pass_checkpoint)
+    receiver = make_skill("receive", receive_policy, f, rp, bp, checkpoint=receive_checkpoint)
     movers = [MoveToPoint(f, rp, bp, target=homes[i], tolerance=0.1, max_speed=0.8) for i in range(2)]
     reach = rp.front_distance + bp.radius
 
@@ -179,7 +182,8 @@ def run_pass_endurance(policy: str = "baseline", seed: int = 0, duration_s: floa
 
 def evaluate_drill(drill: str = "pass-endurance", policy: str = "baseline", runs: int = 10, seed: int = 10_000,
                    duration_s: float = 60.0, realism: str = "none", field: str = "div_b",
-                   out: str | Path | None = None, progress: bool = True) -> dict[str, Any]:
+                   out: str | Path | None = None, progress: bool = True,
+                   receive_policy: str | None = None) -> dict[str, Any]:
     """``runs`` drill runs (run ``i`` seeded with ``episode_seed(seed, i)``); the summary
     (completion rate with its 95 % Wilson interval, passes per minute, losses by reason)
     is written to ``out/results.json`` when ``out`` is given."""
@@ -190,7 +194,9 @@ def evaluate_drill(drill: str = "pass-endurance", policy: str = "baseline", runs
     from tqdm import tqdm
 
     t0 = time.perf_counter()
-    results = [run_pass_endurance(policy, episode_seed(seed, i), duration_s, realism, field)
+    receive_policy = policy if receive_policy is None else receive_policy
+    results = [run_pass_endurance(policy, episode_seed(seed, i), duration_s, realism, field,
+                                  receive_policy=receive_policy)
                for i in tqdm(range(runs), desc=f"{drill} ({policy})", disable=not progress, unit="run",
                              file=sys.stderr)]
     att = sum(r["attempts"] for r in results)
@@ -199,7 +205,7 @@ def evaluate_drill(drill: str = "pass-endurance", policy: str = "baseline", runs
     for r in results:
         losses.update(r["losses"])
     lo, hi = wilson_interval(comp, att) if att else (0.0, 1.0)
-    summary = {"drill": drill, "policy": policy, "runs": runs, "seed": seed, "duration_s": duration_s,
+    summary = {"drill": drill, "policy": policy, "receive_policy": receive_policy, "runs": runs, "seed": seed, "duration_s": duration_s,
                "realism": realism, "field": field, "attempts": att, "completed": comp,
                "completion_rate": comp / att if att else None, "completion_ci95": [lo, hi],
                "passes_per_minute": comp / (runs * duration_s / 60.0), "losses": dict(losses),
