@@ -190,3 +190,17 @@ def test_cli_eval_skill_and_eval_drill_write_results(tmp_path, capsys):
     with pytest.raises(SystemExit):
         build_parser().parse_args(["eval-drill", "--help"])
     assert "--seed" in capsys.readouterr().out
+
+
+def test_shipped_learned_pass_completes_a_pass():
+    from ssl_marl.skills.passing import load_passing_policy
+
+    _, meta = load_passing_policy("pass")
+    assert meta["skill"] == "pass" and meta["obs_spec"] == "pass/v1"
+    env = PassEnv()
+    skill = make_skill("pass", "learned", env.field, env.robot_params, env.ball_params)
+    assert isinstance(skill, LearnedPass)
+    info = _run("pass", env, skill, {"passer_pose": (-2.0, 0.0, 2.5), "target": (1.5, -1.0), "receiver_vel": (0, 0)})
+    assert info["is_success"], info
+    with pytest.raises(ValueError, match="unknown passing skill"):
+        load_passing_policy("juggle")
