@@ -1,4 +1,4 @@
-"""The ``ssl-marl`` command line: demo, match, eval-skill, eval-tactic, bench, train, export-onnx.
+"""The ``ssl-marl`` command line: demo, match, eval-skill, eval-drill, eval-tactic, bench, train, export-onnx.
 
 Every long-running command shows a progress bar; ``ssl-marl COMMAND --help``
 explains every option. Output paths follow one rule (:data:`OUTPUT_RULE`),
@@ -209,6 +209,11 @@ def cmd_match(args: argparse.Namespace) -> int:
     print(f"blue ({args.blue}) vs yellow ({args.yellow}), {summary['matches']} matches: "
           f"W {summary['wins']} D {summary['draws']} L {summary['losses']}, "
           f"goals {summary['goals_for']}-{summary['goals_against']}")
+    for team, st in summary.get("stats", {}).items():
+        pc = "-" if st["pass_completion"] is None else f"{100 * st['pass_completion']:.0f}%"
+        print(f"  {team}: shots {st['shots']}, passes {st['passes_completed']}/{st['passes_attempted']} completed "
+              f"({pc}), intercepted {st['passes_intercepted']}, interceptions {st['interceptions']}, "
+              f"goals {st['goals']}")
     if args.json:
         atomic_write_json(args.json, {"summary": summary, "matches": [r.to_dict() for r in results]})
     return 0
@@ -229,6 +234,24 @@ def cmd_eval_skill(args: argparse.Namespace) -> int:
     mean = "n/a" if t["mean"] is None else f"{t['mean']:.2f} +/- {t['std']:.2f} s"
     print(f"{args.skill} ({args.policy}): success {s['success_rate']:.3f} [95% CI {lo:.3f}-{hi:.3f}] over "
           f"{s['episodes']} episodes, time to success {mean}, failures {s['failure_reasons']}"
+          + (f" -> {args.out}/results.json" if args.out else ""))
+    return 0
+
+
+# ---------------------------------------------------------------- eval-drill
+def cmd_eval_drill(args: argparse.Namespace) -> int:
+    from .io import prepare_output_dir
+    from .runners.drills import evaluate_drill
+
+    if args.out:
+        prepare_output_dir(args.out, "--out")
+    s = evaluate_drill(args.drill, args.policy, runs=args.runs, seed=args.seed, duration_s=args.duration,
+                       realism=args.realism, field=args.field, out=args.out, progress=not args.quiet,
+                       receive_policy=args.receive_policy)
+    lo, hi = s["completion_ci95"]
+    rate = "n/a" if s["completion_rate"] is None else f"{s['completion_rate']:.3f} [95% CI {lo:.3f}-{hi:.3f}]"
+    print(f"{args.drill} (pass {args.policy}, receive {s['receive_policy']}): {s['completed']} of {s['attempts']} passes completed ({rate}) in "
+          f"{s['runs']} runs of {args.duration:g} s, {s['passes_per_minute']:.1f} per minute, losses {s['losses']}"
           + (f" -> {args.out}/results.json" if args.out else ""))
     return 0
 
@@ -327,7 +350,8 @@ def build_parser() -> argparse.ArgumentParser:
                                    "and out-of-play. Prints the score and stats; writes a GIF/MP4 with --render.")
     m.add_argument("--blue", type=_team, default="learned", metavar="TEAM",
                    help="blue team: learned (STP with the shipped DDPG actors), baseline (STP with hand-coded "
-                        "skills), random, idle, or a JSON team file {\"kind\": ..., \"skills\": {SKILL: SOURCE}} "
+                        "skills), passing-learned / passing-baseline (the passing plays: shoot, pass or keep by "
+                        "cost, set plays with passes, with those skills), random, idle, or a JSON team file {\"kind\": ..., \"skills\": {SKILL: SOURCE}} "
                         "(default learned)")
     m.add_argument("--yellow", type=_team, default="baseline", metavar="TEAM",
                    help="yellow team, as --blue (default baseline)")
@@ -387,6 +411,25 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("--quiet", action="store_true", help="no progress bar")
     _add_tracker_option(e)
     e.set_defaults(func=cmd_eval_skill)
+
+    dr = sub.add_parser("eval-drill", help="passing drills (pass-endurance: two robots pass back and forth)",
+                        description="Run a drill with the pass and receive skills; writes OUT/results.json "
+                                    "(passes attempted and completed, losses by reason).")
+    dr.add_argument("drill", choices=("pass-endurance",), help="which drill")
+    dr.add_argument("--policy", choices=("baseline", "learned"), default="baseline",
+                    help="hand-coded or shipped learned pass and receive skills (default baseline)")
+    dr.add_argument("--receive-policy", choices=("baseline", "learned"), default=None,
+                    help="receive skill, if different from --policy (default: as --policy)")
+    dr.add_argument("--runs", type=_positive_int("--runs"), default=10, help="drill runs (default 10)")
+    dr.add_argument("--duration", type=_positive_float("--duration"), default=60.0,
+                    help="simulated seconds per run (default 60)")
+    dr.add_argument("--seed", type=int, default=10_000, help="seed (default 10000)")
+    dr.add_argument("--out", default=None, help="output folder for results.json, created if missing (default: none)")
+    dr.add_argument("--realism", choices=("none", "realistic"), default="none",
+                    help="vision noise / latency preset (default none)")
+    dr.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")
+    dr.add_argument("--quiet", action="store_true", help="no progress bar")
+    dr.set_defaults(func=cmd_eval_drill)
 
     t = sub.add_parser("eval-tactic", help="the paper's go-to-ball-and-shoot tactic evaluation (section 5.2)",
                        description="One robot and the ball at random; run go-to-ball-and-shoot until a goal or "

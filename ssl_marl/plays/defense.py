@@ -158,6 +158,7 @@ class Goalie(Tactic):
     area); clears a slow ball out of the defense area towards the opponent half."""
 
     name = "goalie"
+    uses_skills = ("go_to_ball",)
     State = GoalieState
     Params = GoalieParams
     Inputs = GoalieInputs
@@ -271,6 +272,7 @@ class Defender(Tactic):
     area; challenges a slow ball that comes close (clears it towards the opponent half)."""
 
     name = "defender"
+    uses_skills = ("go_to_ball",)
     State = DefenderState
     Params = DefenderParams
     Inputs = DefenderInputs

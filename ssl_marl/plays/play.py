@@ -27,8 +27,8 @@ Selection (:class:`PlaySelector`), CMDragons-style:
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-from typing import Any, Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
@@ -40,7 +40,7 @@ from .defense import Defender, Goalie, Mark, block_position, goalie_guard_positi
 from .navigation import NavParams, sanitize_target
 from .shoot import Attacker
 from .support import Support, SupportParams
-from .tactic_base import Tactic
+from .tactic_base import Tactic, TacticStatus
 
 HAS_BALL_MARGIN_S = 0.25  # overlap band of the offense/defense predicates (s of time-to-ball)
 
@@ -61,6 +61,10 @@ class PlayContext:
             speed (inf without robots).
         threats: opponent indices sorted by danger (closest to our goal first),
             leaving out the opponent nearest the ball (the attacker presses it).
+        role_status: role name -> the :class:`~ssl_marl.plays.tactic_base.TacticStatus`
+            its tactic reported on the previous tick (how tactics report to plays,
+            e.g. the pass handshake); filled by the team controller.
+        role_holders: role name -> robot index that held it on the previous tick.
     """
 
     team: str
@@ -74,6 +78,8 @@ class PlayContext:
     our_time: float
     their_time: float
     threats: tuple[int, ...]
+    role_status: Mapping[str, TacticStatus] = field(default_factory=dict)
+    role_holders: Mapping[str, int] = field(default_factory=dict)
 
     @property
     def ball(self) -> np.ndarray:
@@ -157,7 +163,10 @@ class RoleDef:
 @dataclass(frozen=True)
 class Play:
     """A play: see the module docstring. ``priority`` lets an applicable play preempt
-    the current one after the hold time (kickoff > open play)."""
+    the current one after the hold time (kickoff > open play). ``prepare`` (optional)
+    runs once per tick while the play is selected, before its roles' targets are
+    evaluated: team-level decisions that several roles share (the passing plays'
+    pass coordinator) are made there."""
 
     name: str
     applicable: Callable[[PlayContext], bool]
@@ -165,6 +174,7 @@ class Play:
     timeout_s: float = 25.0
     weight: float = 1.0
     priority: int = 0
+    prepare: Callable[[PlayContext], None] | None = None
 
     def __post_init__(self) -> None:
         names = [r.name for r in self.roles]

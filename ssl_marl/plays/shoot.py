@@ -8,6 +8,15 @@ State machine (d_{d-b}: dribbler-ball distance, :func:`~ssl_marl.skills.features
     AIM_TO_SHOOT --(kick commanded / skill SUCCEEDED)--> GO_TO_BALL   (status.kicks += 1)
     AIM_TO_SHOOT --(skill FAILED or d_db > 35 mm before the kick)--> GO_TO_BALL
 
+With ``hold_fire`` (set each tick by a play that decides when to shoot, default False:
+never) the machine holds the ball instead of aiming (state ``KEEP``: dribbler on, turn
+towards the goal at ``keep_turn_rate``, creep forward at ``keep_speed`` while facing it
+and the field ahead is free)::
+
+    DRIVE_FORWARD --(done, near, hold_fire)--> KEEP
+    AIM_TO_SHOOT --(hold_fire, no kick yet)--> KEEP
+    KEEP --(not hold_fire)--> AIM_TO_SHOOT;  KEEP --(d_db > lost_ball_m)--> GO_TO_BALL
+
 The go-to-ball and aim-to-shoot skills are learned or baseline (``skills=``); drive
 forward is the paper's fixed skill. The tactic does not know about goals: the env's
 referee counts them and the runner reads them.
@@ -28,9 +37,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..physics.state import WorldState
-from ..skills.base import SkillStatus
+from ..physics.state import wrap_angle
+from ..skills.base import SkillStatus, make_action
 from ..skills.baseline import DriveForward
-from ..skills.features import dribbler_ball_distance
+from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance
 from .navigation import NavigateToPoint, NavParams, defense_rect, facing_towards, push_out_of_rect
 from .tactic_base import NEAR_BALL_M, Tactic, skill_status
 
@@ -40,6 +50,7 @@ class ShootState(enum.Enum):
     DRIVE_FORWARD = "drive_forward"
     AIM_TO_SHOOT = "aim_to_shoot"
     WAIT_OUTSIDE_DEFENSE_AREA = "wait_outside_defense_area"
+    KEEP = "keep"
 
 
 @dataclass(frozen=True)
@@ -68,6 +79,11 @@ class ShootParams:
             applied to learned and hand-coded skills alike (the baseline already
             approaches at ~0.7 m/s).
         approach_decel: deceleration used by the governor (m/s^2).
+        hold_fire: hold the ball (KEEP) instead of aiming to shoot; plays that decide
+            between shooting, passing and keeping set it every tick (False = paper).
+        lost_ball_m: KEEP -> GO_TO_BALL when d_{d-b} exceeds this (m).
+        keep_turn_rate: KEEP's turn rate towards the goal (rad/s, below aim-to-shoot's 5).
+        keep_speed: KEEP's forward creep (m/s; scaled to 0 as free space ahead shrinks).
     """
 
     near_ball_m: float = NEAR_BALL_M
@@ -81,6 +97,10 @@ class ShootParams:
     safe_free_full_m: float = 0.5
     approach_speed: float | None = 0.8
     approach_decel: float = 3.0
+    hold_fire: bool = False
+    lost_ball_m: float = BALL_LOST_DISTANCE
+    keep_turn_rate: float = 3.0
+    keep_speed: float = 0.3
 
 
 @dataclass(frozen=True)
@@ -106,6 +126,7 @@ class GoToBallAndShoot(Tactic):
     """The paper's go-to-ball-and-shoot tactic (see the module docstring)."""
 
     name = "go_to_ball_and_shoot"
+    uses_skills = ("go_to_ball", "aim_to_shoot")
     State = ShootState
     Params = ShootParams
     Inputs = ShootInputs
@@ -124,12 +145,13 @@ class GoToBallAndShoot(Tactic):
     def _current_skill(self):
         return {ShootState.GO_TO_BALL: self.go_to_ball, ShootState.DRIVE_FORWARD: self.drive_forward,
                 ShootState.AIM_TO_SHOOT: self.aim_to_shoot,
-                ShootState.WAIT_OUTSIDE_DEFENSE_AREA: self.nav}[self.state]
+                ShootState.WAIT_OUTSIDE_DEFENSE_AREA: self.nav, ShootState.KEEP: None}[self.state]
 
     def observe(self, world: WorldState, robot: int) -> ShootInputs:
         ball = world.ball_pos
         return ShootInputs(d_db=dribbler_ball_distance(world, robot, self.rp, self.bp),
-                           skill_status=skill_status(self._current_skill()), kicked=self._kicked,
+                           skill_status=(skill_status(self._current_skill()) if self.state is not ShootState.KEEP
+                                         else SkillStatus.RUNNING), kicked=self._kicked,
                            ball_in_own_defense=bool(self.field.in_defense_area(ball, -1)),
                            ball_near_own_defense=bool(self.field.in_defense_area(
                                ball, -1, margin=self.params.wait_hysteresis_m)))
@@ -150,12 +172,18 @@ class GoToBallAndShoot(Tactic):
             return S.DRIVE_FORWARD if near else S.GO_TO_BALL
         if state is S.DRIVE_FORWARD:
             if inputs.skill_status is SkillStatus.SUCCEEDED:
-                return S.AIM_TO_SHOOT if near else S.GO_TO_BALL
+                if not near:
+                    return S.GO_TO_BALL
+                return S.KEEP if params.hold_fire else S.AIM_TO_SHOOT
             return S.DRIVE_FORWARD
         if state is S.AIM_TO_SHOOT:
             if inputs.kicked or inputs.skill_status is not SkillStatus.RUNNING or not near:
                 return S.GO_TO_BALL
-            return S.AIM_TO_SHOOT
+            return S.KEEP if params.hold_fire else S.AIM_TO_SHOOT
+        if state is S.KEEP:
+            if inputs.d_db > params.lost_ball_m:
+                return S.GO_TO_BALL
+            return S.KEEP if params.hold_fire else S.AIM_TO_SHOOT
         raise ValueError(f"unknown state {state!r}")
 
     def on_enter(self, state: ShootState) -> None:
@@ -164,7 +192,9 @@ class GoToBallAndShoot(Tactic):
         if state is ShootState.DRIVE_FORWARD:
             self.drive_forward.duration_s = self.params.drive_forward_s
             self.drive_forward.speed = self.params.drive_forward_speed
-        self._current_skill().reset()
+        skill = self._current_skill()
+        if skill is not None:
+            skill.reset()
 
     def execute(self, world: WorldState, robot: int, inputs: ShootInputs) -> np.ndarray:
         if self.state is ShootState.DRIVE_FORWARD and self.params.safe_drive_forward:
@@ -178,11 +208,26 @@ class GoToBallAndShoot(Tactic):
             rect = defense_rect(self.field, -1, self.nav.params.defense_margin + self.params.wait_margin)
             self.nav.target = push_out_of_rect(world.ball_pos, rect)
             self.nav.facing = facing_towards(pos, world.ball_pos)
+        if self.state is ShootState.KEEP:
+            return self.keep_action(world, robot)
         action = self._current_skill().act(world, robot)
         if self.state is ShootState.GO_TO_BALL and self.params.approach_speed is not None:
             action = govern_approach(action, world, robot, self.rp, self.bp, self.params.approach_speed,
                                      self.params.approach_decel)
         return action
+
+
+    def keep_action(self, world: WorldState, robot: int) -> np.ndarray:
+        """KEEP: dribbler on, turn towards the opponent goal centre, creep forward when
+        facing it (within 0.4 rad) and the field ahead is free."""
+        p = self.params
+        ts = world.team(world.frame)
+        pos, heading = ts.pos[robot], float(ts.heading[robot])
+        err = float(wrap_angle(facing_towards(pos, self.field.goal_center(+1)) - heading))
+        omega = float(np.clip(6.0 * err, -p.keep_turn_rate, p.keep_turn_rate))
+        free = free_distance_ahead(world.ball_pos, heading, self.field)
+        speed = p.keep_speed * min(max((free - 0.3) / 0.5, 0.0), 1.0) if abs(err) < 0.4 else 0.0
+        return make_action(vx=speed / self.rp.max_speed, omega=omega / self.rp.max_omega, dribble=True)
 
 
 def govern_approach(action: np.ndarray, world: WorldState, robot: int, rp, bp, v_touch: float,

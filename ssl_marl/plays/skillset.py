@@ -38,13 +38,19 @@ from ..skills.registry import SKILL_KINDS, learned_skills
 SkillsSpec = Union[str, Mapping[str, Union[str, os.PathLike]]]
 
 
+#: the skills every STP team builds (the go-to-ball-and-shoot tactics; checked when a team is built)
+CORE_SKILLS = ("go_to_ball", "aim_to_shoot")
+#: used only by the passing plays' Pass / Receive tactics
+PASSING_SKILLS = ("pass", "receive")
+
+
 def swappable_skills() -> tuple[str, ...]:
     """Skills a skill set can switch between learned and baseline (registry order)."""
     return tuple(s.name for s in learned_skills())
 
 
 def __getattr__(name: str):
-    if name == "SWAPPABLE":  # kept for old imports; computed from the registry
+    if name in ("SWAPPABLE", "TACTIC_SKILLS"):  # kept for old imports; computed from the registry
         return swappable_skills()
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
@@ -56,7 +62,7 @@ def _canonical(name: Any) -> Any:
 def _source(name: str, value: Any) -> tuple[str, str | None]:
     """(kind, checkpoint path or None) for one skill's source; clear errors."""
     if isinstance(value, str) and value in SKILL_KINDS:
-        return value, None
+        return _shipped_or_baseline(name, value), None
     if isinstance(value, (str, os.PathLike)):
         path = Path(value)
         if path.is_file():
@@ -65,6 +71,19 @@ def _source(name: str, value: Any) -> tuple[str, str | None]:
             raise FileNotFoundError(f"skills[{name!r}]: checkpoint {str(value)!r} does not exist")
     raise ValueError(f"skills[{name!r}] must be one of {SKILL_KINDS} or the path of an actor checkpoint, "
                      f"got {value!r}")
+
+
+def _shipped_or_baseline(name: str, kind: str) -> str:
+    """``kind``, except that "learned" for a skill with no shipped actor (the registry
+    record's ``actor`` missing, e.g. a skill whose learned actor did not beat its
+    hand-coded baseline) means the hand-coded skill: a "learned" team uses every shipped
+    learned skill. A checkpoint path always selects the learned skill."""
+    if kind != "learned":
+        return kind
+    from ..skills.registry import get_skill
+
+    actor = get_skill(name).actor
+    return kind if actor is not None and actor.exists() else "baseline"
 
 
 def validate_skills(skills: SkillsSpec) -> None:
@@ -88,7 +107,7 @@ def skill_source(skills: SkillsSpec, name: str) -> tuple[str, str | None]:
     "baseline" or "learned"; checkpoint is a path, or None for the shipped actor."""
     validate_skills(skills)
     if isinstance(skills, str):
-        return skills, None
+        return _shipped_or_baseline(name, skills), None
     for key, value in skills.items():
         if _canonical(key) == name:
             return _source(name, value)
@@ -101,10 +120,11 @@ def skill_kind(skills: SkillsSpec, name: str) -> str:
 
 
 def check_skills(skills: SkillsSpec, field: FieldGeometry, robot: RobotParams | None = None,
-                 ball: BallParams | None = None) -> None:
-    """Build every learned skill ``skills`` names once, so that a missing or
-    wrong-skill checkpoint fails now (one clear error) rather than mid-run."""
-    for name in swappable_skills():
+                 ball: BallParams | None = None, names: tuple[str, ...] | None = None) -> None:
+    """Build every learned skill ``skills`` selects among ``names`` (default: every
+    swappable skill) once, so that a missing or wrong-skill checkpoint fails now (one
+    clear error) rather than mid-run."""
+    for name in (swappable_skills() if names is None else names):
         if skill_kind(skills, name) == "learned":
             make_tactic_skill(name, skills, field, robot, ball)
 

@@ -12,7 +12,13 @@ Score terms (unitless, higher is better):
 * ``+1.5 * view``: the angle (rad) the opponent goal mouth subtends from the spot;
 * ``-0.4 * |x_c - x_pref|``: ``ahead`` metres in front of the ball (clipped to the x range);
 * ``-2 * clip(1 - |c - ball| / min_ball_dist, 0, 1)``: not on top of the ball;
-* ``-1.5 * sum_m exp(-|c - m|^2 / (2 * 0.5^2))``: away from teammates.
+* ``-1.5 * sum_m exp(-|c - m|^2 / (2 * 0.5^2))``: away from teammates;
+* ``+pass_lane_weight * P(ball -> c)`` (default weight 0: off): how safely the ball can
+  be passed to the spot, the pass-success estimate of
+  :func:`~ssl_marl.plays.pass_decision.pass_success` (the smallest interception-time
+  margin of any opponent along the ball's path, from the ball model). The passing plays
+  turn it on, so supports look for pass lanes, not only space. With it on, spots are
+  re-scored every ``rescore_every`` ticks (it costs ~1 ms per scoring).
 """
 
 from __future__ import annotations
@@ -24,6 +30,7 @@ import numpy as np
 
 from ..physics.field import FieldGeometry
 from ..physics.state import WorldState
+from .pass_decision import DecisionParams, pass_success
 from .navigation import NavigateToPoint, NavParams, facing_towards
 from .tactic_base import Tactic
 
@@ -88,6 +95,8 @@ class SupportParams:
         switch_margin: a new spot must score this much better to be taken.
         grid: (nx, ny) candidate grid size.
         arrive_tol: SEEK -> HOLD within this distance of the spot (m).
+        pass_lane_weight: weight of the pass-success term (0 = off; module docstring).
+        rescore_every: with the pass-lane term on, re-score spots every this many ticks.
     """
 
     y_range: tuple[float, float] | None = None
@@ -101,6 +110,8 @@ class SupportParams:
     defense_gap_m: float = 0.35
     side_margin_m: float = 0.3
     tolerance_m: float = 0.05
+    pass_lane_weight: float = 0.0
+    rescore_every: int = 6
 
 
 @dataclass(frozen=True)
@@ -124,10 +135,12 @@ class Support(Tactic):
         super().__init__(field, robot, ball, skills, dt, **params)
         self.nav = NavigateToPoint(field, self.rp, self.bp, NavParams(), tolerance=self.params.tolerance_m)
         self.target: np.ndarray | None = None
+        self._ticks_since_score = 0
 
     def reset(self) -> None:
         super().reset()
         self.target = None
+        self._ticks_since_score = 0
 
     def candidates(self) -> tuple[np.ndarray, tuple[float, float]]:
         """Candidate grid (k, 2) and the x range used (cached per parameter set)."""
@@ -153,11 +166,20 @@ class Support(Tactic):
         """Best spot with hysteresis against the current one; (spot, changed)."""
         ts = world.team(world.frame)
         mates = np.delete(ts.pos, robot, axis=0)
+        p = self.params
+        if p.pass_lane_weight > 0 and self.target is not None:
+            self._ticks_since_score += 1
+            if self._ticks_since_score < p.rescore_every:
+                return self.target, False
+        self._ticks_since_score = 0
         cands, x_range = self.candidates()
         if self.target is not None:
             cands = np.vstack([cands, self.target[None, :]])
-        s = open_space_scores(cands, world.ball_pos, world.opponents(world.frame).pos, mates, self.field,
+        opp = world.opponents(world.frame).pos
+        s = open_space_scores(cands, world.ball_pos, opp, mates, self.field,
                               self.params.ahead, self.params.min_ball_dist, x_range)
+        if p.pass_lane_weight > 0:
+            s = s + p.pass_lane_weight * pass_success(world.ball_pos, cands, opp, self.rp, self.bp, DecisionParams())
         best = int(np.argmax(s))
         if self.target is None:
             return cands[best].copy(), True

@@ -73,6 +73,9 @@ class Tactic:
     """
 
     name: ClassVar[str] = "tactic"
+    #: skills (names in :data:`~ssl_marl.plays.skillset.TACTIC_SKILLS`) the tactic builds;
+    #: a team checks that they can be built (e.g. a learned actor exists) before kickoff.
+    uses_skills: ClassVar[tuple[str, ...]] = ()
     State: ClassVar[type[enum.Enum]]
     Params: ClassVar[type]
     initial_state: ClassVar[enum.Enum]
@@ -182,6 +185,21 @@ def _field_names(cls: type) -> frozenset[str]:
     if names is None:
         names = _FIELD_NAMES[cls] = frozenset(f.name for f in dataclasses.fields(cls))
     return names
+
+
+def check_field_point(name: str, point: Any, field: FieldGeometry | None) -> tuple[float, float]:
+    """``point`` as an (x, y) tuple of floats (m) if it is two finite numbers inside the
+    playing area (anywhere when ``field`` is None); ValueError naming ``name`` otherwise."""
+    try:
+        p = np.asarray(point, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be two numbers (x, y) in metres, got {point!r}") from None
+    if p.shape != (2,) or not np.isfinite(p).all():
+        raise ValueError(f"{name} must be two finite numbers (x, y) in metres, got {point!r}")
+    if field is not None and not bool(field.in_field(p)):
+        raise ValueError(f"{name} {p.tolist()} lies outside the {field.name} field "
+                         f"(|x| <= {field.half_length}, |y| <= {field.half_width} m)")
+    return float(p[0]), float(p[1])
 
 
 def skill_status(skill: Any) -> SkillStatus:

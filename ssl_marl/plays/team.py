@@ -20,6 +20,7 @@ Each tick:
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Any, Sequence
 
 import numpy as np
@@ -30,8 +31,20 @@ from ..physics.state import TEAMS, WorldState, to_team_frame
 from ..skills.base import make_action
 from .assignment import Assignment, RoleSlot, assign
 from .play import Play, PlayContext, PlaySelector, RoleDef, make_context, standard_plays
-from .skillset import SkillsSpec, check_skills, validate_skills
+from .skillset import CORE_SKILLS, SkillsSpec, check_skills, validate_skills
 from .tactic_base import Tactic
+
+
+def required_skills(plays: Sequence[Play]) -> tuple[str, ...]:
+    """Skills a team running ``plays`` builds: the core ones (go-to-ball, aim-to-shoot)
+    plus every ``uses_skills`` of the plays' tactics (pass, receive for passing plays)."""
+    names = list(CORE_SKILLS)
+    for play in plays:
+        for role in play.roles:
+            for name in getattr(role.tactic, "uses_skills", ()):
+                if name not in names:
+                    names.append(name)
+    return tuple(names)
 
 
 class TeamController:
@@ -68,7 +81,8 @@ class TeamController:
         self.selector = PlaySelector(plays if plays is not None else standard_plays(), min_hold_s=min_hold_s,
                                      adaptive=adaptive, seed=seed)
         self.agents = [f"{team}_{i}" for i in range(n_robots)]
-        check_skills(skills, self.field, self.rp, self.bp)  # fail now (e.g. a bad checkpoint), not mid-match
+        check_skills(skills, self.field, self.rp, self.bp,  # fail now (e.g. a bad checkpoint), not mid-match
+                     names=required_skills(self.selector.plays))
         self.reset()
 
     def reset(self) -> None:
@@ -153,7 +167,11 @@ class TeamController:
         if ours.n != self.n:
             raise ValueError(f"TeamController({self.team!r}) was built for {self.n} robots, the world has {ours.n}")
         ctx = make_context(world, self.team, self.field, self.rp)
+        ctx = replace(ctx, role_status={role: tactic.status for role, _, tactic in self._tactics.values()},
+                      role_holders={role: i for i, (role, _, _) in self._tactics.items()})
         play = self.selector.select(ctx, world.t)
+        if play.prepare is not None:
+            play.prepare(ctx)
         active = self._active_roles(play, ctx)
         slots = [RoleSlot(r.name, r.priority, r.unfilled_cost) for r, _ in active]
         cost = np.vstack([r.costs(ctx, tgt) for r, tgt in active]) if active else np.zeros((0, self.n))

@@ -4,6 +4,9 @@ A team is one of :data:`TEAM_KINDS`:
 
 * ``"learned"`` / ``"baseline"``: a :class:`~ssl_marl.plays.team.TeamController`
   (STP) whose skills are the shipped DDPG actors / the hand-coded skills;
+* ``"passing-learned"`` / ``"passing-baseline"``: the same controller with the passing
+  plays (:mod:`ssl_marl.plays.passing_play`: shoot, pass or keep by cost, set plays with
+  passes) and those skills (:func:`~ssl_marl.plays.passing_play.passing_team_skills`);
 * ``"random"``: uniform random actions (seeded); ``"idle"``: zero actions.
 
 An STP team may replace any skill with another source (:func:`team_skills`):
@@ -25,8 +28,9 @@ from typing import Any, Mapping
 
 import numpy as np
 
-TEAM_KINDS = ("learned", "baseline", "random", "idle")
-STP_KINDS = ("learned", "baseline")
+TEAM_KINDS = ("learned", "baseline", "random", "idle", "passing-learned", "passing-baseline")
+STP_KINDS = ("learned", "baseline", "passing-learned", "passing-baseline")
+PASSING_KINDS = ("passing-learned", "passing-baseline")
 TEAM_FILE_KEYS = ("kind", "skills")
 
 
@@ -70,7 +74,7 @@ def team_skills(kind: str, sources: Mapping[str, Any] | None = None, where: str 
         return kind
     if kind not in STP_KINDS:
         raise ValueError(f"{where}: skill sources need an STP team ({' or '.join(STP_KINDS)}), not {kind!r}")
-    spec: dict[str, Any] = {name: kind for name in SWAPPABLE}
+    spec: dict[str, Any] = dict(_kind_skills(kind)) if kind in PASSING_KINDS else {name: kind for name in SWAPPABLE}
     for name, source in sources.items():
         key = name.replace("-", "_") if isinstance(name, str) else name
         if key not in SWAPPABLE:
@@ -152,8 +156,12 @@ def make_controller(kind: Any, team: str, n_robots: int, field: Any = "div_b", s
     if kind in STP_KINDS:
         from ..plays.team import TeamController
 
-        return TeamController(team, n_robots, field=field, skills=kind if skills is None else skills, seed=seed,
-                              **kwargs)
+        if kind in PASSING_KINDS:
+            from ..plays.passing_play import passing_plays
+
+            kwargs.setdefault("plays", passing_plays(ball=kwargs.get("ball")))
+        return TeamController(team, n_robots, field=field, skills=_kind_skills(kind) if skills is None else skills,
+                              seed=seed, **kwargs)
     if skills is not None:
         raise ValueError(f"{team}: skill sources need an STP team ({' or '.join(STP_KINDS)}), not {kind!r}")
     if kind == "random":
@@ -161,3 +169,13 @@ def make_controller(kind: Any, team: str, n_robots: int, field: Any = "div_b", s
     if kind == "idle":
         return IdleController(team, n_robots)
     raise ValueError(f"unknown controller {kind!r} for {team}; expected one of {TEAM_KINDS}")
+
+
+def _kind_skills(kind: str) -> Any:
+    """The skill set of an STP team kind: the kind itself, or for a passing team
+    :func:`~ssl_marl.plays.passing_play.passing_team_skills` of its skill kind."""
+    if kind in PASSING_KINDS:
+        from ..plays.passing_play import passing_team_skills
+
+        return passing_team_skills(kind.split("-", 1)[1])
+    return kind

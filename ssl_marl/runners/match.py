@@ -31,7 +31,7 @@ from typing import Any
 import numpy as np
 
 from ..envs.deadline import ControlDeadline
-from .controllers import TEAM_KINDS, controller_label, make_controller
+from .controllers import STP_KINDS, TEAM_KINDS, controller_label, make_controller
 from .result import MatchResult
 from ..envs.animation import VideoSink
 
@@ -143,7 +143,7 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
     ck.setdefault("dt", env.config.dt)
     teams = (("blue", blue, blue_skills), ("yellow", yellow, yellow_skills))
     ctrls = {team: make_controller(kind, team, robots, geom, seed=seed + k, skills=skills,
-                                   **(ck if kind in ("learned", "baseline") else {}))
+                                   **(ck if kind in STP_KINDS else {}))
              for k, (team, kind, skills) in enumerate(teams)}
     for c in ctrls.values():
         if hasattr(c, "reset"):
@@ -159,6 +159,9 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
     prev = {team: {a: np.zeros(5, np.float32) for a in c.agents} for team, c in ctrls.items()}
     act_time = {"blue": 0.0, "yellow": 0.0}
     stats = MatchStats()
+    from ..plays.stats import MatchStatsTracker
+
+    pass_stats = MatchStatsTracker(geom, env.config.ball)  # passes, interceptions, shots (issue 11)
     bar = None
     if progress:
         from tqdm.auto import tqdm
@@ -181,7 +184,10 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
                 prev[team] = a
                 actions.update(a)
             _, _, _, _, infos = env.step(actions)
-            stats.record(next(iter(infos.values()))["events"] if infos else [], env.world_state())
+            events = next(iter(infos.values()))["events"] if infos else []
+            truth = env.world_state()
+            stats.record(events, truth)
+            pass_stats.observe(truth, events)
             if sink is not None and stats.steps % every == 0:
                 sink.add(env.render())
             if bar is not None:
@@ -201,8 +207,14 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
                   robots=robots, field=geom.name, seconds=float(seconds), seed=seed,
                   realism=realism if isinstance(realism, str) else repr(realism), realtime=realtime,
                   tracker=hasattr(env, "raw_vision_state"),
-                  start_jitter_m=start_jitter_m, render=str(render) if render is not None else None)
+                  start_jitter_m=start_jitter_m, render=str(render) if render is not None else None,
+                  skills={t: _json_safe(getattr(c, "skills", None)) for t, c in ctrls.items()})
     return MatchResult(score=dict(env.score), goals=stats.goals, shots=stats.shots, possession=stats.possession(),
                        steps=steps, sim_time_s=steps * dt, wall_time_s=wall,
                        act_time_ms={k: 1000.0 * v / max(steps, 1) for k, v in act_time.items()},
-                       missed_deadlines={team: d.missed for team, d in deadlines.items()}, seed=seed, config=config)
+                       missed_deadlines={team: d.missed for team, d in deadlines.items()}, seed=seed, config=config,
+                       stats={**pass_stats.summary(), "events": pass_stats.log})
+
+
+def _json_safe(skills: Any) -> Any:
+    return dict(skills) if hasattr(skills, "items") else skills

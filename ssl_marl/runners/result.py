@@ -22,6 +22,10 @@ class MatchResult:
         act_time_ms: mean wall time of each team's ``act`` (ms).
         missed_deadlines: real-time mode: ticks whose command was lost, per team.
         seed: env seed. config: the match options.
+        stats: per team, from :class:`~ssl_marl.plays.stats.MatchStatsTracker`: kicks,
+            shots (kicks aimed at the goal), goals, passes attempted / completed /
+            intercepted / lost, interceptions, pass_completion; ``"events"``: the
+            tracker's log of passes (with outcomes) and shots, in time order.
     """
 
     score: dict[str, int]
@@ -35,6 +39,7 @@ class MatchResult:
     missed_deadlines: dict[str, int] = field(default_factory=dict)
     seed: int = 0
     config: dict = field(default_factory=dict)
+    stats: dict = field(default_factory=dict)
 
     @property
     def winner(self) -> str | None:
@@ -49,7 +54,10 @@ class MatchResult:
 
 
 def summarize(results: list[MatchResult]) -> dict:
-    """Table summary from blue's side: wins / draws / losses, goals for / against, ..."""
+    """Table summary from blue's side: wins / draws / losses, goals for / against, ...;
+    ``stats``: per-team totals of the match statistics (:func:`~ssl_marl.plays.stats.summarize_stats`)."""
+    from ..plays.stats import summarize_stats
+
     n = len(results)
     wins = sum(r.winner == "blue" for r in results)
     losses = sum(r.winner == "yellow" for r in results)
@@ -66,4 +74,5 @@ def summarize(results: list[MatchResult]) -> dict:
             "possession_yellow_mean": mean([r.possession["yellow"] for r in results]),
             "missed_deadlines_blue": sum(r.missed_deadlines["blue"] for r in results),
             "missed_deadlines_yellow": sum(r.missed_deadlines["yellow"] for r in results),
-            "wall_time_s_total": float(sum(r.wall_time_s for r in results))}
+            "wall_time_s_total": float(sum(r.wall_time_s for r in results)),
+            "stats": summarize_stats([r.stats for r in results if r.stats])}

@@ -59,7 +59,7 @@ def _run_episodes(args: tuple) -> list[dict]:
     env_kwargs = dict(env_kwargs)
     tracked = env_kwargs.pop("tracker", False)
     env = _make_env(task, env_kwargs)
-    task_action = get_task(task).to_task_action
+    task_def = get_task(task)
     if tracked:  # the skill reads tracked, latency-compensated vision (env.seen() -> inner vision_state)
         from ..envs.tracking import TrackedVisionEnv
 
@@ -71,7 +71,7 @@ def _run_episodes(args: tuple) -> list[dict]:
         skill.reset()
         ret, steps = 0.0, 0
         while True:
-            a = task_action(skill.act(env.seen(), 0))
+            a = task_def.skill_action(env, skill)
             _, r, term, trunc, info = env.step(a)
             ret += r
             steps += 1

@@ -59,6 +59,9 @@ class SkillTaskDef:
         demo_fn: ``"module:function"`` yielding demonstration transitions for replay burn-in.
         train_config: name of the default trainer config (``train/configs/<name>.json``);
             resolved by ``train``, never imported here.
+        drive: how the evaluation protocol drives a :class:`Skill` object in the task env,
+            ``(env, skill) -> task action``; None: ``to_task_action(skill.act(env.seen(), 0))``.
+            Tasks whose skill needs per-step inputs from the task (the pass's target) set it.
     """
 
     env_id: str
@@ -71,11 +74,19 @@ class SkillTaskDef:
     spec_versions: Mapping[str, str]
     demo_fn: str | None = None
     train_config: str | None = None
+    drive: Callable[[Any, Any], np.ndarray] | None = None
 
     def __post_init__(self) -> None:
         if not self.spec_versions:
             raise ValueError(f"{self.env_id}: spec_versions needs at least one action mapping")
         object.__setattr__(self, "spec_versions", MappingProxyType(dict(self.spec_versions)))
+
+    def skill_action(self, env: Any, skill: Any) -> np.ndarray:
+        """The task action of ``skill`` (a :class:`Skill` object) acting for the task's
+        robot in ``env`` this step (see ``drive``)."""
+        if self.drive is not None:
+            return self.drive(env, skill)
+        return self.to_task_action(skill.act(env.seen(), 0))
 
     @property
     def obs_dim(self) -> int:

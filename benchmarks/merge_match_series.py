@@ -1,0 +1,79 @@
+"""Merge match-series JSON parts (``ssl-marl match --matches K --json PART``) into one series file.
+
+A long series can be played in parts (e.g. 2 matches per part, seeds S, S+2, ...), so that
+an interrupted run keeps what it finished; this writes the same file one
+``ssl-marl match --matches N --json OUT`` would: ``{"summary": ..., "matches": [...]}`` with
+the matches in seed order and the summary recomputed by ``ssl_marl.plays.match.summarize``.
+
+    python benchmarks/merge_match_series.py runs/parts/pl_vs_b_*.json --out results/series.json
+
+Parts must share the match settings (teams, robots, field, seconds, realism); a duplicate
+seed or a mismatch is an error.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from dataclasses import fields
+
+SETTINGS = ("blue", "yellow", "robots", "field", "seconds", "realism", "realtime", "start_jitter_m")
+
+
+def load_matches(paths: list[str]) -> list[dict]:
+    matches: dict[int, dict] = {}
+    ref = None
+    for path in paths:
+        with open(path) as fh:
+            data = json.load(fh)
+        for m in data["matches"] if "matches" in data else [data]:
+            settings = {k: m["config"].get(k) for k in SETTINGS}
+            if ref is None:
+                ref = settings
+            elif settings != ref:
+                raise ValueError(f"{path}: match seed {m['seed']} has settings {settings}, expected {ref}")
+            if m["seed"] in matches:
+                raise ValueError(f"{path}: seed {m['seed']} appears twice")
+            matches[m["seed"]] = m
+    return [matches[s] for s in sorted(matches)]
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("parts", nargs="+", help="series or single-match JSON files")
+    ap.add_argument("--out", required=True, help="merged series JSON")
+    args = ap.parse_args(argv)
+    from ssl_marl.io import atomic_write_json
+    from ssl_marl.plays.match import MatchResult, summarize
+
+    dicts = load_matches(args.parts)
+    names = {f.name for f in fields(MatchResult)}
+    results = [MatchResult(**{k: v for k, v in d.items() if k in names}) for d in dicts]
+    summary = summarize(results)
+    atomic_write_json(args.out, {"summary": summary, "matches": [r.to_dict() for r in results]})
+    print(f"{len(results)} matches (seeds {dicts[0]['seed']}-{dicts[-1]['seed']}) -> {args.out}: "
+          f"W {summary['wins']} D {summary['draws']} L {summary['losses']}, "
+          f"goals {summary['goals_for']}-{summary['goals_against']}")
+    print(table_row(args.out, summary))
+    return 0
+
+
+def table_row(name: str, s: dict) -> str:
+    """The docs/RESULTS.md "Passing game" table row of a series summary."""
+    n = max(s["matches"], 1)
+    st = s["stats"]
+
+    def side(team: str) -> str:
+        t = st[team]
+        pc = "-" if t["pass_completion"] is None else f"{100 * t['pass_completion']:.0f} %"
+        return (f"{t['shots'] / n:.1f} / {t['passes_completed']}-{t['passes_attempted']} ({pc}) / "
+                f"{t['passes_intercepted']}")
+
+    return (f"| `{name}` | {s['blue']} | {s['yellow']} | {s['matches']} | {s['wins']}-{s['draws']}-{s['losses']} | "
+            f"{s['goals_for']}-{s['goals_against']} | {(s['goals_for'] + s['goals_against']) / n:.2f} | "
+            f"{s['goal_diff_mean']:+.2f} | {side('blue')} | {side('yellow')} |")
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,484 @@
+"""Shoot, pass or keep: the ball carrier's decision as documented, pure value functions.
+
+Team frame (own goal at -x, opponent goal at +x), metres, seconds, m/s. Everything
+here is a pure function of positions (no world object, no state), so the decision can
+be tested on hand-built scenes and reused by plays, supports and future learners.
+
+**Interception time** (:func:`opponent_reach_time`): an opponent at ``o`` reaches a
+point ``q`` after ``reaction_s + T(max(|q - o| - reach, 0))``, where ``T(d)`` is the
+time to cover ``d`` from rest with acceleration ``a`` up to top speed ``v``
+(``sqrt(2 d / a)`` while accelerating, then ``d / v + v / (2 a)``) and ``reach`` the
+robot radius plus the ball radius. This is TIGERs' "reachable disc growing with time",
+fast model (shared/reference/team-play.md, section A), with a reaction time.
+
+**Ball time** along a path: the two-phase slide/roll model of
+:mod:`ssl_marl.physics.ball_model` (``time_to_distance``), the same model the
+simulator integrates.
+
+**Path margin** (:func:`path_margin`): sample the ball's straight path from the kick
+point to its end point; at each sample ``q_i`` reached at ``t_i`` by the ball, each
+opponent's margin is ``t_opp(q_i) - t_i``; the path margin is the smallest over samples
+and opponents (s; negative = an opponent gets there first). Samples closer than
+``skip_near_m`` to the kick point are left out (the kicker's own robot shields them).
+
+**Shot value** (:func:`shot_value`, in [0, 1]): from a point ``p``, the goal mouth (posts
+at ``x = L/2, y = +-goal_width/2``) minus the angular shadows of all robots other than
+the shooter (discs of robot radius + ball radius) gives open intervals; the widest one
+has width ``open_angle`` (rad) and centre ``aim``. Then, with a shot kicked at
+``shot_speed`` at the aim point on the goal line,
+
+    shot_value = f_angle * f_margin * f_dist
+    f_angle  = clip((open_angle - min_open_angle) / (good_open_angle - min_open_angle), 0, 1)
+    f_margin = clip((margin - shot_margin_lo) / (shot_margin_hi - shot_margin_lo), 0, 1)
+    f_dist   = 1 for d <= near_shot_m, falling linearly to far_shot_floor at far_shot_m (clipped)
+
+where ``margin`` is the path margin of the shot (the goalie's and defenders'
+interception times) and ``d`` the distance to the goal centre.
+
+**Pass value** (:func:`evaluate_passes`, per teammate ``k`` at its receive point ``q_k``):
+
+    P_k        = clip((margin_k - pass_margin_lo) / (pass_margin_hi - pass_margin_lo), 0, 1)
+    value_k    = P_k * (w_receiver_shot * shot_value(q_k) + w_progress * progress_k + w_possession)
+    progress_k = clip((x_qk - x_p) / progress_scale_m, -1, 1)
+
+``margin_k`` (less the time the carrier needs to turn towards ``q_k`` at ``turn_rate``
+when its heading is known) is the path margin of a pass kicked so that it arrives at
+``pass_arrive_speed`` (:func:`~ssl_marl.physics.ball_model.kick_speed_for_arrival`,
+clipped to the kicker's cap), the smallest interception-time margin of any opponent
+along the ball's path. ``w_possession`` is the value of simply keeping the ball in the
+team (keepaway's reason to pass). Passes shorter than ``min_pass_m``, longer than
+``max_pass_m``, or to a point outside the field or inside a defense area are not
+candidates.
+
+**Keep value**: ``w_keep * pressure``, ``pressure = clip((t_press - press_lo) /
+(press_hi - press_lo), 0, 1)`` with ``t_press`` the nearest opponent's reach time to
+the carrier: holding is worth little when an opponent is about to arrive.
+
+**Decision** (:func:`decide`):
+
+1. ``shot_value(p) >= shoot_threshold`` -> SHOOT;
+2. else the best pass ``k`` with ``P_k >= min_pass_success`` and
+   ``value_k >= max(shot_value(p), keep_value) + pass_gain`` -> PASS to ``k``;
+3. else KEEP (dribble: hold the ball, turn and creep toward the goal) while the keep
+   value is at least ``min_keep`` (no opponent about to arrive); otherwise, or when the
+   shot value is at least ``shoot_fallback``, SHOOT (a pressed carrier without a pass
+   gets rid of the ball towards the goal rather than lose it standing).
+
+All thresholds and weights are :class:`DecisionParams` fields with the reason for
+their defaults.
+"""
+
+from __future__ import annotations
+
+import enum
+import functools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..physics import ball_model
+from ..physics.field import FieldGeometry
+from ..physics.params import BallParams, RobotParams
+
+
+@dataclass(frozen=True)
+class DecisionParams:
+    """Parameters of the value functions (see the module docstring).
+
+    Attributes:
+        opp_reaction_s: opponent reaction time (s); Thunderbots assume 0.4 s for enemy
+            reaction, TIGERs' fast model 0 s; 0.3 s: a robot must first see the kick and
+            turn its plan around (our own tactics re-plan every tick, but move to
+            positional targets, not to the ball's path).
+        opp_speed, opp_accel: opponent top speed (m/s) and acceleration (m/s^2); None =
+            the robot parameters (3 m/s, 3 m/s^2).
+        shot_speed: kick speed of a shot (m/s; the kicker cap).
+        pass_arrive_speed: pass arrival speed (m/s); TIGERs aim <= 3.2 and rate 1 from 2,
+            the issue 1-2; the Pass tactic asks its skill for the same.
+        min_pass_speed: passes are kicked at least this fast (m/s).
+        path_samples: samples along a ball path for the margin.
+        skip_near_m: path samples closer than this to the kick point are ignored (m).
+        min_open_angle, good_open_angle: open goal angle (rad) at which the angle term
+            is 0 / 1 (Thunderbots shoot from >= 6 deg = 0.10 rad).
+        shot_margin_lo, shot_margin_hi: shot path margin (s) at which f_margin is 0 / 1.
+        near_shot_m, far_shot_m, far_shot_floor: distance term of the shot value.
+        pass_margin_lo, pass_margin_hi: pass path margin (s) at which P is 0 / 1.
+        min_pass_m, max_pass_m: pass length range (m) (the issue's 1-6 m).
+        w_receiver_shot, w_progress, w_possession: pass value weights.
+        progress_scale_m: forward gain (m) that counts as full progress.
+        w_keep, press_lo, press_hi: keep value (see the module docstring).
+        shoot_threshold: shoot at once at or above this shot value.
+        min_pass_success: passes with a lower P are not considered.
+        pass_gain: a pass must beat both the shot and the keep value by this much.
+        shoot_fallback: without a good pass, shoot anyway at or above this shot value.
+        min_keep: without a good pass, keep only at or above this keep value, else shoot.
+        turn_rate: the passer's turn rate with the ball (rad/s; the Pass tactic's hold rate).
+    """
+
+    opp_reaction_s: float = 0.3
+    opp_speed: float | None = None
+    opp_accel: float | None = None
+    shot_speed: float = 6.5
+    pass_arrive_speed: float = 2.0
+    min_pass_speed: float = 2.0
+    path_samples: int = 10
+    skip_near_m: float = 0.15
+    min_open_angle: float = 0.05
+    good_open_angle: float = 0.20
+    shot_margin_lo: float = -0.05
+    shot_margin_hi: float = 0.20
+    near_shot_m: float = 2.0
+    far_shot_m: float = 6.0
+    far_shot_floor: float = 0.2
+    pass_margin_lo: float = 0.0
+    pass_margin_hi: float = 0.4
+    min_pass_m: float = 1.0
+    max_pass_m: float = 6.0
+    w_receiver_shot: float = 0.6
+    w_progress: float = 0.2
+    w_possession: float = 0.25
+    progress_scale_m: float = 3.0
+    w_keep: float = 0.3
+    press_lo: float = 0.25
+    press_hi: float = 1.0
+    shoot_threshold: float = 0.5
+    min_pass_success: float = 0.35
+    pass_gain: float = 0.05
+    shoot_fallback: float = 0.25
+    min_keep: float = 0.1
+    turn_rate: float = 4.0
+
+    def __post_init__(self) -> None:
+        for name in ("shot_speed", "pass_arrive_speed", "min_pass_speed", "good_open_angle", "far_shot_m",
+                     "max_pass_m", "progress_scale_m", "press_hi"):
+            v = getattr(self, name)
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+                raise ValueError(f"DecisionParams.{name} must be a positive finite number, got {v!r}")
+        pairs = (("min_open_angle", "good_open_angle"), ("shot_margin_lo", "shot_margin_hi"),
+                 ("pass_margin_lo", "pass_margin_hi"), ("min_pass_m", "max_pass_m"), ("press_lo", "press_hi"),
+                 ("near_shot_m", "far_shot_m"))
+        for lo, hi in pairs:
+            if not getattr(self, lo) < getattr(self, hi):
+                raise ValueError(f"DecisionParams.{lo} must be smaller than DecisionParams.{hi}")
+        if not (isinstance(self.path_samples, int) and self.path_samples >= 2):
+            raise ValueError(f"DecisionParams.path_samples must be an integer >= 2, got {self.path_samples!r}")
+
+
+class Choice(enum.Enum):
+    SHOOT = "shoot"
+    PASS = "pass"
+    KEEP = "keep"
+
+
+@dataclass(frozen=True)
+class PassOption:
+    """One evaluated pass: teammate index, receive point (m), kick speed (m/s), path
+    margin (s), success estimate P, the receiver's shot value there, and the value."""
+
+    teammate: int
+    point: np.ndarray
+    kick_speed: float
+    margin: float
+    success: float
+    receiver_shot: float
+    value: float
+
+
+@dataclass(frozen=True)
+class Decision:
+    """The carrier's choice with its evidence (values as in the module docstring)."""
+
+    choice: Choice
+    shot: float
+    keep: float
+    passes: tuple[PassOption, ...] = ()
+    best_pass: PassOption | None = None
+
+    @property
+    def target(self) -> int | None:
+        """The pass receiver (teammate index) when the choice is PASS."""
+        return self.best_pass.teammate if self.choice is Choice.PASS and self.best_pass else None
+
+
+# ------------------------------------------------------------- primitives
+def motion_time(d: np.ndarray, v_max: float, accel: float) -> np.ndarray:
+    """Time (s) to cover distance(s) ``d`` (m) from rest, accelerating at ``accel`` up to ``v_max``."""
+    d = np.maximum(np.asarray(d, float), 0.0)
+    d_acc = v_max * v_max / (2.0 * accel)
+    return np.where(d <= d_acc, np.sqrt(2.0 * d / accel), d / v_max + v_max / (2.0 * accel))
+
+
+def opponent_reach_time(opponents: np.ndarray, points: np.ndarray, rp: RobotParams, bp: BallParams,
+                        params: DecisionParams) -> np.ndarray:
+    """(O, P) time (s) for each opponent (O, 2) to put its body on each point (P, 2)."""
+    o = np.asarray(opponents, float).reshape(-1, 2)
+    q = np.asarray(points, float).reshape(-1, 2)
+    d = np.hypot(o[:, None, 0] - q[None, :, 0], o[:, None, 1] - q[None, :, 1]) - (rp.radius + bp.radius)
+    v = params.opp_speed or rp.max_speed
+    a = params.opp_accel or rp.max_accel
+    return params.opp_reaction_s + motion_time(d, v, a)
+
+
+TIME_TABLE_V = np.arange(0.25, 6.5 + 1e-9, 0.05)  # kick speeds (m/s) of the ball-time table
+TIME_TABLE_S = np.arange(0.0, 12.0 + 1e-9, 0.025)  # distances (m) of the ball-time table
+
+
+@functools.lru_cache(maxsize=8)
+def _ball_time_table(bp: BallParams) -> np.ndarray:
+    """(V, S) time (s) a ball kicked at ``TIME_TABLE_V[i]`` needs to cover ``TIME_TABLE_S[j]``
+    (inf where it stops short), from :func:`ball_model.distance_at` on a fine time grid."""
+    table = np.full((len(TIME_TABLE_V), len(TIME_TABLE_S)), np.inf)
+    for i, v0 in enumerate(TIME_TABLE_V):
+        tg = np.linspace(0.0, ball_model.stop_time(float(v0), bp), 600)
+        dg = np.maximum.accumulate(np.asarray(ball_model.distance_at(float(v0), tg, bp), float))
+        reach = TIME_TABLE_S <= dg[-1] - 1e-6
+        table[i, reach] = np.interp(TIME_TABLE_S[reach], dg, tg)
+    return table
+
+
+def ball_times(kick_speed, s, bp: BallParams) -> np.ndarray:
+    """Times (s) at which balls kicked at ``kick_speed`` (m/s; scalar or (K, 1)) have
+    covered the distances ``s`` (m; broadcastable, e.g. (K, P)); inf where the ball
+    stops short. The slide/roll model of :mod:`ssl_marl.physics.ball_model`, tabulated
+    once per :class:`BallParams` (every 0.05 m/s and 2.5 cm, up to 12 m) and
+    interpolated bilinearly, so that many paths cost a few array operations; within
+    0.05 s of ``ball_model.time_to_distance`` while the ball is faster than 0.8 m/s
+    (tested; the model's slide ends on the simulator's 1/120 s friction steps, which
+    makes time a slightly kinked function of the kick speed)."""
+    table = _ball_time_table(bp)
+    v = np.clip(np.asarray(kick_speed, float), TIME_TABLE_V[0], TIME_TABLE_V[-1])
+    d = np.clip(np.asarray(s, float), 0.0, TIME_TABLE_S[-1])
+    v, d = np.broadcast_arrays(v, d)
+    fi = (v - TIME_TABLE_V[0]) / (TIME_TABLE_V[1] - TIME_TABLE_V[0])
+    fj = d / (TIME_TABLE_S[1] - TIME_TABLE_S[0])
+    i0 = np.minimum(np.floor(fi).astype(int), len(TIME_TABLE_V) - 2)
+    j0 = np.minimum(np.floor(fj).astype(int), len(TIME_TABLE_S) - 2)
+    a, b = fi - i0, fj - j0
+    with np.errstate(invalid="ignore"):
+        t = ((1 - a) * (1 - b) * table[i0, j0] + a * (1 - b) * table[i0 + 1, j0]
+             + (1 - a) * b * table[i0, j0 + 1] + a * b * table[i0 + 1, j0 + 1])
+    return np.where(np.isnan(t), np.inf, t)
+
+
+def path_margins(start: np.ndarray, ends: np.ndarray, kick_speeds: np.ndarray, opponents: np.ndarray,
+                 rp: RobotParams, bp: BallParams, params: DecisionParams) -> np.ndarray:
+    """(K,) smallest interception-time margin (s) of any opponent along each straight ball
+    path ``start -> ends[k]`` kicked at ``kick_speeds[k]`` (m/s); inf without opponents,
+    -inf where the ball stops short of the end (see the module docstring)."""
+    start = np.asarray(start, float).reshape(2)
+    ends = np.asarray(ends, float).reshape(-1, 2)
+    v0 = np.asarray(kick_speeds, float).reshape(-1, 1)
+    opp = np.asarray(opponents, float).reshape(-1, 2)
+    rel = ends - start
+    length = np.hypot(rel[:, 0], rel[:, 1])[:, None]  # (K, 1)
+    frac = np.linspace(0.0, 1.0, params.path_samples)[None, :]
+    s = np.maximum(frac * length, np.minimum(params.skip_near_m, length))  # (K, P)
+    t_ball = ball_times(v0, s, bp)  # (K, P)
+    stops_short = ~np.isfinite(t_ball[:, -1])
+    if opp.shape[0] == 0:
+        return np.where(stops_short, -np.inf, np.inf)
+    u = rel / np.maximum(length, 1e-9)
+    pts = start[None, None, :] + s[..., None] * u[:, None, :]  # (K, P, 2)
+    t_opp = opponent_reach_time(opp, pts.reshape(-1, 2), rp, bp, params).reshape(opp.shape[0], *s.shape)
+    margin = (t_opp - t_ball[None]).min(axis=(0, 2))
+    return np.where(stops_short, -np.inf, margin)
+
+
+def path_margin(start: np.ndarray, end: np.ndarray, kick_speed: float, opponents: np.ndarray, rp: RobotParams,
+                bp: BallParams, params: DecisionParams) -> float:
+    """Smallest interception-time margin (s) of any opponent along the straight ball path
+    ``start -> end`` kicked at ``kick_speed`` (m/s); inf without opponents; -inf if the
+    ball stops short of ``end``."""
+    return float(path_margins(start, np.asarray(end, float)[None, :], np.array([kick_speed]), opponents, rp, bp,
+                              params)[0])
+
+
+def pass_success(start: np.ndarray, points: np.ndarray, opponents: np.ndarray, rp: RobotParams, bp: BallParams,
+                 params: DecisionParams) -> np.ndarray:
+    """(K,) pass success estimate P in [0, 1] from ``start`` to each point (K, 2): the
+    path margin of a pass kicked at :func:`pass_kick_speeds`, mapped as in
+    :func:`evaluate_passes` (no length limits)."""
+    pts = np.asarray(points, float).reshape(-1, 2)
+    length = np.hypot(pts[:, 0] - start[0], pts[:, 1] - start[1])
+    m = path_margins(start, pts, pass_kick_speeds(length, bp, rp, params), opponents, rp, bp, params)
+    return np.clip((m - params.pass_margin_lo) / (params.pass_margin_hi - params.pass_margin_lo), 0.0, 1.0)
+
+
+def open_goal_interval(p: np.ndarray, obstacles: np.ndarray, field: FieldGeometry, rp: RobotParams,
+                       bp: BallParams) -> tuple[float, float]:
+    """(open_angle, aim_angle) in rad: the widest part of the +x goal mouth seen from ``p``
+    not shadowed by any robot in ``obstacles`` (k, 2); (0, angle to the goal centre) if
+    none is open."""
+    p = np.asarray(p, float)
+    left, right = field.goal_posts(+1)
+    a_hi = math.atan2(left[1] - p[1], left[0] - p[0])
+    a_lo = math.atan2(right[1] - p[1], right[0] - p[0])
+    centre = math.atan2(-p[1], field.half_length - p[0])
+    if p[0] >= field.half_length or a_hi <= a_lo:
+        return 0.0, centre
+    intervals = [(a_lo, a_hi)]
+    goal_dist = field.half_length - p[0]
+    R = rp.radius + bp.radius
+    for o in np.asarray(obstacles, float).reshape(-1, 2):
+        d = o - p
+        dist = float(np.hypot(*d))
+        if dist < 1e-6 or d[0] <= -R or d[0] > goal_dist + R:
+            continue
+        half = math.asin(min(R / dist, 1.0))
+        c = math.atan2(d[1], d[0])
+        lo, hi = c - half, c + half
+        new = []
+        for a, b in intervals:
+            if hi <= a or lo >= b:
+                new.append((a, b))
+                continue
+            if lo > a:
+                new.append((a, lo))
+            if hi < b:
+                new.append((hi, b))
+        intervals = new
+        if not intervals:
+            return 0.0, centre
+    a, b = max(intervals, key=lambda ab: ab[1] - ab[0])
+    return b - a, 0.5 * (a + b)
+
+
+def shot_value(p: np.ndarray, opponents: np.ndarray, others: np.ndarray, field: FieldGeometry, rp: RobotParams,
+               bp: BallParams, params: DecisionParams) -> float:
+    """Shot value in [0, 1] from point ``p`` (see the module docstring). ``opponents``
+    (O, 2) can intercept; ``others`` (k, 2) are further robots that only shadow the goal
+    (teammates)."""
+    p = np.asarray(p, float)
+    opp = np.asarray(opponents, float).reshape(-1, 2)
+    obstacles = np.concatenate([opp, np.asarray(others, float).reshape(-1, 2)], axis=0)
+    open_angle, aim = open_goal_interval(p, obstacles, field, rp, bp)
+    f_angle = min(max((open_angle - params.min_open_angle) / (params.good_open_angle - params.min_open_angle),
+                      0.0), 1.0)
+    if f_angle <= 0.0:
+        return 0.0
+    dx = field.half_length - float(p[0])
+    end = p + np.array([dx, dx * math.tan(aim)])
+    margin = path_margin(p, end, params.shot_speed, opp, rp, bp, params)
+    f_margin = min(max((margin - params.shot_margin_lo) / (params.shot_margin_hi - params.shot_margin_lo), 0.0),
+                   1.0)
+    d = float(np.hypot(*(field.goal_center(+1) - p)))
+    f_dist = 1.0 - (1.0 - params.far_shot_floor) * (d - params.near_shot_m) / (params.far_shot_m - params.near_shot_m)
+    f_dist = min(max(f_dist, params.far_shot_floor), 1.0)
+    return float(f_angle * f_margin * f_dist)
+
+
+KICK_TABLE_STEP_M = 0.05  # m between the distances of the kick-speed table
+
+
+@functools.lru_cache(maxsize=32)
+def _kick_speed_table(bp: BallParams, v_arrive: float, v_max: float) -> tuple[np.ndarray, np.ndarray]:
+    """(distances, kick speeds) of :func:`ball_model.kick_speed_for_arrival` on a 5 cm grid
+    up to 12 m (the model's solve is exact but slow to call per candidate and tick)."""
+    d = np.arange(0.0, 12.0 + KICK_TABLE_STEP_M, KICK_TABLE_STEP_M)
+    v = np.array([ball_model.kick_speed_for_arrival(float(x), v_arrive, bp, v_max=v_max) for x in d])
+    return d, v
+
+
+def pass_kick_speeds(lengths, bp: BallParams, rp: RobotParams, params: DecisionParams) -> np.ndarray:
+    """Kick speeds (m/s) of passes of ``lengths`` m: arriving at ``pass_arrive_speed``
+    (the ball model, tabulated every 5 cm and interpolated), at least ``min_pass_speed``,
+    at most the kicker cap."""
+    d, v = _kick_speed_table(bp, float(params.pass_arrive_speed), float(rp.kick_speed_max))
+    return np.clip(np.interp(np.asarray(lengths, float), d, v), params.min_pass_speed, rp.kick_speed_max)
+
+
+def pass_kick_speed(length: float, bp: BallParams, rp: RobotParams, params: DecisionParams) -> float:
+    """Scalar :func:`pass_kick_speeds`."""
+    return float(pass_kick_speeds(length, bp, rp, params))
+
+
+def keep_value(p: np.ndarray, opponents: np.ndarray, rp: RobotParams, bp: BallParams,
+               params: DecisionParams) -> float:
+    """Value of holding the ball at ``p`` (falls to 0 as an opponent closes in)."""
+    opp = np.asarray(opponents, float).reshape(-1, 2)
+    if opp.shape[0] == 0:
+        return params.w_keep
+    t_press = float(opponent_reach_time(opp, np.asarray(p, float)[None, :], rp, bp, params).min())
+    pressure = min(max((t_press - params.press_lo) / (params.press_hi - params.press_lo), 0.0), 1.0)
+    return params.w_keep * pressure
+
+
+def valid_receive_point(q: np.ndarray, field: FieldGeometry, margin: float = 0.15) -> bool:
+    """A pass may go to ``q``: inside the field (by ``margin``) and outside both defense areas."""
+    q = np.asarray(q, float)
+    return bool(field.in_field(q, margin) and not field.in_defense_area(q, -1, 0.1)
+                and not field.in_defense_area(q, +1, 0.1))
+
+
+def evaluate_passes(p: np.ndarray, receive_points: dict[int, np.ndarray], teammates: np.ndarray,
+                    opponents: np.ndarray, field: FieldGeometry, rp: RobotParams, bp: BallParams,
+                    params: DecisionParams, heading: float | None = None) -> tuple[PassOption, ...]:
+    """Evaluate a pass from ``p`` to each ``{teammate index: receive point}``.
+    ``teammates`` (n, 2) are all own robot positions (they shadow the receivers' shots).
+    With the carrier's ``heading`` (rad), the time to turn towards each receiver at
+    ``turn_rate`` is taken off its margin (the opponents move while the passer turns)."""
+    p = np.asarray(p, float)
+    opp = np.asarray(opponents, float).reshape(-1, 2)
+    mates = np.asarray(teammates, float).reshape(-1, 2)
+    out = []
+    for k, q in receive_points.items():
+        q = np.asarray(q, float)
+        length = float(np.hypot(*(q - p)))
+        if not (params.min_pass_m <= length <= params.max_pass_m) or not valid_receive_point(q, field):
+            continue
+        v0 = pass_kick_speed(length, bp, rp, params)
+        margin = path_margin(p, q, v0, opp, rp, bp, params)
+        if heading is not None:
+            turn = abs(math.remainder(math.atan2(q[1] - p[1], q[0] - p[0]) - heading, 2.0 * math.pi))
+            margin -= turn / params.turn_rate
+        success = min(max((margin - params.pass_margin_lo) / (params.pass_margin_hi - params.pass_margin_lo), 0.0),
+                      1.0)
+        others = np.delete(mates, k, axis=0) if 0 <= k < len(mates) else mates
+        recv_shot = shot_value(q, opp, others, field, rp, bp, params)
+        progress = min(max((float(q[0]) - float(p[0])) / params.progress_scale_m, -1.0), 1.0)
+        value = success * (params.w_receiver_shot * recv_shot + params.w_progress * progress + params.w_possession)
+        out.append(PassOption(int(k), q, v0, margin, success, recv_shot, float(value)))
+    return tuple(out)
+
+
+def decide(p: np.ndarray, carrier: int, teammates: np.ndarray, opponents: np.ndarray, field: FieldGeometry,
+           rp: RobotParams | None = None, bp: BallParams | None = None, params: DecisionParams | None = None,
+           receive_points: dict[int, np.ndarray] | None = None, candidates: tuple[int, ...] | None = None,
+           heading: float | None = None) -> Decision:
+    """The carrier's choice (module docstring).
+
+    Args:
+        p: ball (carrier) position (2,), team frame.
+        carrier: the carrier's index in ``teammates``.
+        teammates: (n, 2) own robot positions; opponents: (O, 2).
+        receive_points: ``{k: point}`` where teammate ``k`` would receive (default: its position).
+        candidates: teammates that may be passed to (default: all but the carrier).
+        heading: the carrier's heading (rad); passes that need a long turn lose margin.
+    """
+    rp, bp, params = rp or RobotParams(), bp or BallParams(), params or DecisionParams()
+    p = np.asarray(p, float)
+    mates = np.asarray(teammates, float).reshape(-1, 2)
+    opp = np.asarray(opponents, float).reshape(-1, 2)
+    if not 0 <= carrier < len(mates):
+        raise ValueError(f"decide: carrier index {carrier} outside the {len(mates)} teammates")
+    others = np.delete(mates, carrier, axis=0)
+    shot = shot_value(p, opp, others, field, rp, bp, params)
+    keep = keep_value(p, opp, rp, bp, params)
+    if shot >= params.shoot_threshold:
+        return Decision(Choice.SHOOT, shot, keep)
+    cands = candidates if candidates is not None else tuple(k for k in range(len(mates)) if k != carrier)
+    points = {k: (receive_points or {}).get(k, mates[k]) for k in cands if k != carrier}
+    passes = evaluate_passes(p, points, mates, opp, field, rp, bp, params, heading)
+    ok = [o for o in passes if o.success >= params.min_pass_success]
+    best = max(ok, key=lambda o: o.value) if ok else None
+    if best is not None and best.value >= max(shot, keep) + params.pass_gain:
+        return Decision(Choice.PASS, shot, keep, passes, best)
+    if shot >= params.shoot_fallback or keep < params.min_keep:
+        return Decision(Choice.SHOOT, shot, keep, passes, best)
+    return Decision(Choice.KEEP, shot, keep, passes, best)
+
+
+__all__ = ["DecisionParams", "Choice", "PassOption", "Decision", "motion_time", "opponent_reach_time", "ball_times",
+           "path_margins", "path_margin", "pass_success", "pass_kick_speeds", "open_goal_interval", "shot_value", "pass_kick_speed", "keep_value",
+           "valid_receive_point", "evaluate_passes", "decide"]

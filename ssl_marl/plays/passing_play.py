@@ -1,0 +1,406 @@
+"""The passing game: plays whose ball carrier chooses shoot, pass or keep each tick.
+
+One :class:`PassCoordinator` per team holds the team's pass plan; the passing plays
+(:func:`passing_plays`) share it, call :meth:`PassCoordinator.prepare` once per tick
+(``Play.prepare``) and read it in their roles. The handshake runs through the roles'
+reported :class:`~ssl_marl.plays.tactic_base.TacticStatus` in the
+:class:`~ssl_marl.plays.play.PlayContext` (``ctx.role_status``), never through tactic
+internals:
+
+1. **Decide** (no plan, a field player of ours holds the ball and runs the
+   ``attacker`` role in a settled state, KEEP or AIM_TO_SHOOT): every ``decide_every`` ticks
+   :func:`~ssl_marl.plays.pass_decision.decide` rates shoot / pass to teammate k / keep.
+   SHOOT and KEEP go to the attacker as ``hold_fire`` (KEEP for at most ``max_keep_s``,
+   then it shoots); PASS opens a plan: passer = the carrier, receiver = k, receive point
+   = k's position.
+2. **Set up** (plan phase SETUP): role ``passer`` (:class:`~ssl_marl.plays.pass_tactic.Pass`)
+   goes to the carrier, role ``receiver`` (:class:`~ssl_marl.plays.receive_tactic.Receive`)
+   to teammate k (both by cost: 0 for the designated robot, prohibitive for others);
+   the attacker role is dropped. The receiver moves to the receive point facing the
+   ball; the passer holds the ball and turns; ``receiver_ready`` is passed to the passer
+   once the receiver reports READY, and only then does the passer kick.
+3. **In flight** (the passer reports DONE): the receiver's RECEIVING state runs the
+   receive skill (onto the predicted ball line, cushion); the passer stands.
+4. **End**: receiver CONTROLLED, or the ball on the receiver's dribbler for
+   ``control_s`` (0.1 s: TIGERs call a reception successful 0.1 s after the ball
+   reaches the dribbler; the receive skill's own 0.5 s hold would let the defence
+   re-form before the receiver can shoot) -> completed; receiver FAILED, passer FAILED, an
+   opponent on the ball, a setup longer than ``max_setup_s``, a flight longer than
+   ``max_flight_s``, or (during setup) a pass lane that became unsafe -> aborted. The
+   attacker role returns; after a completed pass the receiver, now nearest the ball,
+   takes it.
+
+Plays (:func:`passing_plays`): ``restart`` (priority 1: the ball rests at the centre
+mark or at a free-kick spot near a line; the carrier is biased towards passing:
+:data:`RESTART_DECISION`), ``offense_passing`` (applicable like ``offense``, and while a
+plan is running so that a pass in flight is not dropped), and the standard
+``defense``. Supports in the passing plays score spots with the pass-lane term
+(:mod:`ssl_marl.plays.support`, ``pass_lane_weight``).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import enum
+import math
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from ..physics.params import BallParams
+from .assignment import Assignment
+from .pass_decision import Choice, Decision, DecisionParams, decide, path_margin, pass_kick_speed
+from .pass_tactic import Pass, PassState
+from .play import (HAS_BALL_MARGIN_S, Play, PlayContext, RoleDef, defender_role, defense_play, goalie_role,
+                   mark_role, offense_applicable, _filled_index, _support_band)
+from .receive_tactic import Receive, ReceiveState
+from .shoot import Attacker, ShootState
+from .skillset import CORE_SKILLS, PASSING_SKILLS, swappable_skills
+from .support import Support
+from .tactic_base import Tactic
+
+#: attacker states in which the ball is settled on the dribbler and a decision is made
+SETTLED = (ShootState.KEEP, ShootState.AIM_TO_SHOOT)
+PROHIBITIVE_COST = 50.0  # s: a role meant for one robot costs this for any other (unfilled_cost is lower)
+
+#: Restarts: keep is worth nothing and shots must be clearly open, so the kicker passes.
+RESTART_DECISION = DecisionParams(w_keep=0.0, shoot_threshold=0.6, shoot_fallback=0.6, pass_gain=0.0,
+                                  min_pass_success=0.5)
+
+
+class PassPhase(enum.Enum):
+    SETUP = "setup"
+    IN_FLIGHT = "in_flight"
+
+
+@dataclass
+class PassPlan:
+    """The team's current pass: passer and receiver robot indices, receive point (m),
+    phase, start and kick times (s)."""
+
+    passer: int
+    receiver: int
+    point: np.ndarray
+    phase: PassPhase
+    t_start: float
+    t_kick: float | None = None
+
+
+@dataclass(frozen=True)
+class PassingParams:
+    """Attributes:
+        decision: the open-play decision parameters.
+        restart_decision: the decision parameters at restarts.
+        decide_every: ticks between two decisions (a decision costs ~1-2 ms).
+        max_keep_s: KEEP at most this long, then shoot (s).
+        max_setup_s: a pass not kicked within this is dropped (s).
+        max_flight_s: a pass not controlled this long after the kick is dropped (s).
+        abort_margin_s: during setup, drop the pass if its path margin falls below this (s).
+        cooldown_s: after a dropped pass, no new pass for this long (s).
+        settle_s: the attacker's drive-forward duration in the passing plays (s; the
+            paper's 1 s lets defenders settle, the passing game moves on faster).
+        control_s: the ball on the receiver's dribbler this long completes the pass (s).
+    """
+
+    decision: DecisionParams = DecisionParams()
+    restart_decision: DecisionParams = RESTART_DECISION
+    decide_every: int = 3
+    max_keep_s: float = 0.8
+    max_setup_s: float = 2.5
+    max_flight_s: float = 4.0
+    abort_margin_s: float = -0.05
+    cooldown_s: float = 0.5
+    settle_s: float = 0.5
+    control_s: float = 0.1
+
+
+@dataclass
+class PassCounters:
+    """What the coordinator saw (for tests and debugging): plans opened, kicked,
+    completed, aborted."""
+
+    planned: int = 0
+    kicked: int = 0
+    completed: int = 0
+    aborted: int = 0
+
+
+class PassCoordinator:
+    """Team-level pass plan shared by the passing plays' roles (module docstring)."""
+
+    def __init__(self, params: PassingParams | None = None, ball: BallParams | None = None) -> None:
+        self.params = params or PassingParams()
+        self.bp = ball or BallParams()
+        self.reset()
+
+    def reset(self) -> None:
+        self.plan: PassPlan | None = None
+        self.decision: Decision | None = None
+        self.counters = PassCounters()
+        self._tick = 0
+        self._last_t: float | None = None
+        self._cooldown_until = -math.inf
+        self._keep_since: float | None = None
+        self._carrier: int | None = None
+        self._recv_on_since: float | None = None
+
+    @property
+    def active(self) -> bool:
+        return self.plan is not None
+
+    def hold_fire(self) -> bool:
+        """The attacker holds the ball (KEEP) unless the current decision is SHOOT (so
+        that it never shoots before a decision was made)."""
+        d = self.decision
+        return d is None or d.choice is not Choice.SHOOT
+
+    # ----------------------------------------------------------------- tick
+    def prepare(self, ctx: PlayContext, restart: bool = False) -> None:
+        t = float(ctx.world.t)
+        if self._last_t is not None and t < self._last_t:  # new episode
+            self.reset()
+        self._last_t = t
+        self._tick += 1
+        if self.plan is not None:
+            self._follow(ctx, t)
+        if self.plan is None:
+            self._decide(ctx, t, restart)
+
+    def _drop(self, t: float, completed: bool = False) -> None:
+        if completed:
+            self.counters.completed += 1
+        else:
+            self.counters.aborted += 1
+            self._cooldown_until = t + self.params.cooldown_s
+        self.plan = None
+        self.decision = None
+        self._keep_since = None
+        self._recv_on_since = None
+
+    def _follow(self, ctx: PlayContext, t: float) -> None:
+        plan, p = self.plan, self.params
+        passer = ctx.role_status.get("passer")
+        receiver = ctx.role_status.get("receiver")
+        on = plan.phase is PassPhase.IN_FLIGHT and bool(ctx.world.team(ctx.team).ball_on_dribbler[plan.receiver])
+        self._recv_on_since = (self._recv_on_since if self._recv_on_since is not None else t) if on else None
+        if (receiver is not None and receiver.state is ReceiveState.CONTROLLED) or (
+                self._recv_on_since is not None and t - self._recv_on_since >= p.control_s - 1e-9):
+            self._drop(t, completed=True)
+            return
+        if ctx.they_have_ball or (receiver is not None and receiver.state is ReceiveState.FAILED):
+            self._drop(t)
+            return
+        if plan.phase is PassPhase.SETUP:
+            if passer is not None and passer.state is PassState.DONE:
+                plan.phase, plan.t_kick = PassPhase.IN_FLIGHT, t
+                self.counters.kicked += 1
+                return
+            if (passer is not None and passer.state is PassState.FAILED) or t - plan.t_start > p.max_setup_s:
+                self._drop(t)
+                return
+            if self._tick % p.decide_every == 0 and not (passer is not None and passer.state is PassState.KICK):
+                length = float(np.hypot(*(plan.point - ctx.ball)))
+                v0 = pass_kick_speed(length, self.bp, ctx.robot, p.decision)
+                if path_margin(ctx.ball, plan.point, v0, ctx.opp_pos, ctx.robot, self.bp, p.decision) < p.abort_margin_s:
+                    self._drop(t)
+            return
+        if t - (plan.t_kick or t) > p.max_flight_s:
+            self._drop(t)
+
+    def _decide(self, ctx: PlayContext, t: float, restart: bool) -> None:
+        p = self.params
+        ours = ctx.world.team(ctx.team)
+        holders = [i for i in np.flatnonzero(ours.ball_on_dribbler) if not (ctx.n >= 2 and i == 0)]
+        if not holders:
+            self.decision = None
+            self._keep_since = None
+            self._carrier = None
+            return
+        carrier = int(holders[0])
+        attacker = ctx.role_status.get("attacker")
+        if ctx.role_holders.get("attacker") != carrier or attacker is None or attacker.state not in SETTLED:
+            if attacker is None or attacker.state not in SETTLED + (ShootState.DRIVE_FORWARD,):
+                self.decision, self._keep_since = None, None  # a new possession: decide afresh
+            return  # decide once the carrier has settled the ball (not while it drives or fetches)
+        if carrier != self._carrier:
+            self._carrier, self._keep_since, self.decision = carrier, None, None
+        if self.decision is not None and self._tick % p.decide_every != 0:
+            return
+        params = p.restart_decision if restart else p.decision
+        cands = tuple(k for k in range(ctx.n) if k != carrier and not (ctx.n >= 2 and k == 0))
+        if t < self._cooldown_until:
+            cands = ()
+        d = decide(ctx.ball, carrier, ours.pos, ctx.opp_pos, ctx.field, ctx.robot, self.bp, params, candidates=cands,
+                   heading=float(ours.heading[carrier]))
+        if d.choice is Choice.KEEP:
+            if self._keep_since is None:
+                self._keep_since = t
+            if t - self._keep_since > p.max_keep_s:
+                d = dataclasses.replace(d, choice=Choice.SHOOT)
+        else:
+            self._keep_since = None
+        self.decision = d
+        if d.choice is Choice.PASS and d.best_pass is not None:
+            self.plan = PassPlan(carrier, d.best_pass.teammate, np.asarray(d.best_pass.point, float),
+                                 PassPhase.SETUP, t)
+            self.counters.planned += 1
+
+
+# -------------------------------------------------------------------- roles
+def _only(robot_of: Callable[[PlayContext], int | None]) -> Callable[[PlayContext, np.ndarray], np.ndarray]:
+    """Cost function: 0 for the robot ``robot_of(ctx)`` names, prohibitive for the others."""
+
+    def cost(ctx: PlayContext, target: np.ndarray) -> np.ndarray:
+        c = np.full(ctx.n, PROHIBITIVE_COST)
+        k = robot_of(ctx)
+        if k is not None and 0 <= k < ctx.n:
+            c[k] = 0.0
+        return c
+
+    return cost
+
+
+def passer_role(coord: PassCoordinator, priority: int = 95) -> RoleDef:
+    def target(ctx: PlayContext) -> np.ndarray | None:
+        return np.asarray(ctx.ball, float) if coord.plan is not None else None
+
+    def update(t: Tactic, ctx: PlayContext, a: Assignment) -> None:
+        plan = coord.plan
+        if plan is None:
+            return
+        ready = ctx.role_status.get("receiver")
+        t.set_params(target_robot=plan.receiver, target_point=(float(plan.point[0]), float(plan.point[1])),
+                     receiver_ready=ready is not None and ready.state in (ReceiveState.READY,))
+
+    return RoleDef("passer", priority, Pass, target, update=update,
+                   cost=_only(lambda ctx: coord.plan.passer if coord.plan else None), unfilled_cost=20.0)
+
+
+def receiver_role(coord: PassCoordinator, priority: int = 94) -> RoleDef:
+    def target(ctx: PlayContext) -> np.ndarray | None:
+        return coord.plan.point if coord.plan is not None else None
+
+    def update(t: Tactic, ctx: PlayContext, a: Assignment) -> None:
+        plan = coord.plan
+        if plan is None:
+            return
+        src = ctx.ball if plan.phase is PassPhase.SETUP else ctx.our_pos[plan.passer]
+        t.set_params(receive_point=(float(plan.point[0]), float(plan.point[1])),
+                     ball_from=(float(src[0]), float(src[1])))
+
+    return RoleDef("receiver", priority, Receive, target, update=update,
+                   cost=_only(lambda ctx: coord.plan.receiver if coord.plan else None), unfilled_cost=20.0)
+
+
+def passing_attacker_role(coord: PassCoordinator, priority: int = 90) -> RoleDef:
+    def target(ctx: PlayContext) -> np.ndarray | None:
+        return None if coord.plan is not None else np.asarray(ctx.ball, float)
+
+    def update(t: Tactic, ctx: PlayContext, a: Assignment) -> None:
+        t.set_params(hold_fire=coord.hold_fire(), drive_forward_s=coord.params.settle_s)
+
+    return RoleDef("attacker", priority, Attacker, target, update=update)
+
+
+def passing_support_role(k: int, priority: int) -> RoleDef:
+    """A support that also rates spots by how safely the ball can be passed there."""
+    name = f"support_{k}"
+
+    def update(t: Tactic, ctx: PlayContext, a: Assignment) -> None:
+        i, m = _filled_index(a, "support_", name)
+        t.set_params(y_range=_support_band(ctx.field, i, m), pass_lane_weight=1.5)
+
+    def target(ctx: PlayContext) -> np.ndarray:
+        f = ctx.field
+        lo, hi = _support_band(f, k % 4, 4)
+        x = min(max(float(ctx.ball[0]) + 1.0, 0.3), f.half_length - f.defense_depth - 0.35)
+        return np.array([x, 0.5 * (lo + hi)])
+
+    return RoleDef(name, priority, Support, target, update=update, unfilled_cost=20.0)
+
+
+def _roles(coord: PassCoordinator) -> tuple[RoleDef, ...]:
+    return (goalie_role(100), passer_role(coord, 95), receiver_role(coord, 94), passing_attacker_role(coord, 90),
+            defender_role(0, 80), passing_support_role(0, 80), passing_support_role(1, 70), defender_role(1, 70),
+            mark_role(0, 60), passing_support_role(2, 60), mark_role(1, 50), defender_role(2, 50),
+            passing_support_role(3, 40), mark_role(2, 40))
+
+
+# -------------------------------------------------------------------- plays
+RESTART_LINE_BAND_M = 0.35  # a resting ball this close to a field line is at a free-kick spot (placed 0.2 m in)
+
+
+def restart_applicable(ctx: PlayContext) -> bool:
+    """A restart we can take: the ball rests (< 0.1 m/s) at the centre mark (kickoff) or
+    within ``RESTART_LINE_BAND_M`` of a field line (the referee's free-kick placement),
+    nobody is within 0.3 m of it, and we are at least as close as they are (+0.25 s)."""
+    w, f = ctx.world, ctx.field
+    if float(np.hypot(*w.ball_vel)) >= 0.1 or ctx.we_have_ball or ctx.they_have_ball:
+        return False
+    b = ctx.ball
+    at_mark = float(np.hypot(*b)) < 0.15
+    near_line = (f.half_length - abs(float(b[0])) < RESTART_LINE_BAND_M
+                 or f.half_width - abs(float(b[1])) < RESTART_LINE_BAND_M)
+    near = min(ctx.our_time, ctx.their_time) * ctx.robot.max_speed
+    return (at_mark or near_line) and near > 0.3 and ctx.our_time <= ctx.their_time + HAS_BALL_MARGIN_S
+
+
+def passing_plays(params: PassingParams | None = None, ball: BallParams | None = None) -> tuple[Play, ...]:
+    """(restart, offense_passing, defense) sharing one new :class:`PassCoordinator`
+    (:func:`coordinator_of` finds it)."""
+    coord = PassCoordinator(params, ball)
+    roles = _roles(coord)
+
+    def offense_passing_applicable(ctx: PlayContext) -> bool:
+        return coord.active or offense_applicable(ctx)
+
+    restart = Play("restart", restart_applicable, roles, priority=1, prepare=PrepareHook(coord, restart=True))
+    offense = Play("offense_passing", offense_passing_applicable, roles, prepare=PrepareHook(coord))
+    return (restart, offense, defense_play())
+
+
+@dataclass(frozen=True)
+class PrepareHook:
+    """``Play.prepare`` of the passing plays: runs the shared coordinator's tick."""
+
+    coordinator: PassCoordinator
+    restart: bool = False
+
+    def __call__(self, ctx: PlayContext) -> None:
+        self.coordinator.prepare(ctx, restart=self.restart)
+
+
+def passing_team_skills(kind: str) -> dict[str, str]:
+    """Skill kinds of a passing team: ``"baseline"``: every skill hand-coded;
+    ``"learned"``: learned go-to-ball and aim-to-shoot, and learned pass / receive where
+    their actors are shipped (``ssl_marl/skills/pretrained/{pass,receive}.pt``), else the
+    hand-coded ones. The match result's ``config["skills"]`` records what was used."""
+    if kind == "baseline":
+        return {name: "baseline" for name in swappable_skills()}
+    if kind != "learned":
+        raise ValueError(f"passing team skills must be 'learned' or 'baseline', got {kind!r}")
+    out = {name: "learned" for name in CORE_SKILLS}
+    try:
+        from ..skills.passing import PRETRAINED
+    except ImportError:  # pragma: no cover - without the passing skills module
+        PRETRAINED = {}
+    for name in PASSING_SKILLS:
+        path = PRETRAINED.get(name)
+        out[name] = "learned" if path is not None and path.exists() else "baseline"
+    return out
+
+
+def coordinator_of(plays) -> PassCoordinator | None:
+    """The coordinator of a :func:`passing_plays` tuple (None for other plays)."""
+    for p in plays:
+        c = getattr(p.prepare, "coordinator", None)
+        if c is not None:
+            return c
+    return None
+
+
+__all__ = ["PassPhase", "PassPlan", "PassingParams", "PassCoordinator", "PassCounters", "passing_plays",
+           "coordinator_of", "restart_applicable", "passer_role", "receiver_role", "passing_attacker_role",
+           "passing_support_role", "RESTART_DECISION", "PrepareHook",
+           "passing_team_skills"]

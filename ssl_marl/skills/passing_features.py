@@ -1,0 +1,220 @@
+"""State vectors, action mappings and rewards of the pass and receive skills, as pure
+functions shared by the Gymnasium tasks (:mod:`ssl_marl.skills.pass_tasks`) and the
+deployed skills (:mod:`ssl_marl.skills.passing`).
+
+Conventions as in :mod:`ssl_marl.skills.features`: a :class:`WorldState` in the robot's
+team frame and the robot's index in that team; metres, seconds, radians; *robot
+frame* = origin at the robot centre, +x along its heading, +y to its left.
+
+pass state (``pass/v1``, 10 values)
+    ===  =================  =====================================================
+    idx  name               meaning
+    ===  =================  =====================================================
+    0-1  target_x, _y       pass target in the robot frame (m)
+    2-3  target_vx, _vy     target velocity in the robot frame (m/s; 0 if unknown)
+    4    target_dist        distance ball -> target (m)
+    5-6  sin/cos_target     sine and cosine of the target's bearing from the heading
+    7-8  ball_x, ball_y     ball in the robot frame (m): on the dribbler ~(0.10, 0)
+    9    robot_omega        angular velocity (rad/s)
+    ===  =================  =====================================================
+
+pass action (3 values in [-1, 1])
+    ``(omega, kick, speed)``: angular velocity as a fraction of ``max_omega``; kick when
+    ``kick > 0``; kick speed ``PASS_SPEED_MIN + (speed + 1) / 2 * (max - min)`` m/s with
+    ``PASS_SPEED_MIN`` 1 m/s and the kicker cap 6.5 m/s. The dribbler is on, the robot
+    does not translate.
+
+receive state (``receive/v1``, 11 values)
+    ===  ==================  ====================================================
+    idx  name                meaning
+    ===  ==================  ====================================================
+    0-1  ball_x, ball_y      ball in the robot frame (m)
+    2-3  ball_vx, ball_vy    ball velocity in the robot frame (m/s)
+    4-5  robot_vx, _vy       robot velocity in the robot frame (m/s)
+    6    robot_omega         angular velocity (rad/s)
+    7    line_offset         signed distance of the robot centre from the ball's
+                             line of travel (m; + = left of the ball's direction;
+                             0 for a ball slower than 0.1 m/s)
+    8    gap                 distance along the ball's direction from the ball to
+                             the robot's dribbler face (m; < 0: the ball has passed)
+    9    closing_speed       ball speed minus robot speed along the ball's direction
+    10   on_dribbler         1 if the ball is on the dribbler, else 0
+    ===  ==================  ====================================================
+
+receive action (3 values in [-1, 1])
+    ``(vx, vy, omega)`` in the robot frame as fractions of the robot's limits, dribbler
+    on (as go-to-ball).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..physics.params import BallParams, RobotParams
+from ..physics.state import WorldState, wrap_angle
+from .base import make_action
+from .features import rotate_to_robot, to_robot_frame
+
+PASS_SPEC = "pass/v1"
+RECEIVE_SPEC = "receive/v1"
+PASS_SPEED_MIN = 1.0  #: m/s, the slowest kick the pass action can ask for
+SLOW_BALL = 0.1  #: m/s: below this the ball has no usable direction of travel
+
+PASS_NAMES = ("target_x", "target_y", "target_vx", "target_vy", "target_dist", "sin_target", "cos_target",
+              "ball_x", "ball_y", "robot_omega")
+RECEIVE_NAMES = ("ball_x", "ball_y", "ball_vx", "ball_vy", "robot_vx", "robot_vy", "robot_omega", "line_offset",
+                 "gap", "closing_speed", "on_dribbler")
+
+
+def _team(world: WorldState):
+    if world.frame not in ("blue", "yellow"):
+        raise ValueError("skill features need a team-frame snapshot (use to_team_frame / env.vision_state(team))")
+    return world.team(world.frame)
+
+
+def check_point(name: str, p) -> np.ndarray:
+    """(2,) float array from ``p``; ValueError naming ``name`` if it is not 2 finite numbers."""
+    try:
+        a = np.asarray(p, dtype=float).reshape(2)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be 2 finite numbers (x, y in m), got {p!r}") from None
+    if not np.isfinite(a).all():
+        raise ValueError(f"{name} must be 2 finite numbers (x, y in m), got {a.tolist()}")
+    return a
+
+
+# ---------------------------------------------------------------------- pass
+def pass_features(world: WorldState, robot: int, target: np.ndarray, target_vel: np.ndarray | None = None
+                  ) -> np.ndarray:
+    """The 10 pass state values (float32), see the module table. ``target`` and
+    ``target_vel`` in the team frame (m, m/s)."""
+    ts = _team(world)
+    pos, h = ts.pos[robot], float(ts.heading[robot])
+    tgt = to_robot_frame(target, pos, h)
+    tv = rotate_to_robot(np.zeros(2) if target_vel is None else np.asarray(target_vel, float), h)
+    ball = to_robot_frame(world.ball_pos, pos, h)
+    dist = float(np.hypot(*(np.asarray(target, float) - world.ball_pos)))
+    bearing = math.atan2(tgt[1], tgt[0])
+    return np.array([tgt[0], tgt[1], tv[0], tv[1], dist, math.sin(bearing), math.cos(bearing), ball[0], ball[1],
+                     ts.omega[robot]], dtype=np.float32)
+
+
+def pass_kick_speed(a_speed: float, robot_params: RobotParams) -> float:
+    """Kick speed (m/s) of the pass action's speed entry in [-1, 1]."""
+    frac = (float(np.clip(a_speed, -1.0, 1.0)) + 1.0) / 2.0
+    return PASS_SPEED_MIN + frac * (robot_params.kick_speed_max - PASS_SPEED_MIN)
+
+
+def pass_speed_action(speed: float, robot_params: RobotParams) -> float:
+    """Inverse of :func:`pass_kick_speed` (clipped to [-1, 1])."""
+    frac = (float(speed) - PASS_SPEED_MIN) / (robot_params.kick_speed_max - PASS_SPEED_MIN)
+    return float(np.clip(2.0 * frac - 1.0, -1.0, 1.0))
+
+
+def expand_pass_action(action3: np.ndarray, robot_params: RobotParams) -> np.ndarray:
+    """The pass task's (omega, kick, speed) as a full (5,) env action: dribbler on, no
+    translation, kick strength = kick speed / cap when ``kick > 0``."""
+    a = np.clip(np.asarray(action3, dtype=np.float64).reshape(3), -1.0, 1.0)
+    strength = pass_kick_speed(a[2], robot_params) / robot_params.kick_speed_max if a[1] > 0 else 0.0
+    return make_action(0.0, 0.0, a[0], dribble=True, kick=strength)
+
+
+def pass_task_action(action5: np.ndarray, robot_params: RobotParams) -> np.ndarray:
+    """Project a pass skill's (5,) action onto the task's (omega, kick, speed)."""
+    a = np.asarray(action5, dtype=np.float64)
+    kick = a[4] > 0
+    speed = pass_speed_action(a[4] * robot_params.kick_speed_max, robot_params) if kick else 0.0
+    return np.array([a[2], 1.0 if kick else -1.0, speed], dtype=np.float32)
+
+
+def pass_aim_error(world: WorldState, robot: int, target: np.ndarray) -> float:
+    """Signed angle (rad) from the robot's heading to the direction ball -> target."""
+    ts = _team(world)
+    d = np.asarray(target, float) - world.ball_pos
+    return float(wrap_angle(math.atan2(d[1], d[0]) - float(ts.heading[robot])))
+
+
+def pass_reward(aim_error: float, kicked_now: bool, outcome: str | None) -> dict[str, float]:
+    """Pass reward terms for one step.
+
+    * ``aim``: -0.1 |aim error| (rad) per step before the kick (turn towards the target);
+    * ``kick``: +1 on the step of the kick, scaled by cos(aim error) (a kick at the target);
+    * ``outcome``: +10 when the receiver controls the ball, -5 on a failure (ball lost,
+      timeout, ball stopped short, out, not received), 0 while running.
+    """
+    return {"aim": -0.1 * abs(aim_error) if not kicked_now else 0.0,
+            "kick": math.cos(aim_error) if kicked_now else 0.0,
+            "outcome": 10.0 if outcome == "success" else (-5.0 if outcome else 0.0)}
+
+
+# ------------------------------------------------------------------- receive
+def ball_line_geometry(world: WorldState, robot: int, robot_params: RobotParams, ball_params: BallParams
+                       ) -> tuple[float, float, float, np.ndarray]:
+    """(line_offset, gap, closing_speed, u) of a receiving robot, team frame.
+
+    ``u`` is the ball's unit direction of travel (zeros for a ball slower than
+    :data:`SLOW_BALL`, then offset = 0 and gap = the distance to the face along the
+    robot-ball line). See the module table for the meaning of the three numbers."""
+    ts = _team(world)
+    pos = ts.pos[robot]
+    v = world.ball_vel
+    sp = float(np.hypot(*v))
+    reach = robot_params.front_distance + ball_params.radius
+    d = pos - world.ball_pos
+    if sp < SLOW_BALL:
+        return 0.0, float(np.hypot(*d)) - reach, 0.0, np.zeros(2)
+    u = v / sp
+    along = float(d @ u)
+    offset = float(u[0] * d[1] - u[1] * d[0])
+    closing = sp - float(ts.vel[robot] @ u)
+    return offset, along - reach, closing, u
+
+
+def receive_features(world: WorldState, robot: int, robot_params: RobotParams, ball_params: BallParams
+                     ) -> np.ndarray:
+    """The 11 receive state values (float32), see the module table."""
+    ts = _team(world)
+    pos, h = ts.pos[robot], float(ts.heading[robot])
+    ball = to_robot_frame(world.ball_pos, pos, h)
+    bvel = rotate_to_robot(world.ball_vel, h)
+    rvel = rotate_to_robot(ts.vel[robot], h)
+    offset, gap, closing, _ = ball_line_geometry(world, robot, robot_params, ball_params)
+    return np.array([ball[0], ball[1], bvel[0], bvel[1], rvel[0], rvel[1], ts.omega[robot], offset, gap, closing,
+                     1.0 if bool(ts.ball_on_dribbler[robot]) else 0.0], dtype=np.float32)
+
+
+def expand_receive_action(action3: np.ndarray) -> np.ndarray:
+    """The receive task's (vx, vy, omega) as a full (5,) env action, dribbler on."""
+    a = np.clip(np.asarray(action3, dtype=np.float64).reshape(3), -1.0, 1.0)
+    return make_action(a[0], a[1], a[2], dribble=True)
+
+
+def receive_task_action(action5: np.ndarray) -> np.ndarray:
+    """Project a receive skill's (5,) action onto the task's (vx, vy, omega)."""
+    return np.asarray(action5, dtype=np.float32)[[0, 1, 2]]
+
+
+def receive_reward(world: WorldState, robot: int, robot_params: RobotParams, ball_params: BallParams,
+                   outcome: str | None) -> dict[str, float]:
+    """Receive reward terms for one step (ground truth).
+
+    * ``line``: -|line offset| (m) while the ball moves towards the robot (gap > 0),
+      else -0.5 x the robot-ball distance (go and get a ball that has passed or stopped);
+    * ``facing``: -0.2 x |angle between the heading and the direction to the ball| / pi;
+    * ``contact``: +1 per step with the ball on the dribbler;
+    * ``outcome``: +10 on success (control held 0.5 s), -5 on a failure, else 0.
+    """
+    ts = _team(world)
+    pos, h = ts.pos[robot], float(ts.heading[robot])
+    offset, gap, _, u = ball_line_geometry(world, robot, robot_params, ball_params)
+    d = world.ball_pos - pos
+    if gap > 0 and np.any(u):
+        line = -abs(offset)
+    else:
+        line = -0.5 * float(np.hypot(*d))
+    face = abs(float(wrap_angle(math.atan2(d[1], d[0]) - h)))
+    return {"line": line, "facing": -0.2 * face / math.pi,
+            "contact": 1.0 if bool(ts.ball_on_dribbler[robot]) else 0.0,
+            "outcome": 10.0 if outcome == "success" else (-5.0 if outcome else 0.0)}

@@ -1,0 +1,444 @@
+"""The passing game: decision values, Pass / Receive tactics, the coordinator, match stats."""
+
+import math
+
+import numpy as np
+import pytest
+
+from ssl_marl.physics import FieldGeometry, ball_model
+from ssl_marl.physics.params import BallParams, RobotParams
+from ssl_marl.plays.pass_decision import (Choice, DecisionParams, ball_times, decide, evaluate_passes, motion_time,
+                                          open_goal_interval, pass_kick_speed, path_margin, shot_value)
+from ssl_marl.plays.pass_tactic import Pass, PassInputs, PassParams, PassState
+from ssl_marl.plays.receive_tactic import Receive, ReceiveInputs, ReceiveParams, ReceiveState, ball_incoming
+from ssl_marl.plays.scene import ball_in_front, make_world
+from ssl_marl.plays.shoot import Attacker, ShootInputs, ShootParams, ShootState
+from ssl_marl.plays.stats import MatchStatsTracker
+from ssl_marl.skills.base import SkillStatus
+
+F = FieldGeometry.div_b()
+RP, BP = RobotParams(), BallParams()
+DP = DecisionParams()
+GOALIE = (4.3, 0.0)
+
+
+# ------------------------------------------------------------ value functions
+def test_motion_time_accelerates_then_cruises():
+    assert motion_time(0.0, 3.0, 3.0) == pytest.approx(0.0)
+    assert motion_time(1.5, 3.0, 3.0) == pytest.approx(1.0)  # d = a t^2 / 2 up to v^2 / 2a = 1.5 m
+    assert motion_time(4.5, 3.0, 3.0) == pytest.approx(4.5 / 3.0 + 0.5)
+
+
+def test_ball_times_match_the_ball_model_while_the_ball_moves():
+    for v0 in (1.63, 2.43, 3.5, 5.21, 6.5):  # on and between the table's rows
+        s = np.linspace(0.05, 10.0, 200)
+        s = s[np.array([ball_model.speed_at_distance(v0, float(x), BP) for x in s]) >= 0.8]
+        ref = np.array([ball_model.time_to_distance(v0, float(x), BP) for x in s])
+        assert np.abs(ball_times(v0, s, BP) - ref).max() < 0.05
+    assert math.isinf(float(ball_times(2.0, ball_model.stop_distance(2.0, BP) + 0.2, BP)))
+
+
+def test_pass_kick_speed_arrives_at_the_requested_speed():
+    for d in (1.0, 3.0, 5.5):
+        v0 = pass_kick_speed(d, BP, RP, DP)
+        assert ball_model.speed_at_distance(v0, d, BP) == pytest.approx(DP.pass_arrive_speed, abs=0.1)
+
+
+def test_path_margin_negative_with_an_opponent_on_the_lane_and_positive_without():
+    start, end = np.array([0.0, 0.0]), np.array([3.0, 0.0])
+    v0 = pass_kick_speed(3.0, BP, RP, DP)
+    assert path_margin(start, end, v0, np.array([[1.5, 0.05]]), RP, BP, DP) < 0.0
+    assert path_margin(start, end, v0, np.array([[-1.0, 2.5]]), RP, BP, DP) > 0.2
+    assert math.isinf(path_margin(start, end, v0, np.zeros((0, 2)), RP, BP, DP))
+    # a ball too slow to get there
+    assert path_margin(start, end, 0.5, np.array([[1.5, 2.5]]), RP, BP, DP) == -math.inf
+
+
+def test_open_goal_interval_full_mouth_and_split_by_a_robot():
+    p = np.array([2.5, 0.0])
+    full, aim = open_goal_interval(p, np.zeros((0, 2)), F, RP, BP)
+    assert full == pytest.approx(2 * math.atan2(0.5, 2.0))
+    assert aim == pytest.approx(0.0, abs=1e-9)
+    blocked, aim2 = open_goal_interval(p, np.array([[3.5, 0.0]]), F, RP, BP)
+    assert blocked < full / 2 + 1e-9 and abs(aim2) > 0.05  # the widest gap beside the robot
+    wall, _ = open_goal_interval(p, np.array([[3.0, -0.15], [3.0, 0.0], [3.0, 0.15]]), F, RP, BP)
+    assert wall == 0.0
+    # robots behind the shooter do not block
+    assert open_goal_interval(p, np.array([[1.0, 0.0]]), F, RP, BP)[0] == pytest.approx(full)
+
+
+def test_shot_value_open_goal_beats_a_walled_goal_and_falls_with_distance():
+    near = shot_value(np.array([3.0, 0.0]), np.array([[4.3, 0.35]]), np.zeros((0, 2)), F, RP, BP, DP)
+    far = shot_value(np.array([-2.0, 0.0]), np.array([[4.3, 0.35]]), np.zeros((0, 2)), F, RP, BP, DP)
+    walled = shot_value(np.array([3.0, 0.0]), np.array([[3.6, -0.15], [3.6, 0.0], [3.6, 0.15]]), np.zeros((0, 2)),
+                        F, RP, BP, DP)
+    assert near > 0.8 and far < near and walled == 0.0
+
+
+# -------------------------------------------------------------- the decision
+def test_decision_open_goal_shoots():
+    mates = np.array([[-4.2, 0.0], [3.0, 0.0], [1.0, 2.0]])
+    d = decide(np.array([3.08, 0.0]), 1, mates, np.array([[4.3, 0.35]]), F)
+    assert d.choice is Choice.SHOOT and d.shot >= DP.shoot_threshold
+
+
+def test_decision_blocked_shot_with_a_free_teammate_passes_to_it():
+    mates = np.array([[-4.2, 0.0], [2.0, 0.0], [2.5, 2.0], [-1.0, -2.0]])
+    wall = np.array([[4.3, 0.0], [3.0, -0.15], [3.0, 0.0], [3.0, 0.15], [2.4, 0.3]])  # shot blocked, carrier pressed
+    d = decide(np.array([2.08, 0.0]), 1, mates, wall, F, candidates=(2, 3))
+    assert d.shot == 0.0
+    assert d.choice is Choice.PASS and d.target == 2
+    assert d.best_pass.success >= DP.min_pass_success and d.best_pass.receiver_shot > 0.0
+
+
+def test_decision_intercepted_lane_is_no_pass():
+    mates = np.array([[-4.2, 0.0], [2.0, 0.0], [2.5, 2.0]])
+    wall = np.array([[4.3, 0.0], [3.0, -0.15], [3.0, 0.0], [3.0, 0.15], [2.4, 0.3]])
+    lane = np.vstack([wall, [[2.3, 1.0]]])  # an opponent in the middle of the pass lane
+    d = decide(np.array([2.08, 0.0]), 1, mates, lane, F, candidates=(2,))
+    assert d.choice is not Choice.PASS
+    (option,) = d.passes
+    assert option.margin < 0.0 and option.success == 0.0
+
+
+def test_pass_candidates_respect_length_and_field_limits():
+    p = np.array([0.0, 0.0])
+    pts = {2: np.array([0.5, 0.0]), 3: np.array([7.0, 0.0]), 4: np.array([2.0, 1.0]), 5: np.array([4.0, 0.0])}
+    opts = evaluate_passes(p, pts, np.zeros((6, 2)), np.zeros((0, 2)), F, RP, BP, DP)
+    assert [o.teammate for o in opts] == [4]  # too short, too long / outside, inside the defense area
+    with pytest.raises(ValueError, match="carrier index"):
+        decide(p, 7, np.zeros((3, 2)), np.zeros((0, 2)), F)
+
+
+def test_decision_params_validation_names_the_field():
+    with pytest.raises(ValueError, match="min_pass_m"):
+        DecisionParams(min_pass_m=7.0)
+    with pytest.raises(ValueError, match="shot_speed"):
+        DecisionParams(shot_speed=-1.0)
+
+
+# ----------------------------------------------------------------- Pass tactic
+P = PassState
+
+
+@pytest.mark.parametrize("state,inputs,expected", [
+    (P.GET_BALL, PassInputs(d_db=0.2), P.GET_BALL),
+    (P.GET_BALL, PassInputs(d_db=0.03), P.HOLD),
+    (P.HOLD, PassInputs(d_db=0.0, receiver_ready=False), P.HOLD),  # handshake: wait for the receiver
+    (P.HOLD, PassInputs(d_db=0.0, receiver_ready=True, aim_err=0.1, speed=0.1), P.KICK),
+    (P.HOLD, PassInputs(d_db=0.0, receiver_ready=True, aim_err=1.0, speed=0.1), P.HOLD),  # still turning
+    (P.HOLD, PassInputs(d_db=0.0, receiver_ready=True, aim_err=0.1, speed=0.8), P.HOLD),  # still braking
+    (P.HOLD, PassInputs(d_db=0.0, receiver_ready=True, has_target=False), P.HOLD),
+    (P.HOLD, PassInputs(d_db=0.08, receiver_ready=True), P.GET_BALL),
+    (P.HOLD, PassInputs(d_db=0.0, time_in_state=2.5), P.FAILED),
+    (P.KICK, PassInputs(d_db=0.0), P.KICK),
+    (P.KICK, PassInputs(d_db=0.0, kicked=True), P.DONE),
+    (P.KICK, PassInputs(d_db=0.0, skill_status=SkillStatus.SUCCEEDED), P.DONE),
+    (P.KICK, PassInputs(d_db=0.1, skill_status=SkillStatus.FAILED), P.FAILED),
+    (P.DONE, PassInputs(d_db=0.5), P.DONE),
+    (P.FAILED, PassInputs(d_db=0.0, receiver_ready=True), P.FAILED),
+])
+def test_pass_transitions(state, inputs, expected):
+    assert Pass.transition(state, inputs, PassParams()) is expected
+
+
+R = ReceiveState
+
+
+@pytest.mark.parametrize("state,inputs,expected", [
+    (R.POSITION, ReceiveInputs(dist_to_point=1.0), R.POSITION),
+    (R.POSITION, ReceiveInputs(dist_to_point=0.1, face_err=0.1, speed=0.1), R.READY),
+    (R.POSITION, ReceiveInputs(dist_to_point=0.1, face_err=1.0, speed=0.1), R.POSITION),
+    (R.POSITION, ReceiveInputs(dist_to_point=1.0, ball_incoming=True), R.RECEIVING),
+    (R.READY, ReceiveInputs(dist_to_point=0.2), R.READY),
+    (R.READY, ReceiveInputs(dist_to_point=0.5), R.POSITION),
+    (R.READY, ReceiveInputs(dist_to_point=0.0, ball_incoming=True), R.RECEIVING),
+    (R.RECEIVING, ReceiveInputs(dist_to_point=0.0, ball_speed=2.0), R.RECEIVING),
+    (R.RECEIVING, ReceiveInputs(dist_to_point=0.0, ball_speed=0.5, skill_status=SkillStatus.SUCCEEDED), R.CONTROLLED),
+    (R.RECEIVING, ReceiveInputs(dist_to_point=0.0, ball_speed=2.0, skill_status=SkillStatus.FAILED), R.FAILED),
+    (R.RECEIVING, ReceiveInputs(dist_to_point=0.0, ball_speed=0.1), R.FETCH),
+    (R.RECEIVING, ReceiveInputs(dist_to_point=0.0, ball_speed=0.1, on_dribbler=True), R.RECEIVING),
+    (R.RECEIVING, ReceiveInputs(dist_to_point=0.0, ball_speed=2.0, time_in_state=3.5), R.FAILED),
+    (R.FETCH, ReceiveInputs(dist_to_point=0.0, skill_status=SkillStatus.SUCCEEDED), R.CONTROLLED),
+    (R.FETCH, ReceiveInputs(dist_to_point=0.0, time_in_state=3.5), R.FAILED),
+    (R.CONTROLLED, ReceiveInputs(dist_to_point=2.0, ball_incoming=True), R.CONTROLLED),
+])
+def test_receive_transitions(state, inputs, expected):
+    assert Receive.transition(state, inputs, ReceiveParams()) is expected
+
+
+def test_ball_incoming_geometry():
+    assert ball_incoming(np.zeros(2), np.array([2.0, 0.0]), np.array([3.0, 0.5]), 0.5, 1.0)
+    assert not ball_incoming(np.zeros(2), np.array([-2.0, 0.0]), np.array([3.0, 0.5]), 0.5, 1.0)  # moving away
+    assert not ball_incoming(np.zeros(2), np.array([2.0, 0.0]), np.array([3.0, 1.5]), 0.5, 1.0)  # passes wide
+    assert not ball_incoming(np.zeros(2), np.array([0.2, 0.0]), np.array([3.0, 0.0]), 0.5, 1.0)  # too slow
+
+
+def test_tactics_on_hand_built_scenes():
+    """Pass: ball on the dribbler -> HOLD (waits for the receiver), facing the target and
+    still with a ready receiver -> KICK. Receive: at its point facing the ball -> READY."""
+    ball = ball_in_front(0.0, 0.0, 0.0)
+    w = make_world(blue=[(-4.2, 0.0, 0.0), (0.0, 0.0, 0.0), (2.0, 0.0, math.pi)], ball=ball, frame="blue",
+                   blue_on_dribbler=[False, True, False])
+    p = Pass(F, RP, BP)
+    p.set_params(target_robot=2, target_point=(2.0, 0.0), receiver_ready=False)
+    for _ in range(3):
+        p.act(w, 1)
+    assert p.status.state is PassState.HOLD
+    p.set_params(receiver_ready=True)
+    p.act(w, 1)
+    assert p.status.state is PassState.KICK
+    r = Receive(F, RP, BP, receive_point=(2.0, 0.0), ball_from=tuple(ball))
+    r.act(w, 2)
+    assert r.status.state is ReceiveState.READY
+    r2 = Receive(F, RP, BP, receive_point=(1.0, 2.0), ball_from=tuple(ball))
+    a = r2.act(w, 2)
+    assert r2.status.state is ReceiveState.POSITION and np.hypot(a[0], a[1]) > 0.1  # it moves there
+
+
+def test_tactics_reject_bad_parameters_with_clear_errors():
+    with pytest.raises(ValueError, match="unknown"):
+        Pass(F, RP, BP, unknown=1)
+    with pytest.raises(ValueError, match="Pass.target_point .* outside the div_b field"):
+        Pass(F, RP, BP, target_point=(6.0, 0.0))
+    with pytest.raises(ValueError, match="Receive.receive_point must be two"):
+        Receive(F, RP, BP, receive_point=(1.0,))
+    with pytest.raises(ValueError, match="Receive.ball_from must be two finite"):
+        Receive(F, RP, BP, ball_from=(float("nan"), 0.0))
+    assert Receive(F, RP, BP, receive_point=[1, 2]).params.receive_point == (1.0, 2.0)
+    assert Receive(F, RP, BP, ball_from=(-0.9, 3.01)).params.ball_from == (-0.9, 3.01)  # ball just over a line
+
+
+# --------------------------------------------------------------- attacker KEEP
+def test_attacker_keep_state_holds_fire_and_returns_to_aiming():
+    S = ShootState
+    hold = ShootParams(hold_fire=True)
+    assert Attacker.transition(S.DRIVE_FORWARD, ShootInputs(d_db=0.01, skill_status=SkillStatus.SUCCEEDED),
+                               hold) is S.KEEP
+    assert Attacker.transition(S.AIM_TO_SHOOT, ShootInputs(d_db=0.0), hold) is S.KEEP
+    assert Attacker.transition(S.KEEP, ShootInputs(d_db=0.0), hold) is S.KEEP
+    assert Attacker.transition(S.KEEP, ShootInputs(d_db=0.0), ShootParams()) is S.AIM_TO_SHOOT
+    assert Attacker.transition(S.KEEP, ShootInputs(d_db=0.08), hold) is S.GO_TO_BALL
+    # default (the paper's machine) never keeps
+    assert Attacker.transition(S.DRIVE_FORWARD, ShootInputs(d_db=0.01, skill_status=SkillStatus.SUCCEEDED),
+                               ShootParams()) is S.AIM_TO_SHOOT
+
+
+# ------------------------------------------------------------------ stats
+def _kick_world(kicker_xy, ball_vel, mates, opp=(), on_blue=None, on_yellow=None, t=0.0):
+    blue = [(*kicker_xy, 0.0)] + [(*m, 0.0) for m in mates]
+    return make_world(blue=blue, yellow=[(*o, math.pi) for o in opp], ball=kicker_xy, ball_vel=ball_vel, t=t,
+                      blue_on_dribbler=on_blue, yellow_on_dribbler=on_yellow)
+
+
+def test_stats_pass_completed_intercepted_and_shot():
+    tr = MatchStatsTracker(F, BP)
+    w = _kick_world((0.0, 0.0), (3.0, 0.0), [(2.5, 0.1)], opp=[(1.0, 2.0)])
+    tr.observe(w, [{"type": "kick", "agent": "blue_0", "speed": 3.0}])
+    for k in range(6):  # the teammate holds it 0.1 s
+        tr.observe(_kick_world((0.0, 0.0), (0.0, 0.0), [(2.5, 0.1)], opp=[(1.0, 2.0)], on_blue=[False, True],
+                               t=0.5 + k / 60))
+    s = tr.summary()["blue"]
+    assert (s["passes_attempted"], s["passes_completed"], s["pass_completion"]) == (1, 1, 1.0)
+    # a pass the opponent takes
+    tr.observe(w, [{"type": "kick", "agent": "blue_0", "speed": 3.0}])
+    for k in range(6):
+        tr.observe(_kick_world((0.0, 0.0), (0.0, 0.0), [(2.5, 0.1)], opp=[(1.0, 2.0)], on_yellow=[True], t=2 + k / 60))
+    s = tr.summary()
+    assert s["blue"]["passes_intercepted"] == 1 and s["yellow"]["interceptions"] == 1
+    assert s["blue"]["pass_completion"] == pytest.approx(0.5)
+    # a shot: aimed at the opponent goal mouth; a clearance at nobody is only a kick
+    tr.observe(_kick_world((2.0, 0.0), (6.0, 0.3), []), [{"type": "kick", "agent": "blue_0", "speed": 6.0}])
+    tr.observe(_kick_world((0.0, 0.0), (0.0, -5.0), [(2.5, 2.0)]), [{"type": "kick", "agent": "blue_0", "speed": 5}])
+    tr.observe(w, [{"type": "goal", "team": "blue", "t": 3.0}])
+    s = tr.summary()["blue"]
+    assert (s["shots"], s["kicks"], s["goals"], s["passes_attempted"]) == (1, 4, 1, 2)
+
+
+def test_stats_deflection_is_not_control_and_timeout_loses_the_pass():
+    tr = MatchStatsTracker(F, BP)
+    tr.observe(_kick_world((0.0, 0.0), (3.0, 0.0), [(2.5, 0.0)], opp=[(1.2, 0.0)]),
+               [{"type": "kick", "agent": "blue_0", "speed": 3.0}])
+    tr.observe(_kick_world((0.0, 0.0), (2.0, 0.5), [(2.5, 0.0)], opp=[(1.2, 0.0)], on_yellow=[True], t=0.3))
+    assert tr.summary()["blue"]["passes_intercepted"] == 0  # one step on the dribbler: a deflection
+    tr.observe(_kick_world((0.0, 0.0), (0.0, 0.0), [(2.5, 0.0)], opp=[(1.2, 0.0)], t=5.0))
+    s = tr.summary()["blue"]
+    assert s["passes_lost"] == 1 and s["pass_completion"] == 0.0
+    with pytest.raises(ValueError, match="field-frame"):
+        tr.observe(make_world(blue=[(0, 0, 0)], frame="blue"))
+
+
+# ------------------------------------------------------------- in the simulator
+def _run_pass(env, passer, receiver, steps, tracker=None):
+    """Drive blue_0 (Pass) and blue_1 (Receive) with the handshake wired as a play does."""
+    for _ in range(steps):
+        w = env.vision_state("blue")
+        a1 = receiver.act(w, 1)
+        passer.set_params(receiver_ready=receiver.status.state is ReceiveState.READY)
+        a0 = passer.act(w, 0)
+        _, _, _, _, infos = env.step({"blue_0": a0, "blue_1": a1})
+        if tracker is not None:
+            tracker.observe(env.world_state(), next(iter(infos.values()))["events"])
+        if receiver.status.state in (ReceiveState.CONTROLLED, ReceiveState.FAILED):
+            break
+
+
+def test_pass_between_two_baseline_robots_on_an_empty_field_completes():
+    from ssl_marl.envs import parallel_env
+
+    env = parallel_env(n_blue=2, n_yellow=0, field="div_b", max_time_s=30.0)
+    ball = ball_in_front(-1.0, 0.5, 0.3)
+    env.reset(seed=0, options={"ball": {"pos": ball}, "robots": {"blue_0": (-1.0, 0.5, 0.3),
+                                                                   "blue_1": (1.5, -1.0, 2.0)}})
+    target = (1.5, -1.0)
+    passer = Pass(F, RP, BP, target_robot=1, target_point=target)
+    receiver = Receive(F, RP, BP, receive_point=target, ball_from=tuple(ball))
+    tracker = MatchStatsTracker(F, BP)
+    _run_pass(env, passer, receiver, 8 * 60, tracker)
+    assert passer.status.state is PassState.DONE and passer.status.kicks == 1
+    assert receiver.status.state is ReceiveState.CONTROLLED
+    assert bool(env.world_state().blue.ball_on_dribbler[1])
+    s = tracker.summary()["blue"]
+    assert (s["passes_attempted"], s["passes_completed"]) == (1, 1)
+
+
+def test_passer_waits_for_a_receiver_that_is_not_ready():
+    from ssl_marl.envs import parallel_env
+
+    env = parallel_env(n_blue=2, n_yellow=0, field="div_b", max_time_s=30.0)
+    ball = ball_in_front(-1.0, 0.5, 0.0)
+    env.reset(seed=0, options={"ball": {"pos": ball}, "robots": {"blue_0": (-1.0, 0.5, 0.0),
+                                                                   "blue_1": (2.0, 0.5, 0.0)}})
+    passer = Pass(F, RP, BP, target_robot=1, target_point=(2.0, 0.5), max_wait_s=10.0)
+    receiver = Receive(F, RP, BP, receive_point=(-1.0, 2.5), ball_from=tuple(ball))  # far from its point
+    _run_pass(env, passer, receiver, 30)
+    assert passer.status.state is PassState.HOLD and passer.status.kicks == 0
+    assert receiver.status.state is ReceiveState.POSITION
+
+
+def test_passing_team_passes_around_a_blocked_shot():
+    """A passing team (goalie, carrier, free teammate) against a wall of three robots in
+    front of the goal: the carrier passes to the free teammate, who takes the ball."""
+    from ssl_marl.envs import parallel_env
+    from ssl_marl.plays.passing_play import coordinator_of, passing_plays
+    from ssl_marl.plays.team import TeamController
+
+    env = parallel_env(n_blue=3, n_yellow=3, field="div_b", max_time_s=30.0)
+    ball = ball_in_front(1.5, 0.0, 0.0)
+    robots = {"blue_0": (-4.2, 0.0, 0.0), "blue_1": (1.5, 0.0, 0.0), "blue_2": (2.0, 2.2, -1.8),
+              "yellow_0": (3.3, -0.2, math.pi), "yellow_1": (3.3, 0.0, math.pi), "yellow_2": (3.3, 0.2, math.pi)}
+    env.reset(seed=0, options={"ball": {"pos": ball}, "robots": robots})
+    plays = passing_plays()
+    team = TeamController("blue", 3, plays=plays)
+    coord = coordinator_of(plays)
+    tracker = MatchStatsTracker(F, BP)
+    for _ in range(6 * 60):
+        acts = team.act(env)
+        acts.update({f"yellow_{i}": np.zeros(5, np.float32) for i in range(3)})
+        _, _, _, _, infos = env.step(acts)
+        tracker.observe(env.world_state(), next(iter(infos.values()))["events"])
+        if coord.counters.completed:
+            break
+    assert coord.counters.planned >= 1 and coord.counters.kicked >= 1 and coord.counters.completed == 1
+    s = tracker.summary()["blue"]
+    assert s["passes_completed"] == 1 and s["shots"] == 0
+
+
+def test_passing_team_kinds_in_matches_report_stats():
+    from ssl_marl.plays.match import CONTROLLERS, make_controller, play_match, summarize
+    from ssl_marl.plays.passing_play import coordinator_of, passing_team_skills
+    from ssl_marl.plays.team import required_skills
+
+    assert {"passing-learned", "passing-baseline"} <= set(CONTROLLERS)
+    c = make_controller("passing-baseline", "yellow", 6, "div_b")
+    assert coordinator_of(c.selector.plays) is not None
+    assert set(required_skills(c.selector.plays)) == {"go_to_ball", "aim_to_shoot", "pass", "receive"}
+    assert passing_team_skills("baseline") == {k: "baseline" for k in ("go_to_ball", "aim_to_shoot", "pass",
+                                                                         "receive")}
+    learned = passing_team_skills("learned")
+    assert learned["go_to_ball"] == learned["aim_to_shoot"] == "learned"
+    with pytest.raises(ValueError, match="passing team skills"):
+        passing_team_skills("expert")
+    r = play_match("passing-baseline", "baseline", robots=3, seconds=2.0, seed=3, progress=False)
+    assert set(r.stats) >= {"blue", "yellow", "events"}
+    assert r.config["skills"]["blue"]["pass"] == "baseline"
+    for team in ("blue", "yellow"):
+        assert r.stats[team]["goals"] == r.score[team]
+    s = summarize([r, r])
+    assert s["stats"]["blue"]["kicks"] == 2 * r.stats["blue"]["kicks"]
+
+
+# ----------------------------------------------------------- the coordinator
+def _ctx(world, role_status=None, role_holders=None):
+    from dataclasses import replace
+
+    from ssl_marl.plays.play import make_context
+
+    return replace(make_context(world, "blue", F, RP), role_status=role_status or {}, role_holders=role_holders or {})
+
+
+def _status(state):
+    from ssl_marl.plays.tactic_base import TacticStatus
+
+    return TacticStatus(state)
+
+
+BLOCKED = dict(blue=[(-4.2, 0.0, 0.0), (1.5, 0.0, 0.0), (2.0, 2.2, -1.8)],
+               yellow=[(3.3, -0.2, math.pi), (3.3, 0.0, math.pi), (3.3, 0.2, math.pi)],
+               ball=ball_in_front(1.5, 0.0, 0.0), blue_on_dribbler=[False, True, False])
+
+
+def test_coordinator_plans_a_pass_only_once_the_carrier_has_settled():
+    from ssl_marl.plays.passing_play import PassCoordinator, PassPhase
+
+    c = PassCoordinator()
+    w = make_world(**BLOCKED, t=1.0, frame="blue")
+    c.prepare(_ctx(w, {"attacker": _status(ShootState.DRIVE_FORWARD)}, {"attacker": 1}))
+    assert c.plan is None and c.hold_fire()  # no decision yet: the attacker must not shoot
+    for k in range(3):
+        c.prepare(_ctx(make_world(**BLOCKED, t=1.1 + k / 60, frame="blue"), {"attacker": _status(ShootState.KEEP)},
+                       {"attacker": 1}))
+    assert c.plan is not None and (c.plan.passer, c.plan.receiver, c.plan.phase) == (1, 2, PassPhase.SETUP)
+    assert c.counters.planned == 1
+
+
+def test_coordinator_follows_the_handshake_to_completion_and_aborts_on_failure():
+    from ssl_marl.plays.passing_play import PassCoordinator, PassPhase, PassPlan
+
+    c = PassCoordinator()
+    w = make_world(**BLOCKED, t=2.0, frame="blue")
+    c.plan = PassPlan(1, 2, np.array([2.0, 2.2]), PassPhase.SETUP, 1.9)
+    c.prepare(_ctx(w, {"passer": _status(PassState.KICK), "receiver": _status(ReceiveState.READY)}))
+    assert c.plan.phase is PassPhase.SETUP
+    c.prepare(_ctx(make_world(**BLOCKED, t=2.1, frame="blue"),
+                   {"passer": _status(PassState.DONE), "receiver": _status(ReceiveState.RECEIVING)}))
+    assert c.plan.phase is PassPhase.IN_FLIGHT and c.counters.kicked == 1
+    c.prepare(_ctx(make_world(**BLOCKED, t=2.9, frame="blue"),
+                   {"passer": _status(PassState.DONE), "receiver": _status(ReceiveState.CONTROLLED)}))
+    assert c.plan is None and c.counters.completed == 1
+    # a passer that loses the ball before the kick ends the plan
+    c.plan = PassPlan(1, 2, np.array([2.0, 2.2]), PassPhase.SETUP, 3.0)
+    c.prepare(_ctx(make_world(**BLOCKED, t=3.1, frame="blue"),
+                   {"passer": _status(PassState.FAILED), "receiver": _status(ReceiveState.READY)}))
+    assert c.plan is None and c.counters.aborted == 1
+    # a pass in flight that nobody controls times out
+    c.plan = PassPlan(1, 2, np.array([2.0, 2.2]), PassPhase.IN_FLIGHT, 3.2, t_kick=3.3)
+    c.prepare(_ctx(make_world(**BLOCKED, t=3.3 + c.params.max_flight_s + 0.1, frame="blue"),
+                   {"receiver": _status(ReceiveState.RECEIVING)}))
+    assert c.plan is None and c.counters.aborted == 2
+
+
+def test_restart_play_applies_at_the_centre_mark_and_free_kick_spots():
+    from ssl_marl.plays.passing_play import restart_applicable
+
+    mates = [(-4.2, 0.0, 0.0), (-0.8, 0.0, 0.0)]
+    opp = [(4.2, 0.0, math.pi), (1.5, 0.0, math.pi)]
+    assert restart_applicable(_ctx(make_world(blue=mates, yellow=opp, ball=(0.0, 0.0), frame="blue")))
+    assert not restart_applicable(_ctx(make_world(blue=mates, yellow=opp, ball=(0.0, 0.0), ball_vel=(1.0, 0.0),
+                                                  frame="blue")))
+    spot = (-1.0, F.half_width - 0.2)  # where the referee places a ball that left over the touch line
+    assert restart_applicable(_ctx(make_world(blue=mates, yellow=opp, ball=spot, frame="blue")))
+    assert not restart_applicable(_ctx(make_world(blue=mates, yellow=opp, ball=(-1.0, 1.0), frame="blue")))
+    far = [(-4.2, 0.0, 0.0), (-3.0, -2.0, 0.0)]  # they are much closer: no restart for us
+    assert not restart_applicable(_ctx(make_world(blue=far, yellow=[(4.2, 0, math.pi), (-0.8, 2.0, math.pi)],
+                                                  ball=spot, frame="blue")))
