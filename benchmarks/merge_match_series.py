@@ -3,7 +3,7 @@
 A long series can be played in parts (e.g. 2 matches per part, seeds S, S+2, ...), so that
 an interrupted run keeps what it finished; this writes the same file one
 ``ssl-marl match --matches N --json OUT`` would: ``{"summary": ..., "matches": [...]}`` with
-the matches in seed order and the summary recomputed by ``ssl_marl.plays.match.summarize``.
+the matches in seed order and the summary recomputed by ``ssl_marl.runners.result.summarize``.
 
     python benchmarks/merge_match_series.py runs/parts/pl_vs_b_*.json --out results/series.json
 
@@ -45,7 +45,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--out", required=True, help="merged series JSON")
     args = ap.parse_args(argv)
     from ssl_marl.io import atomic_write_json
-    from ssl_marl.plays.match import MatchResult, summarize
+    from ssl_marl.runners.result import MatchResult, summarize
 
     dicts = load_matches(args.parts)
     names = {f.name for f in fields(MatchResult)}

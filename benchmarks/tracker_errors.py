@@ -138,7 +138,7 @@ def _step_all(env, team: str, acc: Acc, flags: dict, history: dict, act) -> dict
 def run_tactic(episodes: int, seed: int, acc: Acc, flags: dict, progress: bool) -> dict:
     from tqdm import tqdm
 
-    from ssl_marl.plays.evaluate import sample_scene
+    from ssl_marl.runners.tactic_eval import sample_scene
     from ssl_marl.plays.shoot import GoToBallAndShoot
 
     env = TrackedVisionEnv(parallel_env(n_blue=1, n_yellow=0, realism="realistic", referee=True,
@@ -164,7 +164,7 @@ def run_tactic(episodes: int, seed: int, acc: Acc, flags: dict, progress: bool) 
 def run_match(seconds: float, seed: int, acc: Acc, flags: dict, progress: bool) -> dict:
     from tqdm import tqdm
 
-    from ssl_marl.plays.match import start_options
+    from ssl_marl.runners.match import start_options
     from ssl_marl.plays.team import TeamController
 
     env = TrackedVisionEnv(parallel_env(n_blue=6, n_yellow=6, field="div_b", realism="realistic",

@@ -345,7 +345,9 @@ def test_passing_team_passes_around_a_blocked_shot():
 
 
 def test_passing_team_kinds_in_matches_report_stats():
-    from ssl_marl.plays.match import CONTROLLERS, make_controller, play_match, summarize
+    from ssl_marl.runners.controllers import TEAM_KINDS as CONTROLLERS, make_controller
+    from ssl_marl.runners.match import play_match
+    from ssl_marl.runners.result import summarize
     from ssl_marl.plays.passing_play import coordinator_of, passing_team_skills
     from ssl_marl.plays.team import required_skills
 

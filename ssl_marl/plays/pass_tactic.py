@@ -29,11 +29,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..physics.state import WorldState
+from ..physics.state import WorldState, wrap_angle
 from ..skills.base import SkillStatus, make_action
 from ..skills.baseline import velocity_command
 from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance
-from .navigation import angle_diff, facing_towards
+from .navigation import facing_towards
 from .shoot import govern_approach
 from .tactic_base import NEAR_BALL_M, Tactic, check_field_point, skill_status
 
@@ -184,8 +184,8 @@ class Pass(Tactic):
             v = vel * max(0.0, 1.0 - p.hold_decel * self.dt / sp) if sp > 1e-6 else np.zeros(2)
             omega = 0.0
             if p.target_point is not None:
-                err = angle_diff(facing_towards(ts.pos[robot], np.asarray(p.target_point, float)),
-                                 float(ts.heading[robot]))
+                err = wrap_angle(facing_towards(ts.pos[robot], np.asarray(p.target_point, float))
+                                 - float(ts.heading[robot]))
                 omega = float(np.clip(p.hold_turn_gain * err, -p.hold_turn_rate, p.hold_turn_rate))
             w0 = float(ts.omega[robot])  # change the turn rate gently: the dribbler face would shed the ball
             omega = w0 + float(np.clip(omega - w0, -p.hold_alpha * self.dt, p.hold_alpha * self.dt))
@@ -201,7 +201,7 @@ class Pass(Tactic):
 def heading_error_to(world: WorldState, robot: int, point) -> float:
     """|heading error| (rad) of ``robot`` towards ``point`` (team frame)."""
     ts = world.team(world.frame)
-    return abs(angle_diff(facing_towards(ts.pos[robot], np.asarray(point, float)), float(ts.heading[robot])))
+    return abs(wrap_angle(facing_towards(ts.pos[robot], np.asarray(point, float)) - float(ts.heading[robot])))
 
 
 __all__ = ["PassState", "PassParams", "PassInputs", "Pass", "heading_error_to"]

@@ -30,9 +30,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..physics.state import WorldState
+from ..physics.state import WorldState, wrap_angle
 from ..skills.base import SkillStatus, make_action
-from .navigation import NavigateToPoint, NavParams, angle_diff, facing_towards
+from .navigation import NavigateToPoint, NavParams, facing_towards
 from .tactic_base import Tactic, check_field_point, skill_status
 
 
@@ -141,7 +141,7 @@ class Receive(Tactic):
         src = np.asarray(p.ball_from, float) if p.ball_from is not None else world.ball_pos
         face = facing_towards(point, src)
         skill = self._running_skill()
-        return ReceiveInputs(dist_to_point=float(np.hypot(*(point - pos))), face_err=abs(angle_diff(face, h)),
+        return ReceiveInputs(dist_to_point=float(np.hypot(*(point - pos))), face_err=abs(wrap_angle(face - h)),
                              speed=float(np.hypot(*ts.vel[robot])),
                              ball_incoming=ball_incoming(world.ball_pos, world.ball_vel, pos, p.incoming_speed,
                                                          p.line_tol_m),

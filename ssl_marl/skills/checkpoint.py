@@ -103,7 +103,7 @@ def safe_torch_load(path: str | os.PathLike[str], what: str = "ssl_marl checkpoi
     path = Path(path)
     if not path.is_file():
         raise FileNotFoundError(f"checkpoint not found: {path}" + (" (it is a folder)" if path.is_dir() else ""))
-    valid = VALID_FILES.get(what, f"a valid one is written by ssl_marl with torch.save")
+    valid = VALID_FILES.get(what, "a valid one is written by ssl_marl with torch.save")
     with open(path, "rb") as fh:
         head = fh.read(4)
     if head != _ZIP_MAGIC:
