@@ -381,13 +381,11 @@ def passing_team_skills(kind: str) -> dict[str, str]:
     if kind != "learned":
         raise ValueError(f"passing team skills must be 'learned' or 'baseline', got {kind!r}")
     out = {name: "learned" for name in CORE_SKILLS}
-    try:
-        from ..skills.passing import PRETRAINED
-    except ImportError:  # pragma: no cover - without the passing skills module
-        PRETRAINED = {}
+    from ..skills.registry import get_skill
+
     for name in PASSING_SKILLS:
-        path = PRETRAINED.get(name)
-        out[name] = "learned" if path is not None and path.exists() else "baseline"
+        actor = get_skill(name).actor
+        out[name] = "learned" if actor is not None and actor.exists() else "baseline"
     return out
 
 

@@ -68,13 +68,13 @@ def team_skills(kind: str, sources: Mapping[str, Any] | None = None, where: str 
     skills ``sources`` ({skill: "baseline" | "learned" | checkpoint path}) replace
     the kind's own: ``kind`` itself when there are none, else a full mapping.
     Raises ValueError for a non-STP kind with sources or an unknown skill."""
-    from ..plays.skillset import SWAPPABLE, validate_skills
+    from ..plays.skillset import CORE_SKILLS, SWAPPABLE, validate_skills
 
     if not sources:
         return kind
     if kind not in STP_KINDS:
         raise ValueError(f"{where}: skill sources need an STP team ({' or '.join(STP_KINDS)}), not {kind!r}")
-    spec: dict[str, Any] = dict(_kind_skills(kind)) if kind in PASSING_KINDS else {name: kind for name in SWAPPABLE}
+    spec: dict[str, Any] = dict(_kind_skills(kind)) if kind in PASSING_KINDS else {name: kind for name in CORE_SKILLS}
     for name, source in sources.items():
         key = name.replace("-", "_") if isinstance(name, str) else name
         if key not in SWAPPABLE:

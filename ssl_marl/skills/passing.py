@@ -29,8 +29,6 @@ from .base import SkillBase, SkillStatus, make_action
 from .baseline import GoToBallBaseline, velocity_command
 from .features import BALL_LOST_DISTANCE, dribbler_ball_distance
 from .passing_features import (
-    PASS_SPEC,
-    RECEIVE_SPEC,
     SLOW_BALL,
     ball_line_geometry,
     check_point,
@@ -41,9 +39,6 @@ from .passing_features import (
     receive_features,
 )
 
-PRETRAINED_DIR = Path(__file__).resolve().parent / "pretrained"
-PRETRAINED = {"pass": PRETRAINED_DIR / "pass.pt", "receive": PRETRAINED_DIR / "receive.pt"}
-SPECS = {"pass": PASS_SPEC, "receive": RECEIVE_SPEC}
 #: Arrival speed (m/s) a pass aims for: TIGERs rate a pass 0 below 1 m/s at the receiver and
 #: 1 from 2 m/s (team-play notes, section A); our receive holds balls closing at <= ~2 m/s.
 DEFAULT_ARRIVAL_SPEED = 1.5
@@ -51,17 +46,11 @@ DEFAULT_ARRIVAL_SPEED = 1.5
 
 def load_passing_policy(skill: str, checkpoint: str | Path | None = None):
     """(NumpyActor, metadata) of the shipped (or given) actor of ``skill`` ("pass" or
-    "receive"), checking its skill name and observation spec."""
-    from .checkpoint import load_actor
-    from .learned import NumpyActor
+    "receive"), checking its skill name and observation spec (the registry's
+    :func:`~ssl_marl.skills.learned.load_policy`)."""
+    from .learned import load_policy
 
-    if skill not in PRETRAINED:
-        raise ValueError(f"unknown passing skill {skill!r}; expected one of {sorted(PRETRAINED)}")
-    path = Path(checkpoint) if checkpoint is not None else PRETRAINED[skill]
-    if not path.exists():
-        raise FileNotFoundError(f"no {skill} actor at {path}")
-    actor, meta = load_actor(path, expected_skill=skill, expected_spec=SPECS[skill])
-    return NumpyActor(actor), meta
+    return load_policy(skill, checkpoint)
 
 
 # ---------------------------------------------------------------------- pass

@@ -6,7 +6,7 @@ from __future__ import annotations
 from ..passing import ReceiveBaseline
 from ..passing_features import (RECEIVE_NAMES, RECEIVE_SPEC, expand_receive_action, receive_features,
                                 receive_task_action)
-from ..registry import PRETRAINED_DIR, SkillDef, SkillTaskDef, register
+from ..registry import SkillDef, SkillTaskDef, register
 
 
 def _to_env(action3, mapping: str | None = None):
@@ -26,7 +26,8 @@ SKILL = register(SkillDef(
     learned="ssl_marl.skills.passing:LearnedReceive",
     # no actor is shipped: the best trained one (0.815 on validation) stays below the
     # hand-coded receive (0.997); a "learned" team uses the hand-coded receive (plays.skillset)
-    actor=PRETRAINED_DIR / "receive.pt",
+    # and a trained checkpoint can still be evaluated or played (eval-skill --policy PATH)
+    actor=None,
     task=SkillTaskDef(
         env_id="ssl_marl/Receive-v0",
         entry_point="ssl_marl.skills.pass_tasks:ReceiveEnv",
