@@ -202,5 +202,5 @@ def test_shipped_learned_pass_completes_a_pass():
     assert isinstance(skill, LearnedPass)
     info = _run("pass", env, skill, {"passer_pose": (-2.0, 0.0, 2.5), "target": (1.5, -1.0), "receiver_vel": (0, 0)})
     assert info["is_success"], info
-    with pytest.raises(ValueError, match="unknown passing skill"):
+    with pytest.raises(ValueError, match="unknown learned skill"):
         load_passing_policy("juggle")
