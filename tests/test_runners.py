@@ -234,8 +234,7 @@ def test_a_checkpoint_source_plays_like_the_same_actor_shipped():
 
 
 # ----------------------------------------------------------------------- ray
-@pytest.mark.slow  # starting Ray and its workers: ~100 s on the shared 2-core machine
-def test_ray_backend_gives_the_local_results():
+def test_ray_backend_gives_the_local_results():  # ~15 s on 2 idle-ish cores (Ray start-up), ~100 s at load 25
     """Skill and tactic evaluations and a match series on a local Ray instance
     (started here, 2 CPUs) equal the local pool's results for the same seeds."""
     ray = pytest.importorskip("ray")
