@@ -22,6 +22,22 @@ import sys
 import numpy as np
 
 
+def controller(cfg: dict, side: str, field, seed: int, ck: dict):
+    """The team controller the match ran: its kind, and the skill kinds recorded in the
+    match config (so that a replay uses the actors that played, even if others have been
+    shipped since)."""
+    from ssl_marl.plays.match import make_controller
+
+    kind, skills = cfg[side], (cfg.get("skills") or {}).get(side)
+    if kind.startswith("passing-") and isinstance(skills, dict):
+        from ssl_marl.plays.passing_play import passing_plays
+        from ssl_marl.plays.team import TeamController
+
+        return TeamController(side, cfg["robots"], field=field, skills=skills, seed=seed,
+                              plays=passing_plays(ball=ck["ball"]), **ck)
+    return make_controller(kind, side, cfg["robots"], field, seed=seed, **ck)
+
+
 def replay_for_passing_goal(match: dict, team: str, within: float, before: float, after: float, width: int,
                             fps: float) -> tuple[list[np.ndarray], float, float] | None:
     """Replay ``match`` (the settings in its config) with a stats tracker and a rolling
@@ -31,7 +47,7 @@ def replay_for_passing_goal(match: dict, team: str, within: float, before: float
     from collections import deque
 
     from ssl_marl.envs import parallel_env
-    from ssl_marl.plays.match import make_controller, start_options
+    from ssl_marl.plays.match import start_options
     from ssl_marl.plays.stats import MatchStatsTracker
 
     cfg = match["config"]
@@ -39,8 +55,7 @@ def replay_for_passing_goal(match: dict, team: str, within: float, before: float
                        realism=cfg["realism"], after_goal="kickoff", realtime=False, render_mode="rgb_array",
                        render_width_px=width)
     ck = dict(robot=env.config.robot, ball=env.config.ball, dt=env.config.dt)
-    ctrls = [make_controller(cfg[side], side, cfg["robots"], env.field, seed=cfg["seed"] + k, **ck)
-             for k, side in enumerate(("blue", "yellow"))]
+    ctrls = [controller(cfg, side, env.field, cfg["seed"] + k, ck) for k, side in enumerate(("blue", "yellow"))]
     env.reset(seed=cfg["seed"], options=start_options(env, cfg["seed"], cfg["start_jitter_m"]))
     tracker = MatchStatsTracker(env.field, env.config.ball)
     every = max(int(round(env.config.control_hz / fps)), 1)
