@@ -20,7 +20,9 @@ from ssl_marl.skills.learned import PRETRAINED
 onnx = pytest.importorskip("onnx")
 ort = pytest.importorskip("onnxruntime")
 
-ENV_IDS = {"go_to_ball": "ssl_marl/GoToBall-v0", "aim_to_shoot": "ssl_marl/AimToShoot-v0"}
+from ssl_marl.skills.registry import task_skills  # noqa: E402
+
+ENV_IDS = {s.name: s.task.env_id for s in task_skills()}  # every skill task, from the registry
 
 
 def _observations(env_id: str, n: int, seed: int = 10_000) -> np.ndarray:

@@ -24,9 +24,21 @@ def env():
 @pytest.mark.parametrize("name", SKILL_NAMES)
 @pytest.mark.parametrize("team", ["blue", "yellow"])
 def test_team_argument_equals_team_frame_snapshot(env, kind, name, team):
+    from ssl_marl.skills.registry import get_skill
+
+    spec = get_skill(name)
+    if kind == "learned" and spec.has_learned and spec.actor is None:
+        pytest.skip(f"{name} ships no learned actor")
     ws = env.world_state()
-    a = make_skill(name, kind, env.field).act(ws, 1, team=team)
-    b = make_skill(name, kind, env.field).act(to_team_frame(ws, team), 1)
+
+    def build():
+        skill = make_skill(name, kind, env.field)
+        if hasattr(skill, "set_target"):  # the pass needs its receiver point (team frame)
+            skill.set_target(np.array([1.0, 0.5]))
+        return skill
+
+    a = build().act(ws, 1, team=team)
+    b = build().act(to_team_frame(ws, team), 1)
     np.testing.assert_array_equal(a, b)
 
 

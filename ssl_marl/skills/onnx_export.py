@@ -34,21 +34,25 @@ from typing import Any
 import torch
 
 from .checkpoint import load_actor
-from .features import AIM_TO_SHOOT_NAMES, GO_TO_BALL_NAMES
-
-OBS_NAMES = {"go_to_ball": GO_TO_BALL_NAMES, "aim_to_shoot": AIM_TO_SHOOT_NAMES}
-ACTION_NAMES = {
-    "go_to_ball": ("vx", "vy", "omega"),  # robot frame, fractions of the robot's speed limits
-    "aim_to_shoot": ("omega", "dribble", "kick"),  # omega fraction; dribbler on if > 0; kick if > 0
-}
 INPUT_NAME, OUTPUT_NAME = "obs", "action"
+
+
+def _task_names(skill: str) -> tuple[tuple[str, ...] | None, tuple[str, ...] | None]:
+    """(feature names, action names) of a registered skill's task, or (None, None)."""
+    from .registry import get_skill
+
+    try:
+        task = get_skill(skill).task
+    except ValueError:
+        return None, None
+    return (None, None) if task is None else (tuple(task.feature_names), tuple(task.action_names))
 
 
 def onnx_metadata(meta: dict[str, Any]) -> dict[str, str]:
     """The ``metadata_props`` (str -> str) written for a checkpoint's metadata."""
     skill = str(meta.get("skill"))
     obs_dim, act_dim = int(meta["obs_dim"]), int(meta["act_dim"])
-    names = OBS_NAMES.get(skill)
+    names, action_names = _task_names(skill)
     props = {
         "ssl_marl.skill": skill,
         "ssl_marl.obs_spec": str(meta.get("obs_spec")),
@@ -64,8 +68,8 @@ def onnx_metadata(meta: dict[str, Any]) -> dict[str, str]:
     }
     if names is not None and len(names) == obs_dim:
         props["ssl_marl.obs_names"] = json.dumps(list(names))
-    if skill in ACTION_NAMES and len(ACTION_NAMES[skill]) == act_dim:
-        props["ssl_marl.action_names"] = json.dumps(list(ACTION_NAMES[skill]))
+    if action_names is not None and len(action_names) == act_dim:
+        props["ssl_marl.action_names"] = json.dumps(list(action_names))
     for key in ("action_low", "action_high"):
         if key in meta:
             props[f"ssl_marl.{key}"] = json.dumps(meta[key])
