@@ -157,6 +157,7 @@ def test_batched_env_rejects_bad_actions_naming_world_and_agent():
         BatchedSSLEnv(2, bogus=1)
 
 
+@pytest.mark.filterwarnings("ignore:.*reset options. ignoring unknown key.*:UserWarning")  # api_test's junk option
 def test_world_view_passes_pettingzoo_parallel_api_test():
     from pettingzoo.test import parallel_api_test
 

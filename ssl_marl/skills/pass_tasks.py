@@ -17,6 +17,7 @@ import gymnasium
 import numpy as np
 from gymnasium.utils import EzPickle
 
+from ..envs.observation import clip_to_bounds, position_extent, speed_caps
 from ..envs.ssl_env import SSLParallelEnv
 from ..physics import ball_model
 from ..physics.field import FieldGeometry
@@ -104,6 +105,26 @@ class _PassingEnv(gymnasium.Env, EzPickle):
 
 
 # ---------------------------------------------------------------------- receive
+
+def passing_observation_bounds(task: str, field: FieldGeometry, robot: RobotParams) -> tuple[np.ndarray, np.ndarray]:
+    """(low, high) float32 bounds of the pass (10 values) or receive (11 values) state,
+    from the rules of the full-field env (:mod:`ssl_marl.envs.observation`): robot-frame
+    points and distances within D, the largest distance between two observable positions;
+    velocities within the speed caps x safety factor; sin/cos in [-1, 1]; flags in [0, 1].
+    Wide enough that they never bind in play; observations are clipped into them."""
+    x, y = position_extent(field)
+    d = math.hypot(2 * x, 2 * y)
+    v, w, vb = speed_caps(robot)
+    if task == "pass":  # target xy, target v, dist, sin/cos bearing, ball xy, omega
+        high = [d, d, v, v, d, 1, 1, d, d, w]
+        low = [-d, -d, -v, -v, 0.0, -1, -1, -d, -d, -w]
+    elif task == "receive":  # ball xy, ball v, robot v, omega, line offset, gap, closing speed, on dribbler
+        high = [d, d, vb, vb, v, v, w, d, d, vb + v, 1]
+        low = [-d, -d, -vb, -vb, -v, -v, -w, -d, -d, -(vb + v), 0]
+    else:
+        raise ValueError(f"unknown passing task {task!r}; expected 'pass' or 'receive'")
+    return np.array(low, dtype=np.float32), np.array(high, dtype=np.float32)
+
 def robot_travel_time(distance: float, rp: RobotParams) -> float:
     """Shortest time (s) for a robot at rest to cover ``distance`` (m) in a straight line
     (accelerating at ``max_accel`` up to ``max_speed``, no need to stop)."""
@@ -193,7 +214,8 @@ class ReceiveEnv(_PassingEnv):
             raise ValueError(f"distance_range must satisfy 0 < lo <= hi (m), got {distance_range!r}")
         self.max_side_offset = float(max_side_offset)
         self.heading_noise = float(heading_noise)
-        self.observation_space = gymnasium.spaces.Box(-np.inf, np.inf, (11,), np.float32)
+        self.observation_space = gymnasium.spaces.Box(*passing_observation_bounds("receive", self.field,
+                                                                                  self.robot_params), (11,), np.float32)
         self.action_space = gymnasium.spaces.Box(-1.0, 1.0, (3,), np.float32)
         self._hold_t0: float | None = None
         self.spawn_draws = 0  #: spawns drawn since construction (rejection-sampling statistics)
@@ -245,7 +267,7 @@ class ReceiveEnv(_PassingEnv):
                 raise ValueError(f"ReceiveEnv.reset: {name} {np.asarray(p).tolist()} lies outside the field")
         self._reset_inner(seed, {PASSER: tuple(pose)}, ball, vel)
         self._hold_t0 = None
-        return receive_features(self.seen(), 0, self.robot_params, self.ball_params), {"reward_terms": {}}
+        return self._receive_obs(), {"reward_terms": {}}
 
     def step(self, action):
         self.env.step({PASSER: expand_receive_action(_check_action(action, 3))})
@@ -264,8 +286,11 @@ class ReceiveEnv(_PassingEnv):
                                 "held_s": 0.0 if self._hold_t0 is None else self.t - self._hold_t0}
         if outcome:
             info.update(is_success=success, failure_reason=None if success else outcome, time_s=self.t)
+        return self._receive_obs(), float(sum(terms.values())), bool(success or out), bool(timeout), info
+
+    def _receive_obs(self) -> np.ndarray:
         obs = receive_features(self.seen(), 0, self.robot_params, self.ball_params)
-        return obs, float(sum(terms.values())), bool(success or out), bool(timeout), info
+        return clip_to_bounds(obs, self.observation_space.low, self.observation_space.high)
 
 
 # ------------------------------------------------------------------------- pass
@@ -322,7 +347,8 @@ class PassEnv(_PassingEnv):
             raise ValueError(f"distance_range must satisfy 0 < lo <= hi (m), got {distance_range!r}")
         self.max_receiver_speed = float(max_receiver_speed)
         self.resolve_after_kick = bool(resolve_after_kick)
-        self.observation_space = gymnasium.spaces.Box(-np.inf, np.inf, (10,), np.float32)
+        self.observation_space = gymnasium.spaces.Box(*passing_observation_bounds("pass", self.field,
+                                                                                  self.robot_params), (10,), np.float32)
         self.action_space = gymnasium.spaces.Box(-1.0, 1.0, (3,), np.float32)
         self.receiver = ReceiveBaseline(self.field, self.robot_params, self.ball_params, hold_s=self.hold_s)
         self._kick_t: float | None = None
@@ -386,7 +412,7 @@ class PassEnv(_PassingEnv):
     def _obs(self) -> np.ndarray:
         seen = self.seen()
         tgt, tv = self.target(seen)
-        return pass_features(seen, 0, tgt, tv)
+        return clip_to_bounds(pass_features(seen, 0, tgt, tv), self.observation_space.low, self.observation_space.high)
 
     def _receiver_action(self, seen: WorldState) -> np.ndarray:
         if self._kick_t is None:  # walk on, facing the ball
