@@ -12,7 +12,7 @@ after episode, until ``n_steps`` transitions have been produced.
 from __future__ import annotations
 
 import math
-from typing import Any, Iterator, NamedTuple
+from typing import Any, Callable, Iterator, NamedTuple
 
 import numpy as np
 
@@ -77,6 +77,15 @@ def aim_to_shoot_baseline_demos(n_steps: int, seed: int = 0, post_margin: float 
 
     env = AimToShootEnv(**env_kwargs)
     skill = AimToShootBaseline(env.field, env.robot_params, env.ball_params, post_margin=post_margin)
+    yield from successful_skill_demos(env, skill, lambda e, sk: task_action("aim-to-shoot", sk.act(e.seen(), 0)),
+                                      n_steps, seed)
+
+
+def successful_skill_demos(env: Any, skill: Any, act: Callable[[Any, Any], np.ndarray], n_steps: int,
+                           seed: int) -> Iterator[Transition]:
+    """``n_steps`` transitions of ``skill`` (a :class:`~ssl_marl.skills.base.Skill`) acting
+    in task env ``env`` through ``act(env, skill) -> task action``, from the task's own
+    random spawns (episode seeds drawn from ``seed``); only successful episodes are kept."""
     rng = np.random.default_rng(seed)
     produced = 0
     while produced < n_steps:
@@ -84,7 +93,7 @@ def aim_to_shoot_baseline_demos(n_steps: int, seed: int = 0, post_margin: float 
         skill.reset()
         episode: list[Transition] = []
         while True:
-            action = task_action("aim-to-shoot", skill.act(env.seen(), 0))
+            action = act(env, skill)
             next_obs, reward, terminated, truncated, info = env.step(action)
             episode.append(Transition(obs, action, float(reward), next_obs, bool(terminated), bool(truncated), info))
             obs = next_obs

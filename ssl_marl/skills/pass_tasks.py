@@ -25,7 +25,7 @@ from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState, to_team_frame
 from .base import make_action
 from .baseline import velocity_command
-from .demos import Transition
+from .demos import Transition, successful_skill_demos
 from .features import BALL_LOST_DISTANCE, dribbler_ball_distance
 from .passing import PassBaseline, ReceiveBaseline
 from .passing_features import (
@@ -496,40 +496,12 @@ def skill_task_action(task: str, env, skill) -> np.ndarray:
 
 
 # ------------------------------------------------------------------ demonstrations
-def _baseline_demos(env, skill_step, n_steps: int, seed: int) -> Iterator[Transition]:
-    rng = np.random.default_rng(seed)
-    produced = 0
-    while produced < n_steps:
-        obs, _ = env.reset(seed=int(rng.integers(2 ** 31)))
-        episode: list[Transition] = []
-        reset_skill = True
-        while True:
-            action = skill_step(env, reset_skill)
-            reset_skill = False
-            next_obs, reward, terminated, truncated, info = env.step(action)
-            episode.append(Transition(obs, action, float(reward), next_obs, bool(terminated), bool(truncated), info))
-            obs = next_obs
-            if terminated or truncated:
-                break
-        if not info["is_success"]:
-            continue
-        for tr in episode[: n_steps - produced]:
-            yield tr
-        produced += min(len(episode), n_steps - produced)
-
-
 def pass_baseline_demos(n_steps: int, seed: int = 0, **env_kwargs: Any) -> Iterator[Transition]:
     """``n_steps`` pass transitions (obs (10,), action (3,)) from :class:`PassBaseline`
     on the task's own spawns; successful episodes only."""
     env = PassEnv(**env_kwargs)
     skill = PassBaseline(env.field, env.robot_params, env.ball_params)
-
-    def step(e: PassEnv, first: bool) -> np.ndarray:
-        if first:
-            skill.reset()
-        return skill_task_action("pass", e, skill)
-
-    return _baseline_demos(env, step, n_steps, seed)
+    return successful_skill_demos(env, skill, lambda e, sk: skill_task_action("pass", e, sk), n_steps, seed)
 
 
 def receive_baseline_demos(n_steps: int, seed: int = 0, **env_kwargs: Any) -> Iterator[Transition]:
@@ -537,13 +509,7 @@ def receive_baseline_demos(n_steps: int, seed: int = 0, **env_kwargs: Any) -> It
     on the task's own spawns; successful episodes only."""
     env = ReceiveEnv(**env_kwargs)
     skill = ReceiveBaseline(env.field, env.robot_params, env.ball_params)
-
-    def step(e: ReceiveEnv, first: bool) -> np.ndarray:
-        if first:
-            skill.reset()
-        return skill_task_action("receive", e, skill)
-
-    return _baseline_demos(env, step, n_steps, seed)
+    return successful_skill_demos(env, skill, lambda e, sk: skill_task_action("receive", e, sk), n_steps, seed)
 
 
 __all__ = ["PassEnv", "ReceiveEnv", "make_task_env", "pass_baseline_demos", "receive_baseline_demos",
