@@ -126,13 +126,12 @@ class GoToBallSkill(SkillBase):
         raise NotImplementedError
 
 
-class AimToShootSkill(SkillBase):
-    """aim-to-shoot, hand-coded or learned: succeeds once it has kicked; fails if the
-    ball leaves the dribbler (d_{d-b} > ``BALL_LOST_DISTANCE``) before the kick, or when
-    ``max_time_s`` (None = no limit) passes without one. Subclasses implement
-    :meth:`aim`, returning the action and whether it fires the kicker."""
-
-    name = "aim_to_shoot"
+class KickSkill(SkillBase):
+    """A skill that holds the ball on the dribbler until it kicks (aim-to-shoot, pass):
+    succeeds once it has kicked; fails if the ball leaves the dribbler (d_{d-b} >
+    ``BALL_LOST_DISTANCE``) before the kick, or when ``max_time_s`` (None = no limit)
+    passes without one. Subclasses implement :meth:`aim`, returning the action and
+    whether it fires the kicker; :meth:`fires` may veto or record a kick."""
 
     def __init__(self, field: FieldGeometry, robot: RobotParams | None = None, ball: BallParams | None = None,
                  max_time_s: float | None = None) -> None:
@@ -157,9 +156,20 @@ class AimToShootSkill(SkillBase):
             self.status = SkillStatus.FAILED
             return make_action(dribble=True)
         action, kicks = self.aim(world, robot)
+        kicks = self.fires(world, robot, action, kicks)
         self._kicked = kicks
         self.status = SkillStatus.SUCCEEDED if kicks else SkillStatus.RUNNING
         return action
 
+    def fires(self, world: WorldState, robot: int, action: np.ndarray, kicks: bool) -> bool:
+        """Whether the kick :meth:`aim` asked for (``kicks``) counts as fired."""
+        return kicks
+
     def aim(self, world: WorldState, robot: int) -> tuple[np.ndarray, bool]:
         raise NotImplementedError
+
+
+class AimToShootSkill(KickSkill):
+    """aim-to-shoot, hand-coded or learned (see :class:`KickSkill`)."""
+
+    name = "aim_to_shoot"

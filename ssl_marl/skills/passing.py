@@ -25,9 +25,8 @@ from ..physics import ball_model
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState, wrap_angle
-from .base import SkillBase, SkillStatus, make_action
+from .base import KickSkill, SkillBase, SkillStatus, make_action
 from .baseline import GoToBallBaseline, velocity_command
-from .features import BALL_LOST_DISTANCE, dribbler_ball_distance
 from .passing_features import (
     SLOW_BALL,
     ball_line_geometry,
@@ -54,7 +53,7 @@ def load_passing_policy(skill: str, checkpoint: str | Path | None = None):
 
 
 # ---------------------------------------------------------------------- pass
-class PassSkill(SkillBase):
+class PassSkill(KickSkill):
     """pass, hand-coded or learned. Call :meth:`set_target` before the first
     :meth:`act` (and whenever the receiver moves). Subclasses implement :meth:`aim`."""
 
@@ -62,14 +61,11 @@ class PassSkill(SkillBase):
 
     def __init__(self, field: FieldGeometry, robot: RobotParams | None = None, ball: BallParams | None = None,
                  target=None, target_vel=None, max_time_s: float | None = None) -> None:
-        super().__init__(field, robot, ball)
+        super().__init__(field, robot, ball, max_time_s)
         self.target: np.ndarray | None = None
         self.target_vel: np.ndarray | None = None
         if target is not None:
             self.set_target(target, target_vel)
-        self.max_time_s = max_time_s
-        self._kicked = False
-        self._t0: float | None = None
         self.kick_speed: float | None = None  #: m/s of the kick, once kicked
 
     def set_target(self, point_xy, velocity=None) -> None:
@@ -85,30 +81,21 @@ class PassSkill(SkillBase):
 
     def reset(self) -> None:
         super().reset()
-        self._kicked = False
-        self._t0 = None
         self.kick_speed = None
 
     def act(self, world: WorldState, robot: int) -> np.ndarray:
         if self.target is None:
             raise ValueError(f"{type(self).__name__}: no pass target; call set_target(point_xy) first")
-        if self._kicked:
-            self.status = SkillStatus.SUCCEEDED
-            return make_action()
-        if self._t0 is None:
-            self._t0 = world.t
-        timed_out = self.max_time_s is not None and world.t - self._t0 > self.max_time_s
-        if timed_out or dribbler_ball_distance(world, robot, self.rp, self.bp) > BALL_LOST_DISTANCE:
-            self.status = SkillStatus.FAILED
-            return make_action(dribble=True)
-        action, kicks = self.aim(world, robot)
+        return super().act(world, robot)
+
+    def fires(self, world: WorldState, robot: int, action: np.ndarray, kicks: bool) -> bool:
+        """A pass counts only when the kicker is charged and the ball is on the face; its
+        speed (m/s) is recorded in :attr:`kick_speed`."""
         team = world.team(world.frame)
         kicks = kicks and bool(team.kick_ready[robot]) and bool(team.ball_on_dribbler[robot])
-        self._kicked = kicks
         if kicks:
             self.kick_speed = float(action[4]) * self.rp.kick_speed_max
-        self.status = SkillStatus.SUCCEEDED if kicks else SkillStatus.RUNNING
-        return action
+        return kicks
 
     def aim(self, world: WorldState, robot: int) -> tuple[np.ndarray, bool]:
         raise NotImplementedError
