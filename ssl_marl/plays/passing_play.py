@@ -56,7 +56,7 @@ from .play import (HAS_BALL_MARGIN_S, Play, PlayContext, RoleDef, defender_role,
                    mark_role, offense_applicable, _filled_index, _support_band)
 from .receive_tactic import Receive, ReceiveState
 from .shoot import Attacker, ShootState
-from .skillset import CORE_SKILLS, PASSING_SKILLS, swappable_skills
+from .skillset import CORE_SKILLS, PASSING_SKILLS, skill_kind
 from .support import Support
 from .tactic_base import Tactic
 
@@ -373,20 +373,12 @@ class PrepareHook:
 
 def passing_team_skills(kind: str) -> dict[str, str]:
     """Skill kinds of a passing team: ``"baseline"``: every skill hand-coded;
-    ``"learned"``: learned go-to-ball and aim-to-shoot, and learned pass / receive where
-    their actors are shipped (``ssl_marl/skills/pretrained/{pass,receive}.pt``), else the
-    hand-coded ones. The match result's ``config["skills"]`` records what was used."""
-    if kind == "baseline":
-        return {name: "baseline" for name in swappable_skills()}
-    if kind != "learned":
+    ``"learned"``: every skill learned where its actor is shipped, else hand-coded (the
+    skill-set rule, :func:`~ssl_marl.plays.skillset.skill_kind`). The match result's
+    ``config["skills"]`` records what was used."""
+    if kind not in ("learned", "baseline"):
         raise ValueError(f"passing team skills must be 'learned' or 'baseline', got {kind!r}")
-    out = {name: "learned" for name in CORE_SKILLS}
-    from ..skills.registry import get_skill
-
-    for name in PASSING_SKILLS:
-        actor = get_skill(name).actor
-        out[name] = "learned" if actor is not None and actor.exists() else "baseline"
-    return out
+    return {name: skill_kind(kind, name) for name in CORE_SKILLS + PASSING_SKILLS}
 
 
 def coordinator_of(plays) -> PassCoordinator | None:
