@@ -97,6 +97,23 @@ def soft_update(target: Sequence[torch.Tensor], online: Sequence[torch.Tensor], 
     torch._foreach_lerp_(list(target), list(online), tau)
 
 
+def step_with_frozen(loss_fn: Any, frozen: Sequence[torch.Tensor], opt: torch.optim.Optimizer) -> torch.Tensor:
+    """One optimiser step on ``loss_fn()`` with ``frozen`` parameters excluded from the
+    backward pass (the actor step needs dQ/da, not the critic's weight gradients);
+    returns the loss."""
+    for p in frozen:
+        p.requires_grad_(False)
+    try:
+        loss = loss_fn()
+        opt.zero_grad(set_to_none=True)
+        loss.backward()
+    finally:
+        for p in frozen:
+            p.requires_grad_(True)
+    opt.step()
+    return loss
+
+
 def td_target(rew: torch.Tensor, terminated: torch.Tensor, next_q: torch.Tensor, gamma: float) -> torch.Tensor:
     """Bellman target r + gamma (1 - terminated) Q'(s', a'). Truncated (time-limit) steps have
     terminated = 0 and so bootstrap; shapes (B,)."""

@@ -32,7 +32,7 @@ from ssl_marl.skills.networks import Actor, Critic
 
 from ..config import TrainConfig
 from ..replay import Batch
-from .base import LossMeter, actor_act, adam, bf16_autocast, soft_update, td_target
+from .base import LossMeter, actor_act, adam, bf16_autocast, soft_update, step_with_frozen, td_target
 
 __all__ = ["DDPG", "soft_update", "td_target"]
 
@@ -87,16 +87,8 @@ class DDPG:
         critic_loss.backward()
         self.critic_opt.step()
 
-        for p in self._critic_params:  # the actor step needs dQ/da only, not the critic's weight gradients
-            p.requires_grad_(False)
-        try:
-            actor_loss = self._actor_loss(b, demo if demo is not None and self.cfg.bc_weight > 0 else None)
-            self.actor_opt.zero_grad(set_to_none=True)
-            actor_loss.backward()
-        finally:
-            for p in self._critic_params:
-                p.requires_grad_(True)
-        self.actor_opt.step()
+        bc_demo = demo if demo is not None and self.cfg.bc_weight > 0 else None
+        actor_loss = step_with_frozen(lambda: self._actor_loss(b, bc_demo), self._critic_params, self.actor_opt)
 
         soft_update(self._target, self._online, self.cfg.tau)
         self.losses.add(critic=critic_loss, actor=actor_loss)

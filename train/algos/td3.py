@@ -33,7 +33,7 @@ from ssl_marl.skills.networks import Actor, Critic
 
 from ..config import TrainConfig
 from ..replay import Batch
-from .base import LossMeter, actor_act, adam, bf16_autocast, soft_update, td_target
+from .base import LossMeter, actor_act, adam, bf16_autocast, soft_update, step_with_frozen, td_target
 
 
 class TD3:
@@ -99,16 +99,8 @@ class TD3:
         losses = {"critic": critic_loss.detach() * 0.5}
 
         if self.updates % self.cfg.td3_policy_delay == 0:
-            for p in self._q1_params:  # the actor step needs dQ1/da only
-                p.requires_grad_(False)
-            try:
-                actor_loss = self._actor_loss(b, demo if demo is not None and self.cfg.bc_weight > 0 else None)
-                self.actor_opt.zero_grad(set_to_none=True)
-                actor_loss.backward()
-            finally:
-                for p in self._q1_params:
-                    p.requires_grad_(True)
-            self.actor_opt.step()
+            bc_demo = demo if demo is not None and self.cfg.bc_weight > 0 else None  # the actor step needs dQ1/da only
+            actor_loss = step_with_frozen(lambda: self._actor_loss(b, bc_demo), self._q1_params, self.actor_opt)
             soft_update(self._target, self._online, self.cfg.tau)
             losses["actor"] = actor_loss
         self.losses.add(**losses)
