@@ -208,3 +208,56 @@ def test_unknown_task_and_bad_override_are_clear_errors() -> None:
         task_config("nope")
     with pytest.raises(ValueError, match="unknown MAPPO run-config key 'num_env'"):
         task_config("toy-signal", num_env=3)
+
+
+# --- ssl_marl.decisions.learned and the export ---------------------------------------------------------
+
+def test_exported_actor_plays_greedy_over_legal_options_and_checks_the_env(tmp_path: Path) -> None:
+    from ssl_marl.decisions.learned import DecisionActor, LearnedDecisionPolicy, load_decision_actor
+    from train.mappo_export import export
+
+    cfg = task_config("toy-signal", num_envs=2, rollout_steps=4, total_decisions=16, val_episodes=3)
+    tr = MAPPOTrainer(cfg, 0, tmp_path / "run", progress=False)
+    tr.run()
+    obs = np.random.default_rng(0).random((6, 5)).astype(np.float32)
+    with torch.no_grad():
+        want = tr.agent.actor(tr.agent.actor_input(tr._obs(obs), np.zeros(6, int))).numpy()
+    tr.close()
+    res = export([tmp_path / "run"], tmp_path / "toy.pt")
+    assert res["val_seed"] == cfg.val_seed
+    actor, meta = load_decision_actor(tmp_path / "toy.pt")
+    assert meta["task"] == "toy-signal" and meta["selection"]["candidates"]
+    np.testing.assert_allclose(actor(torch.as_tensor(obs)).detach().numpy(), want, rtol=1e-5, atol=1e-6)
+
+    env = ToySignal()
+    pol = LearnedDecisionPolicy(tmp_path / "toy.pt", task="toy-signal")
+    o, infos = env.reset(seed=0)
+    pol.reset(env)
+    a = pol.act(env, "agent_0", o["agent_0"], infos["agent_0"])
+    assert a != 3                                                   # option 3 is masked
+    logits = actor.logits(o["agent_0"])
+    only = np.array([0, 0, 1, 0], np.int8)
+    assert pol.act(env, "agent_0", o["agent_0"], {"action_mask": only}) == 2
+    assert a == int(np.argmax(np.where(infos["agent_0"]["action_mask"] > 0, logits, -np.inf)))
+    with pytest.raises(ValueError, match="observations of size 5, the env gives 6"):
+        pol.reset(ToySignal(n_signals=4))
+    with pytest.raises(ValueError, match="task 'toy-signal', not 'keepaway'"):
+        LearnedDecisionPolicy(tmp_path / "toy.pt", task="keepaway")
+    bad = LearnedDecisionPolicy(DecisionActor(5, 3, (4,)))
+    with pytest.raises(ValueError, match="3 options, the env has 4"):
+        bad.reset(env)
+
+
+def test_pretrained_path_names_the_training_command_when_missing() -> None:
+    from ssl_marl.decisions.learned import pretrained_path
+
+    with pytest.raises(FileNotFoundError, match="python -m train mappo --task no-such-task"):
+        pretrained_path("no-such-task")
+
+
+def test_decision_actor_file_is_refused_when_not_one(tmp_path: Path) -> None:
+    from ssl_marl.decisions.learned import load_decision_actor
+
+    torch.save({"format": "something else"}, tmp_path / "x.pt")
+    with pytest.raises(ValueError, match="not a valid ssl_marl decision actor"):
+        load_decision_actor(tmp_path / "x.pt")

@@ -38,7 +38,7 @@ def _toy_tempo(**kw: Any) -> Any:
 
 def _decision_task(name: str) -> Callable[..., Any]:
     def make(**kw: Any) -> Any:
-        from ssl_marl.decisions.base import DECISION_TASKS
+        from ssl_marl.decisions import DECISION_TASKS
 
         return DECISION_TASKS[name](**kw)
 
