@@ -77,9 +77,10 @@ MARL_TASKS: dict[str, MARLTask] = {
                            {"val_seed": 46000, "algo": {"gamma": 0.99, "tau_s": 0.1}},
                            "attack 3v2 (ssl_marl.decisions)"),
     "pass-and-score": MARLTask(_pass_and_score, "success",
-                               {"val_seed": 47000, "num_envs": 8, "rollout_steps": 128,
+                               {"val_seed": 47000, "num_envs": 8, "rollout_steps": 128, "val_every": 25, "val_episodes": 20,
+                                "total_decisions": 300_000,
                                 "algo": {"continuous": True, "gamma": 0.99, "tau_s": 1 / 60, "lam": 0.95,
-                                         "ent_coef": 0.0, "lr": 3e-4, "epochs": 10, "minibatches": 8}},
+                                         "ent_coef": 0.0, "lr": 3e-4, "epochs": 5, "minibatches": 4}},
                                "2v0 pass-then-score drill, continuous (vx, vy, omega, dribble, kick) at 60 Hz"),
 }
 
