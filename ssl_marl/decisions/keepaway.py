@@ -123,6 +123,9 @@ class KeepawayParams:
             picks the kick speed from the ball model so the ball reaches the receiver
             at this speed (TIGERs cap arrivals at 3.2 m/s; the tactic's default 2 m/s
             lets a 3 m/s taker catch a 4 m pass, see docs/DESIGN.md).
+        positioning_every: the positioning commands (get-open keepers, the blocking
+            taker: navigation without the ball) are recomputed every this many ticks and
+            repeated in between (2: at 30 Hz; a third of the per-tick Python time).
         skills: the tactics' skill source ("baseline" or "learned", see plays/skillset).
     """
 
@@ -141,6 +144,7 @@ class KeepawayParams:
     block_fraction: float = 0.4
     block_min_m: float = 0.6
     pass_arrival_speed: float = 3.0
+    positioning_every: int = 2
     skills: str = "baseline"
 
     def __post_init__(self) -> None:
@@ -149,7 +153,7 @@ class KeepawayParams:
             if f.name == "skills":
                 if v not in ("baseline", "learned"):
                     raise ValueError(f"KeepawayParams.skills must be 'baseline' or 'learned', got {v!r}")
-            elif f.name in ("control_ticks", "getopen_grid"):
+            elif f.name in ("control_ticks", "getopen_grid", "positioning_every"):
                 if not isinstance(v, int) or isinstance(v, bool) or v < 1:
                     raise ValueError(f"KeepawayParams.{f.name} must be a positive integer, got {v!r}")
             elif not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
@@ -195,6 +199,8 @@ class KeepawayEnv(DecisionEnv):
                          illegal_option=illegal_option, render_mode=render_mode)
         cfg = self.engine.config
         self.rp, self.bp = cfg.robot, cfg.ball
+        # this env builds its own observations: skip the engine's per-robot pass (~10 % of a tick)
+        self.engine._observations = dict
         f, rp, bp, p = self.field, self.rp, self.bp, self.params
         self.pass_tactics = [Pass(f, rp, bp, skills=p.skills, dt=self.dt) for _ in range(3)]
         side = self.rules.side_m
@@ -239,6 +245,7 @@ class KeepawayEnv(DecisionEnv):
         self.block_target: int | None = None
         self.spots = np.zeros((3, 2))
         self._spot_age = self._replan_ticks  # re-plan on the first tick
+        self._pos_cmd: dict = {}  # positioning commands (get-open, blocker), refreshed every positioning_every ticks
         self._ctrl_ticks = np.zeros(3, np.int64)
         self.option_counts = np.zeros(3, np.int64)
         self.passes_kicked = 0
@@ -382,12 +389,17 @@ class KeepawayEnv(DecisionEnv):
             if self._spot_age >= self._replan_ticks:
                 self._plan_spots(seen, free)
                 self._spot_age = 0
+            fresh = self.ticks % self.params.positioning_every == 0
             for k in free:
-                nav = self.keeper_nav[k]
-                nav.target = self.spots[k]
-                d = seen.ball_pos - seen.blue.pos[k]
-                nav.facing = math.atan2(d[1], d[0])
-                acts[f"blue_{k}"] = nav.act(seen, k)
+                name = f"blue_{k}"
+                if fresh or name not in self._pos_cmd:
+                    nav = self.keeper_nav[k]
+                    nav.target = self.spots[k]
+                    d = seen.ball_pos - seen.blue.pos[k]
+                    nav.facing = math.atan2(d[1], d[0])
+                    self._pos_cmd[name] = nav.act(seen, k)
+                acts[name] = self._pos_cmd[name]
+        self._pos_cmd = {k: v for k, v in self._pos_cmd.items() if k in acts or not k.startswith("blue")}
         acts.update(self._taker_actions())
         return acts
 
@@ -492,10 +504,14 @@ class KeepawayEnv(DecisionEnv):
         dl = math.hypot(*lv)
         along = min(max(self.params.block_fraction * dl, self.params.block_min_m), dl)
         target = ball + lv * (along / max(dl, 1e-9))
-        nav = self.taker_nav[o]
-        nav.target = target
-        nav.facing = math.atan2(ball[1] - tk[o][1], ball[0] - tk[o][0])
-        acts[f"yellow_{o}"] = nav.act(seen, o)
+        name = f"yellow_{o}"
+        if self.ticks % self.params.positioning_every == 0 or self._pos_cmd.get("blocker") != o:
+            nav = self.taker_nav[o]
+            nav.target = target
+            nav.facing = math.atan2(ball[1] - tk[o][1], ball[0] - tk[o][0])
+            self._pos_cmd[name] = nav.act(seen, o)
+            self._pos_cmd["blocker"] = o
+        acts[name] = self._pos_cmd[name]
         return acts
 
     def _chase_action(self, seen, c: int, ball: np.ndarray, me: np.ndarray, kp: np.ndarray) -> np.ndarray:
