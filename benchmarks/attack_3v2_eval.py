@@ -62,6 +62,13 @@ def _run(seeds: list[int]) -> list[dict]:
 
 
 def summarize(rows: list[dict], args: argparse.Namespace, wall: float) -> dict:
+    """Figures over the longest run of consecutive seeds from ``--seed`` that is complete
+    (an interrupted run reports a prefix of the seeds, not a selection of fast episodes)."""
+    by_seed = {r["seed"]: r for r in rows}
+    prefix = []
+    while args.seed + len(prefix) in by_seed:
+        prefix.append(by_seed[args.seed + len(prefix)])
+    rows = prefix
     n = len(rows)
     goals = sum(int(r["goal"]) for r in rows)
     outcomes: dict[str, int] = {}
@@ -76,7 +83,7 @@ def summarize(rows: list[dict], args: argparse.Namespace, wall: float) -> dict:
             opts[k] = opts.get(k, 0) + v
     lo, hi = wilson(goals, n)
     return {"task": "attack-3v2", "policy": args.policy, "skills": args.skills, "episodes": n,
-            "episodes_requested": args.episodes, "seed": args.seed, "goal_rate": goals / n if n else None,
+            "episodes_requested": args.episodes, "seeds": [args.seed, args.seed + n - 1], "seed": args.seed, "goal_rate": goals / n if n else None,
             "goal_rate_ci95": [lo, hi], "goals": goals, "outcomes": dict(sorted(outcomes.items())),
             "mean_duration_s": sim / n if n else None, "decisions": dec, "options": opts,
             "decisions_per_s": dec / ep_wall if ep_wall else None, "sim_s_per_s": sim / ep_wall if ep_wall else None,
@@ -98,6 +105,7 @@ def main() -> int:
     out.mkdir(parents=True, exist_ok=True)
     log = out / "episodes.jsonl"
     rows = [json.loads(line) for line in log.read_text().splitlines() if line.strip()] if log.exists() else []
+    rows = [r for r in rows if args.seed <= r["seed"] < args.seed + args.episodes]
     done = {r["seed"] for r in rows}
     todo = [args.seed + i for i in range(args.episodes) if args.seed + i not in done]
     chunks = [todo[i:i + args.chunk] for i in range(0, len(todo), args.chunk)]

@@ -303,3 +303,13 @@ def test_cli_decision_errors(tmp_path, capsys):
                 "hidden": [8], "state_dict": {}}, bad)
     rc, err = _cli(["--yellow", "passing-baseline", "--yellow-decision", str(bad)], capsys)
     assert rc == 2 and "obs_dim=12" in err
+
+
+def test_plays_do_not_import_the_decisions_package():
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1] / "ssl_marl" / "plays"
+    for path in sorted(root.glob("*.py")):
+        text = path.read_text()
+        assert "decisions" not in "".join(l for l in text.splitlines(True) if l.lstrip().startswith(("import", "from"))), \
+            f"{path.name} imports the decisions package (plays reach it only through the CarrierDecider hook)"

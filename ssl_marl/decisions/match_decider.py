@@ -43,6 +43,9 @@ class AttackSpecEnv:
     possible_agents = (AGENT,)
     agents = (AGENT,)
     option_names = ATTACK_OPTIONS
+    n_options = N_ATTACK_OPTIONS
+    task_name = TASK
+    episode_seed = None
 
     def observation_space(self, agent: str) -> gymnasium.spaces.Box:
         return gymnasium.spaces.Box(-OBS_BOUND, OBS_BOUND, (ATTACK_OBS_DIM,), np.float32)
