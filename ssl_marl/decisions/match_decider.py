@@ -12,7 +12,7 @@ the cost decision (the drill never trains them).
 
 :func:`make_match_decider` resolves the CLI's ``--blue-decision`` / ``--yellow-decision``
 values: ``handcoded`` (None: the play's default cost decision), ``learned`` (the shipped
-actor, ``ssl_marl/decisions/pretrained/attack-3v2.pt``) or an actor checkpoint path. A
+actor, ``ssl_marl/decisions/pretrained/attack_3v2.pt``) or an actor checkpoint path. A
 missing actor or one built for another observation size / option count fails here, with
 the offending field named, before a match starts.
 """
@@ -99,10 +99,10 @@ def default_actor_path() -> Path:
     if pretrained_path is not None:
         return Path(pretrained_path(TASK))
     here = Path(__file__).resolve().parent / "pretrained"
-    for name in ("attack-3v2.pt", "attack_3v2.pt"):
+    for name in ("attack_3v2.pt", "attack-3v2.pt"):
         if (here / name).is_file():
             return here / name
-    raise FileNotFoundError(f"no shipped attack decision actor under {here} (attack-3v2.pt); train one with "
+    raise FileNotFoundError(f"no shipped attack decision actor under {here} (attack_3v2.pt); train one with "
                             f"the MAPPO trainer (python -m train ... attack-3v2) or pass an actor path")
 
 

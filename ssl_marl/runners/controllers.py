@@ -9,7 +9,7 @@ A team is one of :data:`TEAM_KINDS`:
   passes) and those skills (:func:`~ssl_marl.plays.passing_play.passing_team_skills`);
 * ``"passing-learned-decision"``: ``"passing-learned"`` whose ball carrier decides
   with the learned Attack 3v2 decision (:mod:`ssl_marl.decisions.match_decider`,
-  the shipped actor ``ssl_marl/decisions/pretrained/attack-3v2.pt``) instead of the cost
+  the shipped actor ``ssl_marl/decisions/pretrained/attack_3v2.pt``) instead of the cost
   decision;
 * ``"random"``: uniform random actions (seeded); ``"idle"``: zero actions.
 
