@@ -185,7 +185,7 @@ def cmd_match(args: argparse.Namespace) -> int:
     yellow, yellow_skills = _resolve_team("yellow", args.yellow, args.skill + args.yellow_skill)
     common = dict(robots=args.robots, field=args.field, seconds=args.seconds, realism=args.realism,
                   realtime=args.realtime, blue_skills=blue_skills, yellow_skills=yellow_skills,
-                  tracker=args.tracker)
+                  tracker=args.tracker, blue_decision=args.blue_decision, yellow_decision=args.yellow_decision)
     render = None if str(args.render).lower() == "none" else args.render
     if render is not None and args.matches == 1:
         prepare_output_file(render, VIDEO_SUFFIXES, "--render")
@@ -373,8 +373,9 @@ def build_parser() -> argparse.ArgumentParser:
     m.add_argument("--blue", type=_team, default="learned", metavar="TEAM",
                    help="blue team: learned (STP with the shipped DDPG actors), baseline (STP with hand-coded "
                         "skills), passing-learned / passing-baseline (the passing plays: shoot, pass or keep by "
-                        "cost, set plays with passes, with those skills), random, idle, or a JSON team file {\"kind\": ..., \"skills\": {SKILL: SOURCE}} "
-                        "(default learned)")
+                        "cost, set plays with passes, with those skills), passing-learned-decision (passing-learned "
+                        "whose ball carrier uses the learned Attack 3v2 decision), random, idle, or a JSON team file "
+                        "{\"kind\": ..., \"skills\": {SKILL: SOURCE}} (default learned)")
     m.add_argument("--yellow", type=_team, default="baseline", metavar="TEAM",
                    help="yellow team, as --blue (default baseline)")
     m.add_argument("--skill", type=_skill_source, action="append", default=[], metavar="SKILL=SOURCE",
@@ -383,6 +384,12 @@ def build_parser() -> argparse.ArgumentParser:
                    help="as --skill, for the blue team only (wins over --skill)")
     m.add_argument("--yellow-skill", type=_skill_source, action="append", default=[], metavar="SKILL=SOURCE",
                    help="as --skill, for the yellow team only (wins over --skill)")
+    for team in ("blue", "yellow"):
+        m.add_argument(f"--{team}-decision", default=None, metavar="DECISION",
+                       help=f"{team} passing team's ball-carrier decision (shoot / pass / dribble): handcoded (the "
+                            "cost decision), learned (the shipped Attack 3v2 actor) or PATH to a decision actor "
+                            "checkpoint; needs a passing team (default: the team kind's own, learned for "
+                            "passing-learned-decision, else handcoded)")
     m.add_argument("--robots", type=_robots, default=6, help="robots per team, 1-11 (default 6)")
     m.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")
     m.add_argument("--seconds", type=_positive_float("--seconds"), default=30.0,
