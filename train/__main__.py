@@ -1,6 +1,9 @@
 """CLI: ``python -m train SKILL --seed 0 --out runs/NAME [--algo td3] [--config X.json] [--resume] [--samples N] [--set k=v ...]``
 (the same as ``ssl-marl train SKILL ...``).
 
+``python -m train mappo --task TASK --seed S --out DIR [--resume] [--decisions N]`` trains the
+multi-agent MAPPO instead (:mod:`train.mappo_cli`; ``python -m train mappo --help``).
+
 SKILL is go-to-ball, aim-to-shoot or pendulum and picks the default config in
 ``train/configs/``; ``--config`` replaces it, ``--set`` overrides single keys
 (values parsed as JSON: ``--set actor_hidden=[64,64] --set demo_fn=null``).
@@ -39,6 +42,11 @@ def build_parser(prog: str = "python -m train") -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None, prog: str = "python -m train") -> int:
     """Entry point of ``python -m train`` and ``ssl-marl train`` (``prog`` names it in messages)."""
+    argv = sys.argv[1:] if argv is None else argv
+    if argv and argv[0] == "mappo":
+        from .mappo_cli import main as mappo_main
+
+        return mappo_main(argv[1:], prog=f"{prog} mappo")
     args = build_parser(prog).parse_args(argv)
     from .loop import load_run_config, train  # heavy imports after argument errors
 

@@ -12,10 +12,17 @@ from typing import TYPE_CHECKING
 
 from .base import Agent, LossMeter
 from .ddpg import DDPG
+from .mappo import MAPPO
 from .td3 import TD3
 
 if TYPE_CHECKING:
     from ..config import TrainConfig
+
+#: on-policy multi-agent algorithms (own loop, :mod:`train.mappo_loop`; ``python -m train mappo``):
+#: name -> class; they do not implement the replay-based :class:`Agent` interface
+ON_POLICY_ALGOS: dict[str, type] = {
+    "mappo": MAPPO,
+}
 
 #: config ``algo`` name -> agent class
 ALGOS: dict[str, type] = {
@@ -33,4 +40,4 @@ def make_agent(obs_dim: int, act_dim: int, cfg: TrainConfig) -> Agent:
     return cls(obs_dim, act_dim, cfg)
 
 
-__all__ = ["ALGOS", "DDPG", "TD3", "Agent", "LossMeter", "make_agent"]
+__all__ = ["ALGOS", "DDPG", "MAPPO", "ON_POLICY_ALGOS", "TD3", "Agent", "LossMeter", "make_agent"]

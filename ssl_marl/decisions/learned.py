@@ -1,0 +1,156 @@
+"""Learned decision policies: the MAPPO-trained shared actor as a :class:`~ssl_marl.decisions.policies.DecisionPolicy`.
+
+A decision actor file (``torch.save`` of plain containers and tensors, read with
+``torch.load(weights_only=True)``) holds::
+
+    {"format": "ssl_marl.decision_actor/1", "task": str, "obs_dim": int, "n_options": int,
+     "hidden": [int, ...], "state_dict": {...}, "obs_mean": tensor (obs_dim,), "obs_std": tensor (obs_dim,),
+     "agent_ids": [str, ...] | None, "option_names": [str, ...] | None, ...metadata (seed, decisions,
+     val_score, val_seed, commit)}
+
+The network (:class:`DecisionActor`) is the trainer's actor (``train/algos/mappo.py``): an MLP
+``Linear -> tanh`` per hidden layer, then a linear layer to one logit per option, on the
+observation scaled as ``(obs - obs_mean) / obs_std`` (with the agent's one-hot appended when
+``agent_ids`` is set). :class:`LearnedDecisionPolicy` plays it greedily: the legal option
+(``info["action_mask"]``) with the highest logit.
+
+Shipped actors: ``ssl_marl/decisions/pretrained/<task>.pt`` (:func:`pretrained_path`), made by
+``python -m train mappo --task TASK ...`` then ``python -m train.mappo_export RUN_DIR ... --out PATH``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import torch
+from torch import nn
+
+from ..skills.checkpoint import safe_torch_load
+
+FORMAT = "ssl_marl.decision_actor/1"
+PRETRAINED_DIR = Path(__file__).resolve().parent / "pretrained"
+_TRAIN_CMD = {
+    "keepaway": "python -m train mappo --task keepaway --seed 0 --out runs/mappo_keepaway_s0 && "
+                "python -m train.mappo_export runs/mappo_keepaway_s0 --out ssl_marl/decisions/pretrained/keepaway.pt",
+    "attack-3v2": "python -m train mappo --task attack-3v2 --seed 0 --out runs/mappo_attack_s0 && "
+                  "python -m train.mappo_export runs/mappo_attack_s0 --out ssl_marl/decisions/pretrained/attack_3v2.pt",
+}
+
+
+def pretrained_path(task: str) -> Path:
+    """The shipped actor of ``task`` (``pretrained/<task with - as _>.pt``); FileNotFoundError saying
+    how to train one when it is absent."""
+    path = PRETRAINED_DIR / f"{task.replace('-', '_')}.pt"
+    if not path.is_file():
+        cmd = _TRAIN_CMD.get(task, f"python -m train mappo --task {task} --seed 0 --out runs/mappo_{task}")
+        raise FileNotFoundError(f"no shipped decision actor for task {task!r} ({path}); train and export one: {cmd}")
+    return path
+
+
+class DecisionActor(nn.Module):
+    """Shared decision actor: scaled obs (..., in_dim) -> option logits (..., n_options)."""
+
+    def __init__(self, obs_dim: int, n_options: int, hidden: Sequence[int], n_agents: int = 0) -> None:
+        super().__init__()
+        self.obs_dim, self.n_options, self.hidden, self.n_agents = int(obs_dim), int(n_options), tuple(hidden), int(n_agents)
+        layers: list[nn.Module] = []
+        d = self.obs_dim + self.n_agents
+        for h in self.hidden:
+            layers += [nn.Linear(d, int(h)), nn.Tanh()]
+            d = int(h)
+        layers.append(nn.Linear(d, self.n_options))
+        self.net = nn.Sequential(*layers)
+        self.register_buffer("obs_mean", torch.zeros(self.obs_dim))
+        self.register_buffer("obs_std", torch.ones(self.obs_dim))
+
+    def forward(self, obs: torch.Tensor, agent_onehot: torch.Tensor | None = None) -> torch.Tensor:
+        x = (obs - self.obs_mean) / self.obs_std
+        if self.n_agents:
+            if agent_onehot is None:
+                raise ValueError("this actor was trained with agent one-hots; pass agent_onehot")
+            x = torch.cat([x, agent_onehot], -1)
+        return self.net(x)
+
+    @torch.no_grad()
+    def logits(self, obs: np.ndarray, agent_index: int | None = None) -> np.ndarray:
+        """Logits for one observation (numpy in, numpy out)."""
+        o = torch.as_tensor(np.asarray(obs, np.float32))
+        hot = None
+        if self.n_agents:
+            hot = torch.zeros(self.n_agents)
+            hot[int(agent_index or 0)] = 1.0
+        return self.forward(o, hot).numpy()
+
+
+def load_decision_actor(path: str | Path) -> tuple[DecisionActor, dict[str, Any]]:
+    """Load a decision actor file (``weights_only=True``): the network and the file's other entries."""
+    what = "ssl_marl decision actor"
+    data = safe_torch_load(path, what)
+    if not isinstance(data, dict) or data.get("format") != FORMAT:
+        raise ValueError(f"{path} is not a valid {what} (no {FORMAT!r} format tag)")
+    for key in ("obs_dim", "n_options", "hidden", "state_dict"):
+        if key not in data:
+            raise ValueError(f"{path} is not a valid {what}: missing {key!r}")
+    if data.get("continuous"):
+        raise ValueError(f"{path} holds a continuous-action actor (task {data.get('task')!r}), not a decision actor")
+    agent_ids = data.get("agent_ids") or None
+    actor = DecisionActor(int(data["obs_dim"]), int(data["n_options"]), [int(h) for h in data["hidden"]],
+                          len(agent_ids) if agent_ids else 0)
+    actor.net.load_state_dict({k[len("net."):]: v for k, v in data["state_dict"].items() if k.startswith("net.")})
+    if data.get("obs_mean") is not None:
+        actor.obs_mean.copy_(torch.as_tensor(data["obs_mean"], dtype=torch.float32))
+        actor.obs_std.copy_(torch.as_tensor(data["obs_std"], dtype=torch.float32))
+    actor.eval()
+    meta = {k: v for k, v in data.items() if k != "state_dict"}
+    return actor, meta
+
+
+class LearnedDecisionPolicy:
+    """Greedy policy of a decision actor: argmax of the logits over the legal options.
+
+    ``path_or_actor``: an actor file or a :class:`DecisionActor`; ``task``: the task the env
+    plays (checked against the file's). :meth:`reset` refuses an env whose observation size or
+    option count differ from the actor's, naming both."""
+
+    name = "learned"
+
+    def __init__(self, path_or_actor: str | Path | DecisionActor, task: str | None = None) -> None:
+        if isinstance(path_or_actor, DecisionActor):
+            self.actor, self.meta = path_or_actor, {"task": task}
+        else:
+            self.actor, self.meta = load_decision_actor(path_or_actor)
+            if task is not None and self.meta.get("task") not in (None, task):
+                raise ValueError(f"{path_or_actor} is an actor for task {self.meta.get('task')!r}, not {task!r}")
+        self.task = task or self.meta.get("task")
+        self.agent_ids: list[str] | None = self.meta.get("agent_ids") or None
+
+    def reset(self, env: Any) -> None:
+        agent = env.possible_agents[0]
+        obs_dim = int(np.prod(env.observation_space(agent).shape))
+        n_opt = int(env.action_space(agent).n)
+        if obs_dim != self.actor.obs_dim:
+            raise ValueError(f"learned decision actor expects observations of size {self.actor.obs_dim}, "
+                             f"the env gives {obs_dim} (observation_space of {agent!r}); retrain or export "
+                             f"an actor for this env version")
+        if n_opt != self.actor.n_options:
+            raise ValueError(f"learned decision actor has {self.actor.n_options} options, the env has {n_opt} "
+                             f"(action_space of {agent!r}: {getattr(env, 'option_names', None)})")
+        names = self.meta.get("option_names")
+        if names is not None and getattr(env, "option_names", None) is not None \
+                and list(names) != list(env.option_names):
+            raise ValueError(f"learned decision actor's options {list(names)} differ from the env's "
+                             f"{list(env.option_names)}")
+
+    def act(self, env: Any, agent: str, obs: np.ndarray, info: dict) -> int:
+        idx = self.agent_ids.index(agent) if self.agent_ids else None
+        logits = self.actor.logits(obs, idx)
+        mask = np.asarray(info.get("action_mask", np.ones_like(logits)), bool)
+        if not mask.any():
+            raise ValueError(f"learned policy: agent {agent!r} has no legal option (action_mask all zero)")
+        return int(np.argmax(np.where(mask, logits, -np.inf)))
+
+
+__all__ = ["DecisionActor", "FORMAT", "LearnedDecisionPolicy", "load_decision_actor", "pretrained_path"]

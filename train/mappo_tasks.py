@@ -1,0 +1,98 @@
+"""The multi-agent tasks MAPPO trains on, by name (``python -m train mappo --task NAME``).
+
+Each entry builds a decision env (the interface of ``ssl_marl/decisions``: PettingZoo
+``ParallelEnv`` with ``decision`` / ``action_mask`` / ``elapsed_s`` infos and ``state()``)
+and names the final-info key that scores an episode. ``defaults`` are the run-config
+overrides the task starts from (see :class:`train.mappo_loop.MAPPORunConfig`).
+Factories are module-level functions so worker processes can build them.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+
+@dataclass(frozen=True)
+class MARLTask:
+    """One trainable task: ``factory(**kwargs)`` -> env; ``score_key``: its episode score in the final infos."""
+
+    factory: Callable[..., Any]
+    score_key: str
+    defaults: dict[str, Any] = field(default_factory=dict)
+    description: str = ""
+
+
+def _toy_signal(**kw: Any) -> Any:
+    from .toy_marl import ToySignal
+
+    return ToySignal(**kw)
+
+
+def _toy_tempo(**kw: Any) -> Any:
+    from .toy_marl import ToyTempo
+
+    return ToyTempo(**kw)
+
+
+def _decision_task(name: str) -> Callable[..., Any]:
+    def make(**kw: Any) -> Any:
+        from ssl_marl.decisions import DECISION_TASKS
+
+        return DECISION_TASKS[name](**kw)
+
+    make.__name__ = f"make_{name.replace('-', '_')}"
+    return make
+
+
+def _keepaway(**kw: Any) -> Any:
+    return _decision_task("keepaway")(**kw)
+
+
+def _attack_3v2(**kw: Any) -> Any:
+    return _decision_task("attack-3v2")(**kw)
+
+
+def _pass_and_score(**kw: Any) -> Any:
+    from ssl_marl.envs.tasks.pass_and_score import PassAndScoreEnv
+
+    return PassAndScoreEnv(**kw)
+
+
+MARL_TASKS: dict[str, MARLTask] = {
+    "toy-signal": MARLTask(_toy_signal, "success",
+                           {"num_envs": 16, "rollout_steps": 16, "total_decisions": 6_000, "val_episodes": 30,
+                            "algo": {"hidden": [64, 64], "lr": 3e-3, "ent_coef": 0.03, "minibatches": 2,
+                                     "gamma": 0.99, "tau_s": 1.0}},
+                           "two-agent signalling game (train/toy_marl.py)"),
+    "toy-tempo": MARLTask(_toy_tempo, "success",
+                          {"num_envs": 16, "rollout_steps": 16, "total_decisions": 6_000, "val_episodes": 10,
+                           "algo": {"hidden": [64, 64], "lr": 3e-3, "minibatches": 2, "gamma": 0.9, "tau_s": 1.0}},
+                          "asynchronous variable-duration jobs (train/toy_marl.py)"),
+    "keepaway": MARLTask(_keepaway, "duration_s",
+                         {"val_seed": 45000, "num_envs": 4, "rollout_steps": 32, "total_decisions": 12_000,
+                          "checkpoint_every": 5, "val_every": 15, "val_episodes": 20,
+                          "algo": {"hidden": [64, 64], "lr": 1e-3, "epochs": 8, "minibatches": 2,
+                                   "gamma": 0.99, "tau_s": 0.1}},
+                         "keepaway 3v2 (ssl_marl.decisions)"),
+    "attack-3v2": MARLTask(_attack_3v2, "goal",
+                           {"val_seed": 46000, "num_envs": 4, "rollout_steps": 32, "total_decisions": 12_000,
+                            "checkpoint_every": 5, "val_every": 15, "val_episodes": 40,
+                            "algo": {"hidden": [64, 64], "lr": 1e-3, "epochs": 8, "minibatches": 2,
+                                     "gamma": 0.99, "tau_s": 0.1}},
+                           "attack 3v2 (ssl_marl.decisions)"),
+    "pass-and-score": MARLTask(_pass_and_score, "success",
+                               {"val_seed": 47000, "num_envs": 8, "rollout_steps": 128, "val_every": 25, "val_episodes": 20,
+                                "total_decisions": 300_000,
+                                "algo": {"continuous": True, "gamma": 0.99, "tau_s": 1 / 60, "lam": 0.95,
+                                         "ent_coef": 0.0, "lr": 3e-4, "epochs": 5, "minibatches": 4}},
+                               "2v0 pass-then-score drill, continuous (vx, vy, omega, dribble, kick) at 60 Hz"),
+}
+
+
+def get_task(name: str) -> MARLTask:
+    try:
+        return MARL_TASKS[name]
+    except KeyError:
+        raise ValueError(f"unknown MAPPO task {name!r}; expected one of {sorted(MARL_TASKS)}") from None
