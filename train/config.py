@@ -70,6 +70,8 @@ class TrainConfig:
       original DDPG's 0.001 learns slower in our tests).
     * ``batch_size`` 256, ``updates_per_sample`` 1.0 (one gradient update per
       environment sample, the usual DDPG ratio).
+    * ``n_step`` 1 (one-step targets, the paper's); n > 1 stores n-step returns
+      (:mod:`train.nstep`), windows truncated at episode ends.
     * ``warmup_samples`` 1,000 -- env samples collected by actor + noise after
       the demo burn-in before updates start.
     * ``total_samples`` 500,000 env samples (paper Fig. 3: "about 500,000
@@ -116,6 +118,7 @@ class TrainConfig:
     warmup_samples: int = 1_000
     random_warmup: bool = False  #: uniform-random actions (not actor + noise) during warm-up
     updates_per_sample: float = 1.0
+    n_step: int = 1  #: n-step returns (train.nstep): rewards of up to n steps summed per transition, bootstrap with gamma**k; 1 = one-step DDPG
     bc_weight: float = 0.0  #: DDPGfD-style behaviour cloning: + bc_weight * MSE(mu(s_d), a_d) on demo rows (0: plain DDPG)
     bc_batch_size: int = 64  #: demonstration rows per update for the behaviour-cloning term
     reward_scale: float = 1.0  #: rewards are multiplied by this before storage (logs show raw)
@@ -177,6 +180,8 @@ class TrainConfig:
             problems.append(f"ou_dt must be > 0 (got {self.ou_dt})")
         if not self.actor_hidden or not self.critic_hidden or min(self.actor_hidden + self.critic_hidden) <= 0:
             problems.append("actor_hidden and critic_hidden need at least one positive size")
+        if self.n_step < 1:
+            problems.append(f"n_step must be >= 1 (got {self.n_step})")
         if self.td3_policy_delay < 1:
             problems.append(f"td3_policy_delay must be >= 1 (got {self.td3_policy_delay})")
         from .algos import ALGOS  # late: the algorithms import this module

@@ -12,6 +12,9 @@ Data handling (Gymnasium 1.x vector envs, ``AutoresetMode.NEXT_STEP``):
   (time limits) are stored with ``terminated = 0`` and so bootstrap.
 * The following step of that sub-env is a reset step that ignores the action;
   its transition is never stored (tracked by ``self.autoreset``).
+* With ``n_step`` > 1 each sub-env's steps go through :class:`train.nstep.NStepBuffer`
+  first: a row is stored once its n-step window is complete or its episode ended;
+  a checkpoint cut ends the open windows as truncations. ``samples`` counts env steps.
 
 Resume: every ``checkpoint_interval`` env samples the loop cuts all running
 episodes (re-seeds and resets the envs; cut episodes are not logged, their
@@ -53,6 +56,7 @@ from .demos import fill_replay
 from .evaluate import ActionScaler, evaluate_actor, make_env, run_episodes
 from .exploration import make_exploration
 from .logs import EVAL_FIELDS, CsvLog, TensorBoardLog, progress_fields
+from .nstep import NStepBuffer
 from .replay import ReplayBuffer
 
 __all__ = ["CHECKPOINT", "Trainer", "load_run_config", "train"]
@@ -109,7 +113,11 @@ class Trainer:
         self.demo_fn = demo_fn if demo_fn is not None else (resolve_callable(cfg.demo_fn) if cfg.demo_fn else None)
 
         self.agent = make_agent(self.obs_dim, self.act_dim, cfg)
-        self.buffer = ReplayBuffer(cfg.buffer_size, self.obs_dim, self.act_dim, cfg.batch_size, replay_rng)
+        # n_step > 1: windows per sub-env (train.nstep), rows carry their own discount; 1: the one-step path
+        self.nstep = NStepBuffer(cfg.num_envs, cfg.n_step, cfg.gamma, self.obs_dim, self.act_dim) \
+            if cfg.n_step > 1 else None
+        self.buffer = ReplayBuffer(cfg.buffer_size, self.obs_dim, self.act_dim, cfg.batch_size, replay_rng,
+                                   discount=self.nstep is not None, default_discount=cfg.gamma)
         self.noise = make_exploration(cfg, cfg.num_envs, self.act_dim, noise_rng)
         env_fns = [lambda: make_env(cfg.env_id, cfg.env_kwargs, cfg.max_episode_steps)] * cfg.num_envs
         if cfg.vector_mode == "batched":  # the skill tasks' worlds stepped together (ssl_marl.skills.vector)
@@ -203,7 +211,12 @@ class Trainer:
             act = np.clip(self.agent.act(self.obs) + noise, -1.0, 1.0)
         next_obs, rew, term, trunc, info = self.envs.step(self.scaler.to_env(act))
         valid = ~self.autoreset  # False: this step was an autoreset step (action ignored, obs = reset obs)
-        self.buffer.add(self.obs[valid], act[valid], rew[valid] * cfg.reward_scale, next_obs[valid], term[valid])
+        if self.nstep is None:
+            self.buffer.add(self.obs[valid], act[valid], rew[valid] * cfg.reward_scale, next_obs[valid], term[valid])
+        else:
+            ready = self.nstep.step(np.flatnonzero(valid), self.obs[valid], act[valid],
+                                    rew[valid] * cfg.reward_scale, next_obs[valid], term[valid], trunc[valid])
+            self.buffer.add(*ready)
         n_valid = int(valid.sum())
         self.samples += n_valid
         self.transitions += n_valid
@@ -266,6 +279,8 @@ class Trainer:
         while self.next_checkpoint <= self.samples:
             self.next_checkpoint += self.cfg.checkpoint_interval
         self.segment += 1
+        if self.nstep is not None:  # the cut ends every running window as a truncation (bootstraps)
+            self.buffer.add(*self.nstep.flush(self.obs))
         self._reset_envs()
         replay_name = f"replay-{self.transitions:012d}.npz"
         self.buffer.save(self.out / replay_name)
