@@ -121,6 +121,7 @@ class TrainConfig:
     n_step: int = 1  #: n-step returns (train.nstep): rewards of up to n steps summed per transition, bootstrap with gamma**k; 1 = one-step DDPG
     bc_weight: float = 0.0  #: DDPGfD-style behaviour cloning: + bc_weight * MSE(mu(s_d), a_d) on demo rows (0: plain DDPG)
     bc_batch_size: int = 64  #: demonstration rows per update for the behaviour-cloning term
+    bc_anneal_samples: int = 0  #: > 0: the behaviour-cloning weight falls linearly from bc_weight to 0 over this many env samples after warm-up (0: constant)
     reward_scale: float = 1.0  #: rewards are multiplied by this before storage (logs show raw)
     # --- TD3 (Fujimoto et al. 2018; in the actor's [-1, 1] action units) ------
     td3_policy_noise: float = 0.2  #: std of the target policy smoothing noise
@@ -168,7 +169,8 @@ class TrainConfig:
             if not getattr(self, name) > 0:
                 problems.append(f"{name} must be > 0 (got {getattr(self, name)!r})")
         for name in ("total_samples", "warmup_samples", "demo_steps", "eval_interval", "critic_weight_decay",
-                     "torch_threads", "updates_per_sample", "ou_sigma", "ou_theta", "bc_weight", "gaussian_sigma",
+                     "torch_threads", "updates_per_sample", "ou_sigma", "ou_theta", "bc_weight", "bc_anneal_samples",
+                     "gaussian_sigma",
                      "td3_policy_noise", "td3_noise_clip"):
             if getattr(self, name) < 0:
                 problems.append(f"{name} must be >= 0 (got {getattr(self, name)!r})")

@@ -31,6 +31,7 @@ Output folder: ``progress.csv`` (one row per episode, demo episodes flagged
 
 from __future__ import annotations
 
+import copy
 import importlib
 import random
 import time
@@ -250,6 +251,8 @@ class Trainer:
         self.update_credit += n_new * cfg.updates_per_sample
         n_demo = self.transitions - self.samples  # burn-in wrote the demos to rows [0, n_demo)
         use_bc = cfg.bc_weight > 0 and n_demo > 0 and self.transitions <= self.buffer.capacity  # not overwritten yet
+        if use_bc and cfg.bc_anneal_samples > 0:
+            use_bc = self.anneal_bc()
         while self.update_credit >= 1.0:
             demo = self.buffer.sample_rows(0, n_demo, cfg.bc_batch_size) if use_bc else None
             self.agent.update(self.buffer.sample(), demo)
@@ -260,6 +263,18 @@ class Trainer:
                     self.losses = {**(self.losses or {}), **losses}
                     if self.tb is not None:
                         self.tb.scalars("loss", losses, self.transitions)
+
+    def anneal_bc(self) -> bool:
+        """Set the agent's behaviour-cloning weight to ``bc_weight`` x max(0, 1 - (samples -
+        warmup_samples) / bc_anneal_samples) (a function of the sample count, so a resumed
+        run anneals as the uninterrupted one); False once it is 0 (no demo rows needed).
+        The agent gets its own copy of the config, so the saved config keeps ``bc_weight``."""
+        cfg = self.cfg
+        w = cfg.bc_weight * max(0.0, 1.0 - (self.samples - cfg.warmup_samples) / cfg.bc_anneal_samples)
+        if self.agent.cfg is cfg:
+            self.agent.cfg = copy.copy(cfg)
+        self.agent.cfg.bc_weight = w
+        return w > 0
 
     def evaluate(self) -> dict[str, Any]:
         """Deterministic evaluation on the fixed eval start states (seed + 1000); logged to eval.csv."""
