@@ -1,4 +1,4 @@
-"""The ``ssl-marl`` command line: demo, match, eval-skill, eval-drill, eval-tactic, bench, train, export-onnx.
+"""The ``ssl-marl`` command line: demo, match, eval-skill, eval-drill, eval-tactic, eval-task, bench, train, export-onnx.
 
 Every long-running command shows a progress bar; ``ssl-marl COMMAND --help``
 explains every option. Output paths follow one rule (:data:`OUTPUT_RULE`),
@@ -185,7 +185,7 @@ def cmd_match(args: argparse.Namespace) -> int:
     yellow, yellow_skills = _resolve_team("yellow", args.yellow, args.skill + args.yellow_skill)
     common = dict(robots=args.robots, field=args.field, seconds=args.seconds, realism=args.realism,
                   realtime=args.realtime, blue_skills=blue_skills, yellow_skills=yellow_skills,
-                  tracker=args.tracker)
+                  tracker=args.tracker, blue_decision=args.blue_decision, yellow_decision=args.yellow_decision)
     render = None if str(args.render).lower() == "none" else args.render
     if render is not None and args.matches == 1:
         prepare_output_file(render, VIDEO_SUFFIXES, "--render")
@@ -277,6 +277,28 @@ def cmd_eval_tactic(args: argparse.Namespace) -> int:
     return 0
 
 
+# ----------------------------------------------------------------- eval-task
+def cmd_eval_task(args: argparse.Namespace) -> int:
+    from .io import prepare_output_dir
+    from .runners.task_eval import evaluate_task
+
+    if args.out:
+        prepare_output_dir(args.out, "--out")
+    s = evaluate_task(args.task, args.policy, episodes=args.episodes, seed=args.seed, workers=_workers(args),
+                      realism=args.realism, field=args.field, actor=args.actor, out=args.out,
+                      progress=not args.quiet, backend=args.backend, address=args.address)
+    oc = ", ".join(f"{k} {v}" for k, v in s["outcomes"].items())
+    if "mean_duration_s" in s:
+        lo, hi = s["mean_duration_ci95"]
+        score = f"mean duration {s['mean_duration_s']:.2f} s [95% CI {lo:.2f}-{hi:.2f}]"
+    else:
+        lo, hi = s["goal_rate_ci95"]
+        score = f"goal rate {s['goal_rate']:.3f} [95% CI {lo:.3f}-{hi:.3f}]"
+    print(f"{args.task} ({args.policy}): {score} over {s['episodes']} episodes (seeds {s['seed']}+i); "
+          f"outcomes: {oc}" + (f" -> {args.out}/results.json" if args.out else ""))
+    return 0
+
+
 def cmd_bench(args: argparse.Namespace) -> int:
     """Forward everything after ``bench`` (a leading ``--`` is dropped) to :func:`ssl_marl.bench.main`."""
     from . import bench
@@ -351,8 +373,9 @@ def build_parser() -> argparse.ArgumentParser:
     m.add_argument("--blue", type=_team, default="learned", metavar="TEAM",
                    help="blue team: learned (STP with the shipped DDPG actors), baseline (STP with hand-coded "
                         "skills), passing-learned / passing-baseline (the passing plays: shoot, pass or keep by "
-                        "cost, set plays with passes, with those skills), random, idle, or a JSON team file {\"kind\": ..., \"skills\": {SKILL: SOURCE}} "
-                        "(default learned)")
+                        "cost, set plays with passes, with those skills), passing-learned-decision (passing-learned "
+                        "whose ball carrier uses the learned Attack 3v2 decision), random, idle, or a JSON team file "
+                        "{\"kind\": ..., \"skills\": {SKILL: SOURCE}} (default learned)")
     m.add_argument("--yellow", type=_team, default="baseline", metavar="TEAM",
                    help="yellow team, as --blue (default baseline)")
     m.add_argument("--skill", type=_skill_source, action="append", default=[], metavar="SKILL=SOURCE",
@@ -361,6 +384,12 @@ def build_parser() -> argparse.ArgumentParser:
                    help="as --skill, for the blue team only (wins over --skill)")
     m.add_argument("--yellow-skill", type=_skill_source, action="append", default=[], metavar="SKILL=SOURCE",
                    help="as --skill, for the yellow team only (wins over --skill)")
+    for team in ("blue", "yellow"):
+        m.add_argument(f"--{team}-decision", default=None, metavar="DECISION",
+                       help=f"{team} passing team's ball-carrier decision (shoot / pass / dribble): handcoded (the "
+                            "cost decision), learned (the shipped Attack 3v2 actor) or PATH to a decision actor "
+                            "checkpoint; needs a passing team (default: the team kind's own, learned for "
+                            "passing-learned-decision, else handcoded)")
     m.add_argument("--robots", type=_robots, default=6, help="robots per team, 1-11 (default 6)")
     m.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")
     m.add_argument("--seconds", type=_positive_float("--seconds"), default=30.0,
@@ -450,6 +479,34 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--quiet", action="store_true", help="no progress bar")
     _add_tracker_option(t)
     t.set_defaults(func=cmd_eval_tactic)
+
+    k = sub.add_parser("eval-task", help="evaluate a decision policy on keepaway or attack-3v2 (issue 12)",
+                       description="Episodes of a decision-level multi-agent task (ssl_marl/decisions) with one "
+                                   "policy for all learning agents; episode i uses seed SEED+i, so results do not "
+                                   "depend on --workers. Writes OUT/results.json (keepaway: mean_duration_s, "
+                                   "attack-3v2: goal_rate, with 95%% intervals, outcomes, every episode) and "
+                                   "OUT/duration_hist.png.")
+    k.add_argument("task", choices=("keepaway", "attack-3v2"), help="the decision task")
+    k.add_argument("--policy", choices=("learned", "handcoded", "random", "always-hold"), default="handcoded",
+                   help="decision policy: learned (ssl_marl.decisions.learned, the shipped actor or --actor), "
+                        "handcoded (the task's benchmark), random (uniform over legal options), always-hold "
+                        "(keepaway only) (default handcoded)")
+    k.add_argument("--actor", default=None, metavar="PATH",
+                   help="learned decision actor file (.pt, loaded with weights_only=True); only with --policy "
+                        "learned (default: ssl_marl/decisions/pretrained/TASK.pt)")
+    k.add_argument("--episodes", type=_positive_int("--episodes"), default=1000, help="episodes (default 1000)")
+    k.add_argument("--seed", type=int, default=None,
+                   help="evaluation seed: episode i uses SEED+i (default 40000 keepaway, 41000 attack-3v2)")
+    k.add_argument("--workers", type=_positive_int("--workers"), default=None,
+                   help="worker processes (default 1; with --backend ray: tasks in flight, default the cluster's CPUs)")
+    k.add_argument("--realism", choices=("none", "realistic"), default="none", help="noise / latency preset")
+    k.add_argument("--field", choices=FIELDS, default="div_b",
+                   help="field around the task's area (robot parameters are the same on both; default div_b)")
+    k.add_argument("--out", default=None,
+                   help="output folder for results.json and duration_hist.png, created if missing (default: none)")
+    _add_backend(k, "the episodes")
+    k.add_argument("--quiet", action="store_true", help="no progress bar")
+    k.set_defaults(func=cmd_eval_task)
 
     b = sub.add_parser("bench", help="env throughput benchmark (JSON); options: ssl-marl bench --help",
                        add_help=False)

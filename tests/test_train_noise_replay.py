@@ -80,7 +80,7 @@ def test_replay_sample_shapes_and_contents() -> None:
     b = buf.sample()
     assert b.obs.shape == (32, 2) and b.act.shape == (32, 2) and b.rew.shape == (32,)
     assert b.next_obs.shape == (32, 2) and b.terminated.shape == (32,)
-    assert all(t.dtype == torch.float32 for t in b)
+    assert all(t.dtype == torch.float32 for t in b[:5]) and b.discount is None  # one-step: no per-row discount
     ids = b.obs[:, 0]
     assert set(ids.tolist()) <= set(range(7)) and len(set(ids.tolist())) > 3  # only stored rows, several of them
     # every field of a sampled row belongs to the same transition

@@ -70,6 +70,8 @@ class TrainConfig:
       original DDPG's 0.001 learns slower in our tests).
     * ``batch_size`` 256, ``updates_per_sample`` 1.0 (one gradient update per
       environment sample, the usual DDPG ratio).
+    * ``n_step`` 1 (one-step targets, the paper's); n > 1 stores n-step returns
+      (:mod:`train.nstep`), windows truncated at episode ends.
     * ``warmup_samples`` 1,000 -- env samples collected by actor + noise after
       the demo burn-in before updates start.
     * ``total_samples`` 500,000 env samples (paper Fig. 3: "about 500,000
@@ -116,8 +118,10 @@ class TrainConfig:
     warmup_samples: int = 1_000
     random_warmup: bool = False  #: uniform-random actions (not actor + noise) during warm-up
     updates_per_sample: float = 1.0
+    n_step: int = 1  #: n-step returns (train.nstep): rewards of up to n steps summed per transition, bootstrap with gamma**k; 1 = one-step DDPG
     bc_weight: float = 0.0  #: DDPGfD-style behaviour cloning: + bc_weight * MSE(mu(s_d), a_d) on demo rows (0: plain DDPG)
     bc_batch_size: int = 64  #: demonstration rows per update for the behaviour-cloning term
+    bc_anneal_samples: int = 0  #: > 0: the behaviour-cloning weight falls linearly from bc_weight to 0 over this many env samples after warm-up (0: constant)
     reward_scale: float = 1.0  #: rewards are multiplied by this before storage (logs show raw)
     # --- TD3 (Fujimoto et al. 2018; in the actor's [-1, 1] action units) ------
     td3_policy_noise: float = 0.2  #: std of the target policy smoothing noise
@@ -165,7 +169,8 @@ class TrainConfig:
             if not getattr(self, name) > 0:
                 problems.append(f"{name} must be > 0 (got {getattr(self, name)!r})")
         for name in ("total_samples", "warmup_samples", "demo_steps", "eval_interval", "critic_weight_decay",
-                     "torch_threads", "updates_per_sample", "ou_sigma", "ou_theta", "bc_weight", "gaussian_sigma",
+                     "torch_threads", "updates_per_sample", "ou_sigma", "ou_theta", "bc_weight", "bc_anneal_samples",
+                     "gaussian_sigma",
                      "td3_policy_noise", "td3_noise_clip"):
             if getattr(self, name) < 0:
                 problems.append(f"{name} must be >= 0 (got {getattr(self, name)!r})")
@@ -177,6 +182,8 @@ class TrainConfig:
             problems.append(f"ou_dt must be > 0 (got {self.ou_dt})")
         if not self.actor_hidden or not self.critic_hidden or min(self.actor_hidden + self.critic_hidden) <= 0:
             problems.append("actor_hidden and critic_hidden need at least one positive size")
+        if self.n_step < 1:
+            problems.append(f"n_step must be >= 1 (got {self.n_step})")
         if self.td3_policy_delay < 1:
             problems.append(f"td3_policy_delay must be >= 1 (got {self.td3_policy_delay})")
         from .algos import ALGOS  # late: the algorithms import this module

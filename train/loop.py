@@ -12,6 +12,9 @@ Data handling (Gymnasium 1.x vector envs, ``AutoresetMode.NEXT_STEP``):
   (time limits) are stored with ``terminated = 0`` and so bootstrap.
 * The following step of that sub-env is a reset step that ignores the action;
   its transition is never stored (tracked by ``self.autoreset``).
+* With ``n_step`` > 1 each sub-env's steps go through :class:`train.nstep.NStepBuffer`
+  first: a row is stored once its n-step window is complete or its episode ended;
+  a checkpoint cut ends the open windows as truncations. ``samples`` counts env steps.
 
 Resume: every ``checkpoint_interval`` env samples the loop cuts all running
 episodes (re-seeds and resets the envs; cut episodes are not logged, their
@@ -28,6 +31,7 @@ Output folder: ``progress.csv`` (one row per episode, demo episodes flagged
 
 from __future__ import annotations
 
+import copy
 import importlib
 import random
 import time
@@ -53,6 +57,7 @@ from .demos import fill_replay
 from .evaluate import ActionScaler, evaluate_actor, make_env, run_episodes
 from .exploration import make_exploration
 from .logs import EVAL_FIELDS, CsvLog, TensorBoardLog, progress_fields
+from .nstep import NStepBuffer
 from .replay import ReplayBuffer
 
 __all__ = ["CHECKPOINT", "Trainer", "load_run_config", "train"]
@@ -109,7 +114,11 @@ class Trainer:
         self.demo_fn = demo_fn if demo_fn is not None else (resolve_callable(cfg.demo_fn) if cfg.demo_fn else None)
 
         self.agent = make_agent(self.obs_dim, self.act_dim, cfg)
-        self.buffer = ReplayBuffer(cfg.buffer_size, self.obs_dim, self.act_dim, cfg.batch_size, replay_rng)
+        # n_step > 1: windows per sub-env (train.nstep), rows carry their own discount; 1: the one-step path
+        self.nstep = NStepBuffer(cfg.num_envs, cfg.n_step, cfg.gamma, self.obs_dim, self.act_dim) \
+            if cfg.n_step > 1 else None
+        self.buffer = ReplayBuffer(cfg.buffer_size, self.obs_dim, self.act_dim, cfg.batch_size, replay_rng,
+                                   discount=self.nstep is not None, default_discount=cfg.gamma)
         self.noise = make_exploration(cfg, cfg.num_envs, self.act_dim, noise_rng)
         env_fns = [lambda: make_env(cfg.env_id, cfg.env_kwargs, cfg.max_episode_steps)] * cfg.num_envs
         if cfg.vector_mode == "batched":  # the skill tasks' worlds stepped together (ssl_marl.skills.vector)
@@ -203,7 +212,12 @@ class Trainer:
             act = np.clip(self.agent.act(self.obs) + noise, -1.0, 1.0)
         next_obs, rew, term, trunc, info = self.envs.step(self.scaler.to_env(act))
         valid = ~self.autoreset  # False: this step was an autoreset step (action ignored, obs = reset obs)
-        self.buffer.add(self.obs[valid], act[valid], rew[valid] * cfg.reward_scale, next_obs[valid], term[valid])
+        if self.nstep is None:
+            self.buffer.add(self.obs[valid], act[valid], rew[valid] * cfg.reward_scale, next_obs[valid], term[valid])
+        else:
+            ready = self.nstep.step(np.flatnonzero(valid), self.obs[valid], act[valid],
+                                    rew[valid] * cfg.reward_scale, next_obs[valid], term[valid], trunc[valid])
+            self.buffer.add(*ready)
         n_valid = int(valid.sum())
         self.samples += n_valid
         self.transitions += n_valid
@@ -237,6 +251,8 @@ class Trainer:
         self.update_credit += n_new * cfg.updates_per_sample
         n_demo = self.transitions - self.samples  # burn-in wrote the demos to rows [0, n_demo)
         use_bc = cfg.bc_weight > 0 and n_demo > 0 and self.transitions <= self.buffer.capacity  # not overwritten yet
+        if use_bc and cfg.bc_anneal_samples > 0:
+            use_bc = self.anneal_bc()
         while self.update_credit >= 1.0:
             demo = self.buffer.sample_rows(0, n_demo, cfg.bc_batch_size) if use_bc else None
             self.agent.update(self.buffer.sample(), demo)
@@ -247,6 +263,18 @@ class Trainer:
                     self.losses = {**(self.losses or {}), **losses}
                     if self.tb is not None:
                         self.tb.scalars("loss", losses, self.transitions)
+
+    def anneal_bc(self) -> bool:
+        """Set the agent's behaviour-cloning weight to ``bc_weight`` x max(0, 1 - (samples -
+        warmup_samples) / bc_anneal_samples) (a function of the sample count, so a resumed
+        run anneals as the uninterrupted one); False once it is 0 (no demo rows needed).
+        The agent gets its own copy of the config, so the saved config keeps ``bc_weight``."""
+        cfg = self.cfg
+        w = cfg.bc_weight * max(0.0, 1.0 - (self.samples - cfg.warmup_samples) / cfg.bc_anneal_samples)
+        if self.agent.cfg is cfg:
+            self.agent.cfg = copy.copy(cfg)
+        self.agent.cfg.bc_weight = w
+        return w > 0
 
     def evaluate(self) -> dict[str, Any]:
         """Deterministic evaluation on the fixed eval start states (seed + 1000); logged to eval.csv."""
@@ -266,6 +294,8 @@ class Trainer:
         while self.next_checkpoint <= self.samples:
             self.next_checkpoint += self.cfg.checkpoint_interval
         self.segment += 1
+        if self.nstep is not None:  # the cut ends every running window as a truncation (bootstraps)
+            self.buffer.add(*self.nstep.flush(self.obs))
         self._reset_envs()
         replay_name = f"replay-{self.transitions:012d}.npz"
         self.buffer.save(self.out / replay_name)

@@ -1,4 +1,9 @@
-"""Replay memory: a numpy ring buffer of (obs, act, rew, next_obs, terminated).
+"""Replay memory: a numpy ring buffer of (obs, act, rew, next_obs, terminated[, discount]).
+
+With ``discount=True`` (n-step returns, :mod:`train.nstep`) every row also stores its own
+bootstrap discount (``gamma ** k`` for a k-step window); rows added without one get
+``default_discount`` (e.g. the one-step demonstrations). Without it the buffer and its
+files are exactly the one-step ones (``Batch.discount`` is None).
 
 Sampling is uniform with replacement. Indices are drawn once per batch and
 gathered with ``np.take(..., out=...)`` into preallocated arrays that share
@@ -25,6 +30,7 @@ class Batch(NamedTuple):
     rew: torch.Tensor
     next_obs: torch.Tensor
     terminated: torch.Tensor  # 1.0 where the episode truly ended (no bootstrap), else 0.0
+    discount: torch.Tensor | None = None  # (B,) per-row bootstrap discount (n-step); None: the config's gamma
 
 
 class ReplayBuffer:
@@ -33,9 +39,14 @@ class ReplayBuffer:
     _FIELDS = ("obs", "act", "rew", "next_obs", "terminated")
 
     def __init__(self, capacity: int, obs_dim: int, act_dim: int, batch_size: int,
-                 rng: np.random.Generator | None = None) -> None:
+                 rng: np.random.Generator | None = None, discount: bool = False,
+                 default_discount: float = 1.0) -> None:
         if capacity <= 0 or batch_size <= 0:
             raise ValueError(f"capacity and batch_size must be > 0 (got {capacity}, {batch_size})")
+        self._FIELDS = ReplayBuffer._FIELDS + (("discount",) if discount else ())
+        self.default_discount = float(default_discount)
+        if discount:
+            self.discount = np.zeros(capacity, np.float32)
         self.capacity, self.obs_dim, self.act_dim, self.batch_size = int(capacity), obs_dim, act_dim, batch_size
         self.rng = rng if rng is not None else np.random.default_rng()
         self.obs = np.zeros((capacity, obs_dim), np.float32)
@@ -52,15 +63,24 @@ class ReplayBuffer:
         return self.size
 
     def add(self, obs: np.ndarray, act: np.ndarray, rew: np.ndarray, next_obs: np.ndarray,
-            terminated: np.ndarray) -> None:
-        """Append n transitions (leading axis n; n may be 0), wrapping around when full."""
+            terminated: np.ndarray, discount: np.ndarray | None = None) -> None:
+        """Append n transitions (leading axis n; n may be 0), wrapping around when full.
+        ``discount`` (n,): per-row bootstrap discounts, only for a buffer made with
+        ``discount=True`` (default there: ``default_discount``)."""
         obs = np.asarray(obs, np.float32).reshape(-1, self.obs_dim)
         n = obs.shape[0]
         if n == 0:
             return
-        data = (obs, np.asarray(act, np.float32).reshape(n, self.act_dim),
-                np.asarray(rew, np.float32).reshape(n), np.asarray(next_obs, np.float32).reshape(n, self.obs_dim),
-                np.asarray(terminated, np.float32).reshape(n))
+        data: tuple[np.ndarray, ...] = (
+            obs, np.asarray(act, np.float32).reshape(n, self.act_dim),
+            np.asarray(rew, np.float32).reshape(n), np.asarray(next_obs, np.float32).reshape(n, self.obs_dim),
+            np.asarray(terminated, np.float32).reshape(n))
+        if "discount" in self._FIELDS:
+            disc = np.full(n, self.default_discount, np.float32) if discount is None \
+                else np.asarray(discount, np.float32).reshape(n)
+            data = data + (disc,)
+        elif discount is not None:
+            raise ValueError("this replay buffer stores no per-row discount (make it with discount=True)")
         if n > self.capacity:  # only the newest `capacity` rows survive anyway
             data = tuple(d[-self.capacity:] for d in data)
             self.ptr = (self.ptr + n - self.capacity) % self.capacity

@@ -187,13 +187,28 @@ class PassOption:
 
 @dataclass(frozen=True)
 class Decision:
-    """The carrier's choice with its evidence (values as in the module docstring)."""
+    """The carrier's choice with its evidence (values as in the module docstring).
+
+    Three optional fields let a decider other than :func:`decide` (a learned one,
+    :mod:`ssl_marl.plays.passing_play`'s ``CarrierDecider`` hook) say more than the cost
+    decision does; their defaults are the cost decision's behaviour:
+
+    * ``dribble_to``: with KEEP, the point (m, team frame) the carrier turns to and
+      dribbles towards (None: the opponent goal centre, the attacker's KEEP);
+    * ``dribble_speed``: KEEP's forward speed (m/s; None: the attacker's ``keep_speed``);
+    * ``commit_s``: the play asks for no new decision for this long (s) while the
+      carrier keeps the ball (0: re-decide every ``decide_every`` ticks). A committed
+      KEEP is not turned into a shot after ``max_keep_s``.
+    """
 
     choice: Choice
     shot: float
     keep: float
     passes: tuple[PassOption, ...] = ()
     best_pass: PassOption | None = None
+    dribble_to: np.ndarray | None = None
+    dribble_speed: float | None = None
+    commit_s: float = 0.0
 
     @property
     def target(self) -> int | None:

@@ -30,6 +30,18 @@ internals:
    attacker role returns; after a completed pass the receiver, now nearest the ball,
    takes it.
 
+**The decider hook.** Step 1's choice is made by the coordinator's
+:class:`CarrierDecider` (``PassCoordinator(decider=...)``, ``passing_plays(decider=...)``):
+``decide(request: CarrierRequest) -> Decision``. The default, :class:`CostDecider`, is
+the cost decision above (:func:`~ssl_marl.plays.pass_decision.decide`), so a team built
+without a decider plays exactly as before. Any other decider (the learned attack
+decision, :mod:`ssl_marl.decisions.match_decider`) gets the same request (context,
+carrier, pass candidates, parameters, restart flag) and answers with a
+:class:`~ssl_marl.plays.pass_decision.Decision`; its optional ``dribble_to`` /
+``dribble_speed`` steer the attacker's KEEP and ``commit_s`` holds the decision for a
+while (module :mod:`~ssl_marl.plays.pass_decision`, ``Decision``). The plays import
+nothing of the decider's package: the hook is this protocol.
+
 Plays (:func:`passing_plays`): ``restart`` (priority 1: the ball rests at the centre
 mark or at a free-kick spot near a line; the carrier is biased towards passing:
 :data:`RESTART_DECISION`), ``offense_passing`` (applicable like ``offense``, and while a
@@ -44,7 +56,7 @@ import dataclasses
 import enum
 import math
 from dataclasses import dataclass
-from typing import Callable
+from typing import Callable, Protocol, runtime_checkable
 
 import numpy as np
 
@@ -55,7 +67,7 @@ from .pass_tactic import Pass, PassState
 from .play import (HAS_BALL_MARGIN_S, Play, PlayContext, RoleDef, defender_role, defense_play, goalie_role,
                    mark_role, offense_applicable, _filled_index, _support_band)
 from .receive_tactic import Receive, ReceiveState
-from .shoot import Attacker, ShootState
+from .shoot import Attacker, ShootParams, ShootState
 from .skillset import CORE_SKILLS, PASSING_SKILLS, skill_kind
 from .support import Support
 from .tactic_base import Tactic
@@ -126,12 +138,59 @@ class PassCounters:
     aborted: int = 0
 
 
-class PassCoordinator:
-    """Team-level pass plan shared by the passing plays' roles (module docstring)."""
+@dataclass(frozen=True)
+class CarrierRequest:
+    """What a :class:`CarrierDecider` is asked, once the carrier has settled the ball.
 
-    def __init__(self, params: PassingParams | None = None, ball: BallParams | None = None) -> None:
+    Attributes:
+        ctx: the tick's play context (team frame: own goal at -x).
+        carrier: the carrier's robot index.
+        candidates: teammates a pass may go to (empty during the cooldown after a dropped pass).
+        params: the decision parameters of the moment (open play or restart).
+        restart: the ball is at a restart (kickoff, free kick).
+        ball: ball parameters (for the ball model).
+        t: simulated time (s).
+    """
+
+    ctx: PlayContext
+    carrier: int
+    candidates: tuple[int, ...]
+    params: DecisionParams
+    restart: bool
+    ball: BallParams
+    t: float
+
+
+@runtime_checkable
+class CarrierDecider(Protocol):
+    """The carrier's shoot / pass / keep (dribble) decision (module docstring, "the decider hook")."""
+
+    def decide(self, request: CarrierRequest) -> Decision:
+        ...
+
+
+class CostDecider:
+    """The default decider: the documented cost decision
+    (:func:`~ssl_marl.plays.pass_decision.decide`) on the request."""
+
+    def decide(self, request: CarrierRequest) -> Decision:
+        ctx = request.ctx
+        ours = ctx.world.team(ctx.team)
+        return decide(ctx.ball, request.carrier, ours.pos, ctx.opp_pos, ctx.field, ctx.robot, request.ball,
+                      request.params, candidates=request.candidates, heading=float(ours.heading[request.carrier]))
+
+
+class PassCoordinator:
+    """Team-level pass plan shared by the passing plays' roles (module docstring).
+    ``decider``: the carrier's decision (default :class:`CostDecider`)."""
+
+    def __init__(self, params: PassingParams | None = None, ball: BallParams | None = None,
+                 decider: CarrierDecider | None = None) -> None:
         self.params = params or PassingParams()
         self.bp = ball or BallParams()
+        if decider is not None and not callable(getattr(decider, "decide", None)):
+            raise TypeError(f"PassCoordinator: decider must have a decide(request) method, got {decider!r}")
+        self.decider: CarrierDecider = decider if decider is not None else CostDecider()
         self.reset()
 
     def reset(self) -> None:
@@ -144,6 +203,7 @@ class PassCoordinator:
         self._keep_since: float | None = None
         self._carrier: int | None = None
         self._recv_on_since: float | None = None
+        self._commit_until = -math.inf
 
     @property
     def active(self) -> bool:
@@ -154,6 +214,20 @@ class PassCoordinator:
         that it never shoots before a decision was made)."""
         d = self.decision
         return d is None or d.choice is not Choice.SHOOT
+
+    def keep_target(self) -> tuple[float, float] | None:
+        """Where a KEEP decision dribbles to (None: the opponent goal centre)."""
+        d = self.decision
+        if d is None or d.choice is not Choice.KEEP or d.dribble_to is None:
+            return None
+        return (float(d.dribble_to[0]), float(d.dribble_to[1]))
+
+    def keep_speed(self) -> float:
+        """KEEP's forward speed (m/s): the decision's ``dribble_speed``, else the attacker's default."""
+        d = self.decision
+        if d is None or d.choice is not Choice.KEEP or d.dribble_speed is None:
+            return ShootParams.keep_speed
+        return float(d.dribble_speed)
 
     # ----------------------------------------------------------------- tick
     def prepare(self, ctx: PlayContext, restart: bool = False) -> None:
@@ -177,6 +251,7 @@ class PassCoordinator:
         self.decision = None
         self._keep_since = None
         self._recv_on_since = None
+        self._commit_until = -math.inf
 
     def _follow(self, ctx: PlayContext, t: float) -> None:
         plan, p = self.plan, self.params
@@ -216,24 +291,32 @@ class PassCoordinator:
             self.decision = None
             self._keep_since = None
             self._carrier = None
+            self._commit_until = -math.inf
             return
         carrier = int(holders[0])
         attacker = ctx.role_status.get("attacker")
         if ctx.role_holders.get("attacker") != carrier or attacker is None or attacker.state not in SETTLED:
             if attacker is None or attacker.state not in SETTLED + (ShootState.DRIVE_FORWARD,):
                 self.decision, self._keep_since = None, None  # a new possession: decide afresh
+                self._commit_until = -math.inf
             return  # decide once the carrier has settled the ball (not while it drives or fetches)
         if carrier != self._carrier:
             self._carrier, self._keep_since, self.decision = carrier, None, None
-        if self.decision is not None and self._tick % p.decide_every != 0:
+            self._commit_until = -math.inf
+        if self.decision is not None and (self._tick % p.decide_every != 0 or t < self._commit_until - 1e-9):
             return
         params = p.restart_decision if restart else p.decision
         cands = tuple(k for k in range(ctx.n) if k != carrier and not (ctx.n >= 2 and k == 0))
         if t < self._cooldown_until:
             cands = ()
-        d = decide(ctx.ball, carrier, ours.pos, ctx.opp_pos, ctx.field, ctx.robot, self.bp, params, candidates=cands,
-                   heading=float(ours.heading[carrier]))
-        if d.choice is Choice.KEEP:
+        d = self.decider.decide(CarrierRequest(ctx, carrier, cands, params, restart, self.bp, t))
+        if not isinstance(d, Decision):
+            raise TypeError(f"PassCoordinator: the decider {type(self.decider).__name__} returned "
+                            f"{type(d).__name__}, expected a Decision")
+        self._commit_until = t + float(d.commit_s) if d.commit_s > 0 else -math.inf
+        if d.choice is Choice.KEEP and d.commit_s > 0:
+            self._keep_since = None
+        elif d.choice is Choice.KEEP:
             if self._keep_since is None:
                 self._keep_since = t
             if t - self._keep_since > p.max_keep_s:
@@ -298,7 +381,8 @@ def passing_attacker_role(coord: PassCoordinator, priority: int = 90) -> RoleDef
         return None if coord.plan is not None else np.asarray(ctx.ball, float)
 
     def update(t: Tactic, ctx: PlayContext, a: Assignment) -> None:
-        t.set_params(hold_fire=coord.hold_fire(), drive_forward_s=coord.params.settle_s)
+        t.set_params(hold_fire=coord.hold_fire(), drive_forward_s=coord.params.settle_s,
+                     keep_target=coord.keep_target(), keep_speed=coord.keep_speed())
 
     return RoleDef("attacker", priority, Attacker, target, update=update)
 
@@ -346,10 +430,12 @@ def restart_applicable(ctx: PlayContext) -> bool:
     return (at_mark or near_line) and near > 0.3 and ctx.our_time <= ctx.their_time + HAS_BALL_MARGIN_S
 
 
-def passing_plays(params: PassingParams | None = None, ball: BallParams | None = None) -> tuple[Play, ...]:
+def passing_plays(params: PassingParams | None = None, ball: BallParams | None = None,
+                  decider: CarrierDecider | None = None) -> tuple[Play, ...]:
     """(restart, offense_passing, defense) sharing one new :class:`PassCoordinator`
-    (:func:`coordinator_of` finds it)."""
-    coord = PassCoordinator(params, ball)
+    (:func:`coordinator_of` finds it) whose carrier decision is ``decider`` (default
+    :class:`CostDecider`)."""
+    coord = PassCoordinator(params, ball, decider)
     roles = _roles(coord)
 
     def offense_passing_applicable(ctx: PlayContext) -> bool:
@@ -390,7 +476,7 @@ def coordinator_of(plays) -> PassCoordinator | None:
     return None
 
 
-__all__ = ["PassPhase", "PassPlan", "PassingParams", "PassCoordinator", "PassCounters", "passing_plays",
+__all__ = ["CarrierRequest", "CarrierDecider", "CostDecider", "PassPhase", "PassPlan", "PassingParams", "PassCoordinator", "PassCounters", "passing_plays",
            "coordinator_of", "restart_applicable", "passer_role", "receiver_role", "passing_attacker_role",
            "passing_support_role", "RESTART_DECISION", "PrepareHook",
            "passing_team_skills"]

@@ -84,6 +84,8 @@ class ShootParams:
         lost_ball_m: KEEP -> GO_TO_BALL when d_{d-b} exceeds this (m).
         keep_turn_rate: KEEP's turn rate towards the goal (rad/s, below aim-to-shoot's 5).
         keep_speed: KEEP's forward creep (m/s; scaled to 0 as free space ahead shrinks).
+        keep_target: (x, y) point (m, team frame) KEEP turns and creeps towards; None =
+            the opponent goal centre (a decider's "dribble toward a point" sets it).
     """
 
     near_ball_m: float = NEAR_BALL_M
@@ -101,6 +103,7 @@ class ShootParams:
     lost_ball_m: float = BALL_LOST_DISTANCE
     keep_turn_rate: float = 3.0
     keep_speed: float = 0.3
+    keep_target: tuple[float, float] | None = None
 
 
 @dataclass(frozen=True)
@@ -218,12 +221,13 @@ class GoToBallAndShoot(Tactic):
 
 
     def keep_action(self, world: WorldState, robot: int) -> np.ndarray:
-        """KEEP: dribbler on, turn towards the opponent goal centre, creep forward when
-        facing it (within 0.4 rad) and the field ahead is free."""
+        """KEEP: dribbler on, turn towards ``keep_target`` (default the opponent goal
+        centre), creep forward when facing it (within 0.4 rad) and the field ahead is free."""
         p = self.params
         ts = world.team(world.frame)
         pos, heading = ts.pos[robot], float(ts.heading[robot])
-        err = float(wrap_angle(facing_towards(pos, self.field.goal_center(+1)) - heading))
+        target = self.field.goal_center(+1) if p.keep_target is None else np.asarray(p.keep_target, float)
+        err = float(wrap_angle(facing_towards(pos, target) - heading))
         omega = float(np.clip(6.0 * err, -p.keep_turn_rate, p.keep_turn_rate))
         free = free_distance_ahead(world.ball_pos, heading, self.field)
         speed = p.keep_speed * min(max((free - 0.3) / 0.5, 0.0), 1.0) if abs(err) < 0.4 else 0.0

@@ -7,7 +7,14 @@ A team is one of :data:`TEAM_KINDS`:
 * ``"passing-learned"`` / ``"passing-baseline"``: the same controller with the passing
   plays (:mod:`ssl_marl.plays.passing_play`: shoot, pass or keep by cost, set plays with
   passes) and those skills (:func:`~ssl_marl.plays.passing_play.passing_team_skills`);
+* ``"passing-learned-decision"``: ``"passing-learned"`` whose ball carrier decides
+  with the learned Attack 3v2 decision (:mod:`ssl_marl.decisions.match_decider`,
+  the shipped actor ``ssl_marl/decisions/pretrained/attack_3v2.pt``) instead of the cost
+  decision;
 * ``"random"``: uniform random actions (seeded); ``"idle"``: zero actions.
+
+A passing team's carrier decision can also be chosen per team (``decision=``,
+``ssl-marl match --blue-decision handcoded|learned|PATH``): :func:`make_controller`.
 
 An STP team may replace any skill with another source (:func:`team_skills`):
 ``{"go-to-ball": "runs/gtb/actor.pt"}`` runs that trained actor inside the tactics,
@@ -28,9 +35,12 @@ from typing import Any, Mapping
 
 import numpy as np
 
-TEAM_KINDS = ("learned", "baseline", "random", "idle", "passing-learned", "passing-baseline")
-STP_KINDS = ("learned", "baseline", "passing-learned", "passing-baseline")
-PASSING_KINDS = ("passing-learned", "passing-baseline")
+TEAM_KINDS = ("learned", "baseline", "random", "idle", "passing-learned", "passing-baseline",
+              "passing-learned-decision")
+STP_KINDS = ("learned", "baseline", "passing-learned", "passing-baseline", "passing-learned-decision")
+PASSING_KINDS = ("passing-learned", "passing-baseline", "passing-learned-decision")
+#: team kinds whose carrier decision is learned by default
+LEARNED_DECISION_KINDS = ("passing-learned-decision",)
 TEAM_FILE_KEYS = ("kind", "skills")
 
 
@@ -140,14 +150,43 @@ def controller_label(kind: Any, skills: Any = None) -> Any:
     return {"kind": kind, "skills": dict(skills)}
 
 
+def decision_spec(kind: Any, decision: Any = None, where: str = "team") -> Any:
+    """The carrier-decision spec a team of ``kind`` plays with: ``decision`` if given
+    ("handcoded", "learned", an actor path or a decider / policy object), else
+    "learned" for :data:`LEARNED_DECISION_KINDS` and None (the cost decision) otherwise.
+    ValueError when a decision is given for a team without the passing plays."""
+    if decision is not None and not (isinstance(kind, str) and kind in PASSING_KINDS):
+        raise ValueError(f"{where}: a carrier decision ({decision!r}) needs a passing team "
+                         f"({' or '.join(PASSING_KINDS)}), not {kind!r}")
+    if decision is None and isinstance(kind, str) and kind in LEARNED_DECISION_KINDS:
+        return "learned"
+    return decision
+
+
+def decision_label(kind: Any, decision: Any = None) -> Any:
+    """How a team's carrier decision appears in results: "handcoded", "learned", a
+    path, a type name, or None for teams without the passing plays."""
+    spec = decision_spec(kind, decision) if isinstance(kind, str) else decision
+    if not (isinstance(kind, str) and kind in PASSING_KINDS):
+        return None
+    if spec is None:
+        return "handcoded"
+    return str(spec) if isinstance(spec, (str, Path)) else type(spec).__name__
+
+
 def make_controller(kind: Any, team: str, n_robots: int, field: Any = "div_b", seed: int = 0,
-                    skills: Any = None, **kwargs: Any):
+                    skills: Any = None, decision: Any = None, **kwargs: Any):
     """Controller ``kind`` (one of :data:`TEAM_KINDS`) for ``team``.
 
     ``skills`` (STP kinds only): a :mod:`~ssl_marl.plays.skillset` spec that replaces
-    the kind's skills (see :func:`team_skills`). ``kwargs`` go to
-    :class:`~ssl_marl.plays.team.TeamController` (robot, ball, plays, adaptive, ...).
-    An object with ``act(env) -> {agent: action}`` and ``agents`` is passed through."""
+    the kind's skills (see :func:`team_skills`). ``decision`` (passing kinds only): the
+    ball carrier's decision, "handcoded" (the cost decision, default), "learned" (the
+    shipped attack actor; default of "passing-learned-decision"), an actor path, or a
+    decider / decision-policy object (:func:`ssl_marl.decisions.match_decider.make_match_decider`).
+    ``kwargs`` go to :class:`~ssl_marl.plays.team.TeamController` (robot, ball, plays,
+    adaptive, ...). An object with ``act(env) -> {agent: action}`` and ``agents`` is
+    passed through."""
+    decision = decision_spec(kind, decision, where=team)
     if not isinstance(kind, str):
         if not (hasattr(kind, "act") and hasattr(kind, "agents")):
             raise ValueError(f"controller for {team} must be one of {TEAM_KINDS} or an object with act() and "
@@ -159,7 +198,14 @@ def make_controller(kind: Any, team: str, n_robots: int, field: Any = "div_b", s
         if kind in PASSING_KINDS:
             from ..plays.passing_play import passing_plays
 
-            kwargs.setdefault("plays", passing_plays(ball=kwargs.get("ball")))
+            decider = None
+            if decision is not None:
+                from ..decisions.match_decider import make_match_decider
+
+                decider = make_match_decider(decision, where=f"{team} decision")
+            if decider is not None and "plays" in kwargs:
+                raise ValueError(f"{team}: give either plays or a decision, not both")
+            kwargs.setdefault("plays", passing_plays(ball=kwargs.get("ball"), decider=decider))
         return TeamController(team, n_robots, field=field, skills=_kind_skills(kind) if skills is None else skills,
                               seed=seed, **kwargs)
     if skills is not None:
@@ -177,5 +223,5 @@ def _kind_skills(kind: str) -> Any:
     if kind in PASSING_KINDS:
         from ..plays.passing_play import passing_team_skills
 
-        return passing_team_skills(kind.split("-", 1)[1])
+        return passing_team_skills(kind.split("-")[1])
     return kind

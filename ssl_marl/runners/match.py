@@ -31,7 +31,7 @@ from typing import Any
 import numpy as np
 
 from ..envs.deadline import ControlDeadline
-from .controllers import STP_KINDS, TEAM_KINDS, controller_label, make_controller
+from .controllers import STP_KINDS, TEAM_KINDS, controller_label, decision_label, decision_spec, make_controller
 from .result import MatchResult
 from ..envs.animation import VideoSink
 
@@ -93,7 +93,7 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
                render: str | os.PathLike | None = None, progress: bool = True, render_fps: float = 30.0,
                render_width_px: int = 640, start_jitter_m: float = 0.05, controller_kwargs: dict | None = None,
                env_kwargs: dict | None = None, blue_skills: Any = None, yellow_skills: Any = None,
-               tracker: Any = "auto") -> MatchResult:
+               tracker: Any = "auto", blue_decision: Any = None, yellow_decision: Any = None) -> MatchResult:
     """Play one match and return its :class:`MatchResult`.
 
     Args:
@@ -122,10 +122,16 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
             :mod:`~ssl_marl.plays.skillset` spec (e.g. from
             :func:`~ssl_marl.runners.controllers.team_skills`: a trained actor for one
             skill); None = the kind's own skills.
+        blue_decision, yellow_decision: a passing team's ball-carrier decision:
+            "handcoded" (the cost decision), "learned" (the shipped Attack 3v2 actor), an
+            actor checkpoint path, or a decider / decision-policy object; None = the
+            kind's own (learned for "passing-learned-decision", else handcoded).
     """
     from ..envs import parallel_env
 
     validate_match_args(blue, yellow, seconds)
+    decision_spec(blue, blue_decision, "blue")  # a decision for a non-passing team fails before the env is built
+    decision_spec(yellow, yellow_decision, "yellow")
     env_opts = dict(n_blue=robots, n_yellow=robots, field=field, max_time_s=float(seconds), realism=realism,
                     after_goal="kickoff", realtime=False)
     if render is not None:
@@ -141,10 +147,10 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
     ck.setdefault("robot", env.config.robot)
     ck.setdefault("ball", env.config.ball)
     ck.setdefault("dt", env.config.dt)
-    teams = (("blue", blue, blue_skills), ("yellow", yellow, yellow_skills))
-    ctrls = {team: make_controller(kind, team, robots, geom, seed=seed + k, skills=skills,
+    teams = (("blue", blue, blue_skills, blue_decision), ("yellow", yellow, yellow_skills, yellow_decision))
+    ctrls = {team: make_controller(kind, team, robots, geom, seed=seed + k, skills=skills, decision=decision,
                                    **(ck if kind in STP_KINDS else {}))
-             for k, (team, kind, skills) in enumerate(teams)}
+             for k, (team, kind, skills, decision) in enumerate(teams)}
     for c in ctrls.values():
         if hasattr(c, "reset"):
             c.reset()
@@ -209,6 +215,9 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
                   tracker=hasattr(env, "raw_vision_state"),
                   start_jitter_m=start_jitter_m, render=str(render) if render is not None else None,
                   skills={t: _json_safe(getattr(c, "skills", None)) for t, c in ctrls.items()})
+    decisions = {t: decision_label(k, d) for t, k, _, d in teams}
+    if any(v not in (None, "handcoded") for v in decisions.values()):
+        config["decision"] = decisions
     return MatchResult(score=dict(env.score), goals=stats.goals, shots=stats.shots, possession=stats.possession(),
                        steps=steps, sim_time_s=steps * dt, wall_time_s=wall,
                        act_time_ms={k: 1000.0 * v / max(steps, 1) for k, v in act_time.items()},

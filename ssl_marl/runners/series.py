@@ -34,12 +34,26 @@ def play_series(blue: Any = "baseline", yellow: Any = "baseline", matches: int =
     match_kwargs.pop("render", None)
     if any(isinstance(k, str) and k in ("learned", "baseline") for k in (blue, yellow)):
         _check_teams(blue, yellow, match_kwargs)
+    _check_decisions(blue, yellow, match_kwargs)
     jobs = [(i, dict(blue=blue, yellow=yellow, seed=seed + i, progress=False, **match_kwargs))
             for i in range(matches)]
     done = run_pool(_series_worker, jobs, workers, f"{blue} vs {yellow}", progress, unit="match",
                     backend=backend, address=address)
     results = [r for _, r in done]
     return results, summarize(results)
+
+
+def _check_decisions(blue: Any, yellow: Any, match_kwargs: dict) -> None:
+    """Load the carrier decisions once here (a missing or mismatched actor fails with
+    one error before any worker starts)."""
+    from .controllers import decision_spec
+
+    for team, kind in (("blue", blue), ("yellow", yellow)):
+        spec = decision_spec(kind, match_kwargs.get(f"{team}_decision"), team)
+        if spec is not None:
+            from ..decisions.match_decider import make_match_decider
+
+            make_match_decider(spec, where=f"{team} decision")
 
 
 def _check_teams(blue: Any, yellow: Any, match_kwargs: dict) -> None:

@@ -30,8 +30,10 @@ from .features import BALL_LOST_DISTANCE, dribbler_ball_distance
 from .passing import PassBaseline, ReceiveBaseline
 from .passing_features import (
     PASS_SPEC,
+    RECEIVE_ACTION_FORMS,
     RECEIVE_SPEC,
     check_point,
+    check_receive_action_form,
     expand_pass_action,
     expand_receive_action,
     pass_aim_error,
@@ -39,6 +41,9 @@ from .passing_features import (
     pass_reward,
     pass_task_action,
     receive_features,
+    receive_outcome_reward,
+    receive_residual_action,
+    receive_residual_of,
     receive_reward,
     receive_task_action,
 )
@@ -169,12 +174,18 @@ class ReceiveEnv(_PassingEnv):
         ``Box(-inf, inf, (11,), float32)``, spec ``receive/v1``:
         :func:`ssl_marl.skills.passing_features.receive_features`.
     Action
-        ``Box(-1, 1, (3,), float32)``: (vx, vy, omega), robot frame, fractions of the
-        robot's limits; the dribbler is on.
+        ``Box(-1, 1, (3,), float32)``, dribbler on; ``action_form``:
+        ``"direct"`` (spec ``receive/v1``, default): (vx, vy, omega), robot frame,
+        fractions of the robot's limits; ``"residual"`` (spec ``receive/v2``): a
+        correction added to the hand-coded receive's (vx, vy, omega) in the state the
+        robot sees (:func:`ssl_marl.skills.passing_features.receive_residual_action`;
+        0 = the hand-coded receive). :meth:`from_direct` converts a direct action.
     Reward
-        line + facing + contact + outcome
-        (:func:`ssl_marl.skills.passing_features.receive_reward`; per-term values in
-        ``info["reward_terms"]``).
+        ``reward_form="shaped"`` (default): line + facing + contact + outcome
+        (:func:`ssl_marl.skills.passing_features.receive_reward`); ``"outcome"``: +1 on
+        success, -1 on failure, else 0
+        (:func:`~ssl_marl.skills.passing_features.receive_outcome_reward`). Per-term
+        values in ``info["reward_terms"]``.
     Spawn
         The robot at rest, uniformly in the field 0.5 m inside the lines, facing the
         ball's start +- U(0.5) rad. The ball ``U(2, 8)`` m away in a uniformly random
@@ -195,14 +206,21 @@ class ReceiveEnv(_PassingEnv):
     """
 
     spec_version = RECEIVE_SPEC
+    REWARD_FORMS = ("shaped", "outcome")
 
     def __init__(self, max_time_s: float = 6.0, hold_s: float = 0.5, speed_range: tuple[float, float] = (1.5, 6.0),
                  distance_range: tuple[float, float] = (2.0, 8.0), max_side_offset: float = 0.8,
-                 heading_noise: float = 0.5, **kwargs: Any) -> None:
+                 heading_noise: float = 0.5, action_form: str = "direct", reward_form: str = "shaped",
+                 **kwargs: Any) -> None:
+        self.action_form = check_receive_action_form(action_form)
+        if reward_form not in self.REWARD_FORMS:
+            raise ValueError(f"ReceiveEnv reward_form must be one of {self.REWARD_FORMS}, got {reward_form!r}")
+        self.reward_form = reward_form
         super().__init__(n_blue=1, **kwargs)
         EzPickle.__init__(self, max_time_s=max_time_s, hold_s=hold_s, speed_range=speed_range,
                           distance_range=distance_range, max_side_offset=max_side_offset,
-                          heading_noise=heading_noise, **kwargs)
+                          heading_noise=heading_noise, action_form=action_form, reward_form=reward_form, **kwargs)
+        self.spec_version = RECEIVE_ACTION_FORMS[self.action_form]
         self.max_time_s = _positive("max_time_s", max_time_s)
         self.hold_s = _positive("hold_s", hold_s)
         self.speed_range = tuple(float(v) for v in speed_range)
@@ -218,6 +236,8 @@ class ReceiveEnv(_PassingEnv):
                                                                                   self.robot_params), (11,), np.float32)
         self.action_space = gymnasium.spaces.Box(-1.0, 1.0, (3,), np.float32)
         self._hold_t0: float | None = None
+        #: the hand-coded receive that a residual action corrects (only its stateless control() is used)
+        self._base = ReceiveBaseline(self.field, self.robot_params, self.ball_params, hold_s=self.hold_s)
         self.spawn_draws = 0  #: spawns drawn since construction (rejection-sampling statistics)
         self.spawn_accepted = 0
         self.spawn_off_field = 0  #: draws rejected because the ball would start outside the field
@@ -269,8 +289,22 @@ class ReceiveEnv(_PassingEnv):
         self._hold_t0 = None
         return self._receive_obs(), {"reward_terms": {}}
 
+    def base_action(self) -> np.ndarray:
+        """The hand-coded receive's (vx, vy, omega) in the state the robot sees now."""
+        return receive_task_action(self._base.control(self.seen(), 0))
+
+    def from_direct(self, action3: np.ndarray) -> np.ndarray:
+        """This env's action for a direct (vx, vy, omega) action: itself, or the residual
+        correction from the hand-coded receive's action (clipped to [-1, 1])."""
+        if self.action_form == "direct":
+            return np.asarray(action3, dtype=np.float32)
+        return receive_residual_of(self.base_action(), action3)
+
     def step(self, action):
-        self.env.step({PASSER: expand_receive_action(_check_action(action, 3))})
+        a = _check_action(action, 3)
+        if self.action_form == "residual":
+            a = receive_residual_action(self.base_action(), a)
+        self.env.step({PASSER: expand_receive_action(a)})
         truth = self.truth()
         on = bool(truth.blue.ball_on_dribbler[0])
         if on and self._hold_t0 is None:
@@ -281,7 +315,10 @@ class ReceiveEnv(_PassingEnv):
         out = (not success) and self._ball_out(truth)
         timeout = not (success or out) and self.t >= self.max_time_s - 1e-9
         outcome = "success" if success else ("out" if out else ("timeout" if timeout else None))
-        terms = receive_reward(truth, 0, self.robot_params, self.ball_params, outcome)
+        if self.reward_form == "outcome":
+            terms = receive_outcome_reward(outcome)
+        else:
+            terms = receive_reward(truth, 0, self.robot_params, self.ball_params, outcome)
         info: dict[str, Any] = {"reward_terms": terms, "t": self.t,
                                 "held_s": 0.0 if self._hold_t0 is None else self.t - self._hold_t0}
         if outcome:
@@ -490,8 +527,8 @@ def skill_task_action(task: str, env, skill) -> np.ndarray:
         tgt, tv = env.target(seen)
         skill.set_target(env.field.clamp_to_field(tgt), tv)
         return pass_task_action(skill.act(seen, 0), env.robot_params)
-    if task == "receive":
-        return receive_task_action(skill.act(seen, 0))
+    if task == "receive":  # a residual-form env takes the correction from its hand-coded receive
+        return env.from_direct(receive_task_action(skill.act(seen, 0)))
     raise ValueError(f"unknown passing task {task!r}; expected 'pass' or 'receive'")
 
 
@@ -506,7 +543,8 @@ def pass_baseline_demos(n_steps: int, seed: int = 0, **env_kwargs: Any) -> Itera
 
 def receive_baseline_demos(n_steps: int, seed: int = 0, **env_kwargs: Any) -> Iterator[Transition]:
     """``n_steps`` receive transitions (obs (11,), action (3,)) from :class:`ReceiveBaseline`
-    on the task's own spawns; successful episodes only."""
+    on the task's own spawns; successful episodes only. With ``action_form="residual"``
+    the actions are the (zero) corrections of the env's own hand-coded receive."""
     env = ReceiveEnv(**env_kwargs)
     skill = ReceiveBaseline(env.field, env.robot_params, env.ball_params)
     return successful_skill_demos(env, skill, lambda e, sk: skill_task_action("receive", e, sk), n_steps, seed)

@@ -28,14 +28,18 @@ from ..physics.state import WorldState, wrap_angle
 from .base import KickSkill, SkillBase, SkillStatus, make_action
 from .baseline import GoToBallBaseline, velocity_command
 from .passing_features import (
+    RECEIVE_ACTION_FORMS,
     SLOW_BALL,
     ball_line_geometry,
     check_point,
+    check_receive_action_form,
     expand_pass_action,
     expand_receive_action,
     pass_aim_error,
     pass_features,
     receive_features,
+    receive_residual_action,
+    receive_task_action,
 )
 
 #: Arrival speed (m/s) a pass aims for: TIGERs rate a pass 0 below 1 m/s at the receiver and
@@ -279,15 +283,26 @@ def _ray_to_field_edge(field: FieldGeometry, p: np.ndarray, u: np.ndarray, margi
 
 class LearnedReceive(ReceiveSkill):
     """Learned receive: the trained actor maps :func:`receive_features` to (vx, vy, omega),
-    dribbler on."""
+    dribbler on. The checkpoint's spec picks the action form: ``receive/v1`` ("direct")
+    the action itself, ``receive/v2`` ("residual") a correction of the hand-coded
+    receive's action in the same state
+    (:func:`~ssl_marl.skills.passing_features.receive_residual_action`). With ``policy``
+    given directly, ``action_form`` says which."""
 
     def __init__(self, field, robot=None, ball=None, hold_s: float = 0.5, checkpoint: str | Path | None = None,
-                 policy=None) -> None:
+                 policy=None, action_form: str = "direct") -> None:
         super().__init__(field, robot, ball, hold_s)
-        self.policy = policy if policy is not None else load_passing_policy("receive", checkpoint)[0]
+        if policy is None:
+            policy, meta = load_passing_policy("receive", checkpoint)
+            action_form = next(k for k, v in RECEIVE_ACTION_FORMS.items() if v == meta["obs_spec"])
+        self.policy, self.action_form = policy, check_receive_action_form(action_form)
+        self._base = ReceiveBaseline(field, self.rp, self.bp, hold_s) if self.action_form == "residual" else None
 
     def control(self, world: WorldState, robot: int) -> np.ndarray:
-        return expand_receive_action(self.policy(receive_features(world, robot, self.rp, self.bp)))
+        a3 = self.policy(receive_features(world, robot, self.rp, self.bp))
+        if self._base is not None:
+            a3 = receive_residual_action(receive_task_action(self._base.control(world, robot)), a3)
+        return expand_receive_action(a3)
 
 
 __all__ = ["DEFAULT_ARRIVAL_SPEED", "LearnedPass", "LearnedReceive", "PassBaseline", "PassSkill", "ReceiveBaseline",

@@ -41,9 +41,14 @@ receive state (``receive/v1``, 11 values)
     10   on_dribbler         1 if the ball is on the dribbler, else 0
     ===  ==================  ====================================================
 
-receive action (3 values in [-1, 1])
-    ``(vx, vy, omega)`` in the robot frame as fractions of the robot's limits, dribbler
-    on (as go-to-ball).
+receive action (3 values in [-1, 1]), two forms (the registry's action mappings)
+    * ``direct`` (spec ``receive/v1``): ``(vx, vy, omega)`` in the robot frame as
+      fractions of the robot's limits, dribbler on (as go-to-ball).
+    * ``residual`` (spec ``receive/v2``, same 11 state values): a correction added to the
+      hand-coded receive's own ``(vx, vy, omega)`` in the same state,
+      ``clip(base + RECEIVE_RESIDUAL_SCALE * a, -1, 1)``
+      (:func:`receive_residual_action`); an actor that outputs 0 *is* the hand-coded
+      receive.
 """
 
 from __future__ import annotations
@@ -59,6 +64,11 @@ from .features import rotate_to_robot, to_robot_frame
 
 PASS_SPEC = "pass/v1"
 RECEIVE_SPEC = "receive/v1"
+RECEIVE_SPEC_RESIDUAL = "receive/v2"  #: same state as v1; the action is a correction of the hand-coded receive
+#: receive action forms (the registry's action-mapping names) -> spec strings
+RECEIVE_ACTION_FORMS = {"direct": RECEIVE_SPEC, "residual": RECEIVE_SPEC_RESIDUAL}
+#: largest correction (fraction of each velocity / turn-rate limit) a residual action adds
+RECEIVE_RESIDUAL_SCALE = 0.5
 PASS_SPEED_MIN = 1.0  #: m/s, the slowest kick the pass action can ask for
 SLOW_BALL = 0.1  #: m/s: below this the ball has no usable direction of travel
 
@@ -194,6 +204,36 @@ def expand_receive_action(action3: np.ndarray) -> np.ndarray:
 def receive_task_action(action5: np.ndarray) -> np.ndarray:
     """Project a receive skill's (5,) action onto the task's (vx, vy, omega)."""
     return np.asarray(action5, dtype=np.float32)[[0, 1, 2]]
+
+
+def check_receive_action_form(action_form: str) -> str:
+    """``action_form`` if it is a receive action form, else ValueError naming the known ones."""
+    if action_form not in RECEIVE_ACTION_FORMS:
+        raise ValueError(f"receive action_form must be one of {tuple(RECEIVE_ACTION_FORMS)}, got {action_form!r}")
+    return action_form
+
+
+def receive_residual_action(base3: np.ndarray, correction3: np.ndarray,
+                            scale: float = RECEIVE_RESIDUAL_SCALE) -> np.ndarray:
+    """The ``residual`` receive action: ``clip(base3 + scale * clip(correction3), -1, 1)``
+    (float32, 3 values; ``base3`` = the hand-coded receive's (vx, vy, omega) fractions)."""
+    c = np.clip(np.asarray(correction3, dtype=np.float64).reshape(3), -1.0, 1.0)
+    return np.clip(np.asarray(base3, dtype=np.float64).reshape(3) + scale * c, -1.0, 1.0).astype(np.float32)
+
+
+def receive_residual_of(base3: np.ndarray, action3: np.ndarray, scale: float = RECEIVE_RESIDUAL_SCALE
+                        ) -> np.ndarray:
+    """Inverse of :func:`receive_residual_action`: the correction (clipped to [-1, 1])
+    that turns ``base3`` into ``action3`` (0 when they are equal)."""
+    d = (np.asarray(action3, dtype=np.float64).reshape(3) - np.asarray(base3, dtype=np.float64).reshape(3)) / scale
+    return np.clip(d, -1.0, 1.0).astype(np.float32)
+
+
+def receive_outcome_reward(outcome: str | None) -> dict[str, float]:
+    """The sparse receive reward (``reward_form="outcome"``): ``outcome`` = +1 on success
+    (control held 0.5 s), -1 on a failure (out, timeout), else 0. Small returns keep the
+    critic's Q of the same order as a behaviour-cloning term (docs/RESULTS.md)."""
+    return {"outcome": 1.0 if outcome == "success" else (-1.0 if outcome else 0.0)}
 
 
 def receive_reward(world: WorldState, robot: int, robot_params: RobotParams, ball_params: BallParams,

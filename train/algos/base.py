@@ -114,10 +114,15 @@ def step_with_frozen(loss_fn: Any, frozen: Sequence[torch.Tensor], opt: torch.op
     return loss
 
 
-def td_target(rew: torch.Tensor, terminated: torch.Tensor, next_q: torch.Tensor, gamma: float) -> torch.Tensor:
+def td_target(rew: torch.Tensor, terminated: torch.Tensor, next_q: torch.Tensor, gamma: float,
+              discount: torch.Tensor | None = None) -> torch.Tensor:
     """Bellman target r + gamma (1 - terminated) Q'(s', a'). Truncated (time-limit) steps have
-    terminated = 0 and so bootstrap; shapes (B,)."""
-    return rew + gamma * (1.0 - terminated) * next_q
+    terminated = 0 and so bootstrap; shapes (B,). With ``discount`` (B,) (n-step rows,
+    :mod:`train.nstep`: ``gamma ** k`` for the k steps summed into ``rew``) it replaces
+    ``gamma``: r + discount (1 - terminated) Q'(s', a')."""
+    if discount is None:
+        return rew + gamma * (1.0 - terminated) * next_q
+    return rew + discount * (1.0 - terminated) * next_q
 
 
 def adam(params: Any, lr: float, weight_decay: float = 0.0) -> torch.optim.Adam:

@@ -65,7 +65,7 @@ class DDPG:
         """mean((Q(s, a) - y)^2) with y from the target networks (no gradient through y)."""
         with torch.no_grad(), self._autocast():
             next_q = self.critic_target(b.next_obs, self.actor_target(b.next_obs)).float().squeeze(-1)
-            y = td_target(b.rew, b.terminated, next_q, self.cfg.gamma)
+            y = td_target(b.rew, b.terminated, next_q, self.cfg.gamma, b.discount)
         with self._autocast():
             q = self.critic(b.obs, b.act).float().squeeze(-1)
         return F.mse_loss(q, y)

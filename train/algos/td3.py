@@ -75,7 +75,7 @@ class TD3:
             next_act = (self.actor_target(b.next_obs).float() + eps).clamp(-1.0, 1.0)
             next_q = torch.minimum(self.critic1_target(b.next_obs, next_act).float(),
                                    self.critic2_target(b.next_obs, next_act).float()).squeeze(-1)
-            y = td_target(b.rew, b.terminated, next_q, self.cfg.gamma)
+            y = td_target(b.rew, b.terminated, next_q, self.cfg.gamma, b.discount)
         with self._autocast():
             q1 = self.critic1(b.obs, b.act).float().squeeze(-1)
             q2 = self.critic2(b.obs, b.act).float().squeeze(-1)

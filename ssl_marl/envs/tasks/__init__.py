@@ -12,10 +12,11 @@ from __future__ import annotations
 from typing import Any, Callable
 
 from .base import FreePlayTask, Scene, Task
+from .keepaway import KeepawayRules, KeepawayTask
 from .match import MatchRules, MatchTask
 
 #: task name -> factory (no arguments; parameters come from the env config at bind time)
-TASKS: dict[str, Callable[[], Task]] = {"match": MatchTask, "free_play": FreePlayTask}
+TASKS: dict[str, Callable[[], Task]] = {"match": MatchTask, "free_play": FreePlayTask, "keepaway": KeepawayTask}
 
 
 def make_task(task: Any) -> Task:
@@ -27,4 +28,4 @@ def make_task(task: Any) -> Task:
     raise ValueError(f"task must be one of {tuple(TASKS)} or a Task object, got {task!r}")
 
 
-__all__ = ["Task", "Scene", "FreePlayTask", "MatchTask", "MatchRules", "TASKS", "make_task"]
+__all__ = ["Task", "Scene", "FreePlayTask", "MatchTask", "MatchRules", "KeepawayTask", "KeepawayRules", "TASKS", "make_task"]

@@ -1,15 +1,26 @@
 """receive: intercept a moving ball and bring it under control on the dribbler, held
-for 0.5 s (issue 11)."""
+for 0.5 s (issue 11).
+
+Two action forms (registry action mappings, same 11-value state): ``direct``
+(``receive/v1``: the actor's (vx, vy, omega) is the action) and ``residual``
+(``receive/v2``: the actor's output is a bounded correction added to the hand-coded
+receive's action, so an untrained actor starts at the hand-coded behaviour). The
+shipped actor, when there is one, is residual (docs/RESULTS.md, "Passing skills")."""
 
 from __future__ import annotations
 
 from ..passing import ReceiveBaseline
-from ..passing_features import (RECEIVE_NAMES, RECEIVE_SPEC, expand_receive_action, receive_features,
+from ..passing_features import (RECEIVE_ACTION_FORMS, RECEIVE_NAMES, expand_receive_action, receive_features,
                                 receive_task_action)
-from ..registry import SkillDef, SkillTaskDef, register
+from ..registry import PRETRAINED_DIR, SkillDef, SkillTaskDef, register
+
+_ACTOR = PRETRAINED_DIR / "receive.pt"
 
 
 def _to_env(action3, mapping: str | None = None):
+    if mapping == "residual":
+        raise ValueError("a residual receive action (receive/v2) is a correction of the hand-coded receive's action "
+                         "and needs the world state: use LearnedReceive or ReceiveEnv(action_form='residual')")
     return expand_receive_action(action3)
 
 
@@ -24,10 +35,9 @@ SKILL = register(SkillDef(
     summary="intercept a moving ball and hold it on the dribbler for 0.5 s",
     baseline=ReceiveBaseline,
     learned="ssl_marl.skills.passing:LearnedReceive",
-    # no actor is shipped: the best trained one (0.815 on validation) stays below the
-    # hand-coded receive (0.997); a "learned" team uses the hand-coded receive (plays.skillset)
-    # and a trained checkpoint can still be evaluated or played (eval-skill --policy PATH)
-    actor=None,
+    # shipped only if it is at least as good as the hand-coded receive on the held-out seed;
+    # without it a "learned" team uses the hand-coded receive (plays.skillset)
+    actor=_ACTOR if _ACTOR.exists() else None,
     task=SkillTaskDef(
         env_id="ssl_marl/Receive-v0",
         entry_point="ssl_marl.skills.pass_tasks:ReceiveEnv",
@@ -36,7 +46,9 @@ SKILL = register(SkillDef(
         action_names=("vx", "vy", "omega"),
         to_task_action=receive_task_action,
         to_env_action=_to_env,
-        spec_versions={"default": RECEIVE_SPEC},
+        # "direct" first: the task env's default (what eval-skill drives); training uses
+        # action_form="residual" (train/configs/receive.json)
+        spec_versions=dict(RECEIVE_ACTION_FORMS),
         demo_fn="ssl_marl.skills.pass_tasks:receive_baseline_demos",
         train_config="receive",
         drive=_drive,

@@ -1,0 +1,216 @@
+"""Attack 3v2: three attackers (blue) against a goalie and a defender (yellow) on half a Division B field.
+
+The engine task behind :class:`ssl_marl.decisions.attack.Attack3v2Env` (issue 12): the
+scene and the judge. Who does what (the attackers' options, the defence's tactics)
+is the decision env's business; this task only reads the world.
+
+Robots (field frame, blue attacks +x): ``blue_1..3`` are the attackers; ``blue_0`` is
+the attacking team's goalie, parked in its own goal (x = -L/2 + 0.3 m) far from the
+play (it keeps the passing play's team layout, where robot 0 is the goalie, and never
+takes part); ``yellow_0`` is the goalie, ``yellow_1`` the defender.
+
+Start (:class:`AttackSpawn`, drawn from ``env.np_random``; Division B, L/2 = 4.5 m,
+W/2 = 3 m):
+
+* the carrier: one of the three attackers (uniform), x in [0.5, 2.5] m, |y| <= 2.0 m,
+  heading towards the goal centre +- 0.5 rad; the ball rests 0.12-0.30 m in front of
+  its centre (at most 0.2 m from the face: "near an attacker", it has to take it);
+* the two other attackers: x in [0.5, 3.2] m, |y| <= 2.6 m, at least 1.0 m from the
+  carrier and each other, random heading;
+* the goalie: on its goal line, x = L/2 - 0.25 m, |y| <= 0.3 m, facing the field;
+* the defender: on the ball-goal segment at 40-70 % of the way from the ball, moved
+  sideways by up to +-0.5 m, kept outside its defense area (x <= L/2 - 1.15 m) and at
+  least 0.8 m from the ball, facing the ball;
+* ``blue_0`` at (-L/2 + 0.3, 0), facing +x.
+
+Reset options ``{"robots": {...}, "ball": {...}}`` (as :mod:`.scene`) replace the draw
+for constructed scenes; robots not named then take the kickoff formation.
+
+End (checked after every control tick, in this order):
+
+* ``"goal"``: the ball fully crossed the +x goal line between the posts (terminated;
+  reward +1 to every blue robot: a team reward);
+* ``"lost_goalie"`` / ``"lost_defender"``: the ball is on that defender's dribbler, or
+  (goalie) rests (< ``rest_speed``) inside the yellow defense area (terminated);
+* ``"out"``: the ball fully left the field, or left the attacking half (x < 0)
+  (terminated);
+* ``"timeout"``: ``max_time_s`` (15 s) of play (truncated).
+
+Reward 0 otherwise. ``goal`` (0/1) and ``outcome`` are the episode's score.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from .base import Scene, Task
+from .scene import scene_from_options
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..ssl_env import SSLParallelEnv
+
+OUTCOMES = ("goal", "lost_goalie", "lost_defender", "out", "timeout")
+N_ATTACKERS = 3
+ATTACKER_ROBOTS = ("blue_1", "blue_2", "blue_3")
+
+
+@dataclass(frozen=True)
+class AttackSpawn:
+    """Spawn ranges (m, rad; field frame; module docstring)."""
+
+    carrier_x: tuple[float, float] = (0.5, 2.5)
+    carrier_abs_y: float = 2.0
+    carrier_heading_noise: float = 0.5
+    ball_ahead_m: tuple[float, float] = (0.12, 0.30)
+    mate_x: tuple[float, float] = (0.5, 3.2)
+    mate_abs_y: float = 2.6
+    mate_spacing_m: float = 1.0
+    goalie_inset_m: float = 0.25
+    goalie_abs_y: float = 0.3
+    defender_frac: tuple[float, float] = (0.4, 0.7)
+    defender_side_m: float = 0.5
+    defender_min_ball_m: float = 0.8
+    defender_area_gap_m: float = 0.15
+    parked_inset_m: float = 0.3
+
+
+@dataclass(frozen=True)
+class AttackRules:
+    """Attributes:
+        max_time_s: truncation after this much play (s; the issue's 15 s).
+        rest_speed: a ball slower than this (m/s) inside the yellow defense area is the goalie's.
+    """
+
+    max_time_s: float = 15.0
+    rest_speed: float = 0.2
+
+
+class AttackTask(Task):
+    """Attack 3v2's scene and judge (module docstring). Needs ``n_blue=4, n_yellow=2``."""
+
+    name = "attack_3v2"
+
+    def __init__(self, rules: AttackRules | None = None, spawn: AttackSpawn | None = None) -> None:
+        super().__init__()
+        self.rules = rules or AttackRules()
+        self.spawn = spawn or AttackSpawn()
+        self.outcome: str | None = None
+        self.goal = 0
+        self.carrier_robot: str | None = None
+
+    def bind(self, env: "SSLParallelEnv") -> None:
+        cfg = env.config
+        if cfg.n_blue != N_ATTACKERS + 1 or cfg.n_yellow != 2:
+            raise ValueError(f"AttackTask needs n_blue=4 (a parked goalie and 3 attackers) and n_yellow=2, got "
+                             f"n_blue={cfg.n_blue}, n_yellow={cfg.n_yellow}")
+        super().bind(env)
+
+    # ------------------------------------------------------------------ start
+    def reset_scene(self, env: "SSLParallelEnv", options: dict) -> Scene:
+        if options and ("robots" in options or "ball" in options):
+            self.carrier_robot = None
+            return scene_from_options(env, options, default_formation="kickoff")
+        return self.random_scene(env)
+
+    def random_scene(self, env: "SSLParallelEnv") -> Scene:
+        f, s, rng = env.field, self.spawn, env.np_random
+        L2 = f.half_length
+        goal = f.goal_center(+1)
+        k = int(rng.integers(N_ATTACKERS))
+        cx = rng.uniform(*s.carrier_x)
+        cy = rng.uniform(-s.carrier_abs_y, s.carrier_abs_y)
+        ch = math.atan2(goal[1] - cy, goal[0] - cx) + rng.uniform(-s.carrier_heading_noise, s.carrier_heading_noise)
+        d = rng.uniform(*s.ball_ahead_m)
+        ball = np.array([cx + d * math.cos(ch), cy + d * math.sin(ch)])
+        pose = np.zeros((len(env.possible_agents), 3))
+        pose[0] = (-L2 + s.parked_inset_m, 0.0, 0.0)
+        placed = [np.array([cx, cy])]
+        mates = [j for j in range(N_ATTACKERS) if j != k]
+        pose[1 + k] = (cx, cy, ch)
+        for j in mates:
+            for _ in range(200):
+                p = np.array([rng.uniform(*s.mate_x), rng.uniform(-s.mate_abs_y, s.mate_abs_y)])
+                if all(np.hypot(*(p - q)) >= s.mate_spacing_m for q in placed) and np.hypot(*(p - ball)) > 0.5:
+                    break
+            placed.append(p)
+            pose[1 + j] = (p[0], p[1], rng.uniform(-math.pi, math.pi))
+        gy = rng.uniform(-s.goalie_abs_y, s.goalie_abs_y)
+        n_blue = N_ATTACKERS + 1
+        pose[n_blue] = (L2 - s.goalie_inset_m, gy, math.pi)
+        frac = rng.uniform(*s.defender_frac)
+        u = goal - ball
+        dist = float(np.hypot(*u))
+        u = u / max(dist, 1e-9)
+        q = ball + frac * dist * u + rng.uniform(-s.defender_side_m, s.defender_side_m) * np.array([-u[1], u[0]])
+        q[0] = min(q[0], L2 - f.defense_depth - s.defender_area_gap_m)
+        q[1] = min(max(q[1], -f.half_width + 0.2), f.half_width - 0.2)
+        gap = float(np.hypot(*(q - ball)))
+        if gap < s.defender_min_ball_m:  # push it along the ball-defender line (or the goal line of sight)
+            v = (q - ball) / gap if gap > 1e-6 else u
+            q = ball + s.defender_min_ball_m * v
+            q[0] = min(q[0], L2 - f.defense_depth - s.defender_area_gap_m)
+        for r in placed:  # do not stand on an attacker
+            if np.hypot(*(q - r)) < 0.25:
+                q = q + 0.3 * np.array([-u[1], u[0]])
+        pose[n_blue + 1] = (q[0], q[1], math.atan2(ball[1] - q[1], ball[0] - q[0]))
+        self.carrier_robot = ATTACKER_ROBOTS[k]
+        return Scene(pose, ball, np.zeros(2))
+
+    def start(self, env: "SSLParallelEnv") -> None:
+        self.outcome = None
+        self.goal = 0
+        self._scored = False
+
+    def begin_step(self, env: "SSLParallelEnv") -> None:
+        self._scored = False
+
+    # ------------------------------------------------------------------ judge
+    def judge(self, env: "SSLParallelEnv") -> str | None:
+        """The outcome the world shows now (None: play on); module docstring."""
+        w, f = env.world_state(), env.field
+        r = env.config.ball.radius
+        ball = np.asarray(w.ball_pos, float)
+        side = f.in_goal(ball, r)
+        if side > 0:
+            return "goal"
+        if bool(w.yellow.ball_on_dribbler[0]):
+            return "lost_goalie"
+        if w.yellow.n > 1 and bool(w.yellow.ball_on_dribbler[1:].any()):
+            return "lost_defender"
+        if (bool(f.in_defense_area(ball, +1)) and float(np.hypot(*w.ball_vel)) < self.rules.rest_speed):
+            return "lost_goalie"
+        if side < 0 or abs(ball[0]) >= f.half_length + r or abs(ball[1]) >= f.half_width + r or ball[0] < 0.0:
+            return "out"
+        if w.t >= self.rules.max_time_s - 1e-9:
+            return "timeout"
+        return None
+
+    def after_tick(self, env: "SSLParallelEnv", events: list[dict]) -> bool:
+        if self.outcome is not None:
+            return True
+        out = self.judge(env)
+        if out is None:
+            return False
+        self.outcome = out
+        if out == "goal":
+            self.goal = 1
+            self._scored = True
+            events.append({"type": "goal", "team": "blue", "t": float(env.world_state().t)})
+        return True
+
+    def rewards(self, env: "SSLParallelEnv") -> tuple[dict[str, float], dict[str, dict[str, float]]]:
+        g = 1.0 if self._scored else 0.0
+        return ({a: (g if env.team_of(a) == "blue" else -g) for a in env.agents},
+                {"blue": {"goal": g}, "yellow": {"goal": -g}})
+
+    def end(self, env: "SSLParallelEnv") -> tuple[bool, bool]:
+        if self.outcome is None:
+            return False, False
+        return self.outcome != "timeout", self.outcome == "timeout"
+
+
+__all__ = ["AttackTask", "AttackSpawn", "AttackRules", "OUTCOMES", "ATTACKER_ROBOTS", "N_ATTACKERS"]
