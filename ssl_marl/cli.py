@@ -405,8 +405,10 @@ def build_parser() -> argparse.ArgumentParser:
                    help="worker processes (default 1; with --backend ray: tasks in flight, default the cluster's CPUs)")
     e.add_argument("--out", default=None,
                    help="output folder for results.json and time_hist.png, created if missing (default: none)")
-    e.add_argument("--realism", choices=("none", "realistic"), default="none",
-                   help="vision noise / latency preset (default none)")
+    e.add_argument("--realism", choices=("none", "realistic", "randomized"), default="none",
+                   help="vision noise / latency preset (default none); randomized: each episode draws its own "
+                        "latency, noise, command loss, robot speed / acceleration and ball model "
+                        "(ssl_marl/envs/randomization.py)")
     e.add_argument("--realtime", action="store_true", help="run in real-time mode (slow: 60 steps per second)")
     e.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")
     _add_backend(e, "the episodes")
@@ -450,7 +452,9 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--seed", type=int, default=20_000, help="evaluation seed (default 20000)")
     t.add_argument("--workers", type=_positive_int("--workers"), default=None,
                    help="worker processes (default 1; with --backend ray: tasks in flight, default the cluster's CPUs)")
-    t.add_argument("--realism", choices=("none", "realistic"), default="none", help="noise / latency preset")
+    t.add_argument("--realism", choices=("none", "realistic", "randomized"), default="none",
+                   help="noise / latency preset; randomized: each episode draws its own latency, noise, command "
+                        "loss, robot speed / acceleration and ball model (ssl_marl/envs/randomization.py)")
     t.add_argument("--out", default=None,
                    help="output folder for results.json and time_hist.png, created if missing (default: none)")
     t.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")
