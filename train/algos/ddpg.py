@@ -32,7 +32,7 @@ from ssl_marl.skills.networks import Actor, Critic
 
 from ..config import TrainConfig
 from ..replay import Batch
-from .base import LossMeter, actor_act, adam, bf16_autocast, soft_update, step_with_frozen, td_target
+from .base import LossMeter, actor_act, bf16_autocast, lean_adam, soft_update, step_with_frozen, td_target
 
 __all__ = ["DDPG", "soft_update", "td_target"]
 
@@ -48,8 +48,8 @@ class DDPG:
         self.critic = Critic(obs_dim, act_dim, cfg.critic_hidden, cfg.layer_norm)
         self.actor_target = copy.deepcopy(self.actor).requires_grad_(False)
         self.critic_target = copy.deepcopy(self.critic).requires_grad_(False)
-        self.actor_opt = adam(self.actor.parameters(), cfg.actor_lr)
-        self.critic_opt = adam(self.critic.parameters(), cfg.critic_lr, cfg.critic_weight_decay)
+        self.actor_opt = lean_adam(self.actor.parameters(), cfg.actor_lr)
+        self.critic_opt = lean_adam(self.critic.parameters(), cfg.critic_lr, cfg.critic_weight_decay)
         self._critic_params = list(self.critic.parameters())
         self._online = list(self.actor.parameters()) + self._critic_params
         self._target = list(self.actor_target.parameters()) + list(self.critic_target.parameters())
