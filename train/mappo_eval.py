@@ -46,7 +46,7 @@ def evaluate(task: str, episodes: int, seed: int, actor: str | Path | None = Non
     agents = list(env.possible_agents)
     net, meta = load_actor_net(actor) if actor is not None else (None, {})
     rng = np.random.default_rng(seed)
-    scores, outcomes = [], {}
+    scores, outcomes, passed = [], {}, []
     for i in range(episodes):
         obs, infos = env.reset(seed=seed + i)
         while env.agents:
@@ -73,6 +73,8 @@ def evaluate(task: str, episodes: int, seed: int, actor: str | Path | None = Non
             obs, _, _, _, infos = env.step(act)
         fi = infos[agents[0]]
         scores.append(float(fi.get(spec.score_key, np.nan)))
+        if "passed" in fi:
+            passed.append(float(fi["passed"]))
         o = str(fi.get("outcome", ""))
         outcomes[o] = outcomes.get(o, 0) + 1
     env.close()
@@ -80,6 +82,8 @@ def evaluate(task: str, episodes: int, seed: int, actor: str | Path | None = Non
     out: dict[str, Any] = {"task": task, "policy": str(actor) if actor else "random", "episodes": episodes,
                            "seed": seed, "mean_score": float(s.mean()), "score_key": spec.score_key,
                            "outcomes": outcomes}
+    if passed:
+        out["pass_rate"] = float(np.mean(passed))
     if set(np.unique(s)) <= {0.0, 1.0}:
         out["ci95"] = list(wilson_interval(int(s.sum()), len(s)))
     else:

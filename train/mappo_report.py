@@ -2,8 +2,8 @@
 
 ``python -m train.mappo_report RUN_DIR [RUN_DIR ...] [--out FIG.png]``: with one folder, writes
 ``RUN_DIR/learning_curve.png``; with several (e.g. the seeds of one task) and ``--out``, one
-figure with a line per run. Panels: the training episodes' score (rolling mean over rollouts)
-and the greedy validation score against training decisions, and the policy entropy.
+figure with a line per run. Panels against training decisions: the training episodes' score and team return (rolling
+means over rollouts), the greedy validation score and return, the policy entropy, decisions/s.
 Also prints per run: decisions, wall time, mean decisions/s and agent-steps/s, best validation.
 """
 
@@ -48,7 +48,8 @@ def plot_mappo_runs(run_dirs: list[str | Path], out: str | Path, window: int = 2
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(1, 3, figsize=(14, 3.8))
+    fig, axs = plt.subplots(2, 3, figsize=(14, 7))
+    axes = axs.flatten()
     for run in run_dirs:
         run = Path(run)
         p = read_csv(run / "progress.csv")
@@ -57,12 +58,18 @@ def plot_mappo_runs(run_dirs: list[str | Path], out: str | Path, window: int = 2
         label = run.name
         x = p["decisions"]
         line = axes[0].plot(x, rolling_mean(p["mean_score"], window), label=label)[0]
+        c = line.get_color()
+        axes[1].plot(x, rolling_mean(p["mean_return"], window), color=c, label=label)
         if (run / "val.csv").exists():
             v = read_csv(run / "val.csv")
             if v:
-                axes[1].plot(v["decisions"], v["val_score"], "o-", ms=3, color=line.get_color(), label=label)
-        axes[2].plot(x, p["entropy"], color=line.get_color(), label=label)
-    for ax, t in zip(axes, ("training episodes' score (rolling mean)", "greedy validation score", "policy entropy")):
+                axes[2].plot(v["decisions"], v["val_score"], "o-", ms=3, color=c, label=label)
+                axes[3].plot(v["decisions"], v["val_return"], "o-", ms=3, color=c, label=label)
+        axes[4].plot(x, p["entropy"], color=c, label=label)
+        axes[5].plot(x, p["decisions_per_s"], color=c, label=label)
+    titles = ("training episodes' score (rolling mean)", "training episodes' team return (rolling mean)",
+              "greedy validation score", "greedy validation return", "policy entropy", "decisions / s")
+    for ax, t in zip(axes, titles):
         ax.set_title(t, fontsize=10)
         ax.set_xlabel("training decisions")
         ax.grid(alpha=0.3)
