@@ -5,11 +5,14 @@
     L_actor  = -mean(Q(s, mu(s))) [+ w_bc * mean((mu(s_d) - a_d)^2)]  # Adam step on the actor only
     theta'   <- theta' + tau * (theta - theta')                    # Polyak, both targets
 
+With n-step returns (``n_step`` > 1, :mod:`train.nstep`) ``r`` is the window's discounted
+reward sum and ``gamma`` the row's own ``gamma ** k`` (``Batch.discount``).
+
 Hyperparameters: :class:`train.config.TrainConfig` (``gamma``, ``tau``, learning rates,
 layer sizes, ``bc_weight``, ``autocast_bf16``, ``compile``).
 
 Speed (measured, see benchmarks/bench_ddpg.py and docs/BENCHMARKS.md): fused
-Adam; the critic's parameters frozen during the actor step (no critic weight
+Adam stepped through :class:`~train.algos.base.LeanAdam` (no per-step Python); the critic's parameters frozen during the actor step (no critic weight
 gradients); one ``torch._foreach_lerp_`` for the soft update; losses accumulated
 as tensors and read out every ``log_interval`` updates (no ``.item()`` sync per
 update). Options: ``autocast_bf16`` runs the matrix products in bfloat16 (on CPUs

@@ -9,6 +9,9 @@ DDPG plus three fixes of its value over-estimation; one update in :meth:`TD3.upd
         L_actor = -mean(Q1(s, mu(s))) [+ w_bc * mean((mu(s_d) - a_d)^2)]  # Adam step on the actor
         theta'  <- theta' + tau * (theta - theta')                 # Polyak, all three targets
 
+With n-step returns (``n_step`` > 1) ``r`` and ``gamma`` are the row's window sum and
+``gamma ** k`` (:mod:`train.nstep`), as in DDPG.
+
 Hyperparameters: :class:`train.config.TrainConfig`; the TD3 ones are ``td3_policy_noise``
 (sigma_s, 0.2), ``td3_noise_clip`` (c, 0.5) and ``td3_policy_delay`` (d, 2), the paper's
 values, in the actor's normalised action units ([-1, 1]). Exploration is the loop's
