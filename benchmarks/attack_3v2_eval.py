@@ -91,6 +91,55 @@ def summarize(rows: list[dict], args: argparse.Namespace, wall: float) -> dict:
             "command": "python benchmarks/attack_3v2_eval.py " + " ".join(sys.argv[1:])}
 
 
+def export(src: Path, dst: Path, policy: str, seed: int, episodes: int | None) -> dict:
+    """Write ``dst/results.json`` (+ ``duration_hist.png``) in ``ssl-marl eval-task``'s format
+    from the longest complete prefix of seeds in ``src/episodes.jsonl`` (at most ``episodes``).
+    The episodes are the ones eval-task plays (same env, same seeds, ``RandomPolicy(0)``),
+    so the figures equal ``ssl-marl eval-task attack-3v2 --policy POLICY --episodes N --seed SEED``."""
+    from collections import Counter
+
+    from ssl_marl.io import atomic_write_json, time_summary, wilson_interval
+    from ssl_marl.runners.plots import write_time_histogram
+
+    rows = {}
+    for line in (src / "episodes.jsonl").read_text().splitlines():
+        if line.strip():
+            r = json.loads(line)
+            rows[r["seed"]] = r
+    eps = []
+    while seed + len(eps) in rows and (episodes is None or len(eps) < episodes):
+        r = rows[seed + len(eps)]
+        eps.append({"index": len(eps), "seed": r["seed"], "outcome": r["outcome"], "duration_s": float(r["t_s"]),
+                    "decisions": int(r["decisions"]), "steps": int(r["steps"]), "options": r["options"],
+                    "goal": int(r["goal"])})
+    n = len(eps)
+    durations = [e["duration_s"] for e in eps]
+    goals = sum(e["goal"] for e in eps)
+    lo, hi = wilson_interval(goals, n)
+    opt: Counter = Counter()
+    for e in eps:
+        opt.update(e["options"])
+    wall = sum(rows[e["seed"]]["wall_s"] for e in eps)
+    dec = sum(e["decisions"] for e in eps)
+    res = {"task": "attack-3v2", "policy": policy, "actor": None, "episodes": n, "seed": seed,
+           "seeds": f"episode i uses seed {seed} + i",
+           "config": {"realism": "none", "field": "div_b", "workers": None, "backend": "local",
+                      "runner": "benchmarks/attack_3v2_eval.py (same episodes as ssl-marl eval-task)"},
+           "outcomes": dict(sorted(Counter(e["outcome"] for e in eps).items())),
+           "duration_s": time_summary(durations), "goals": goals, "goal_rate": goals / n, "goal_rate_ci95": [lo, hi],
+           "options": dict(opt), "decisions": dec,
+           "throughput": {"episode_wall_s_sum": wall, "decisions_per_s": dec / wall, "sim_s_per_s": sum(durations) / wall,
+                          "note": "per worker process on the shared 2-core machine (load 8-13); not deterministic"},
+           "episodes_detail": eps}
+    dst.mkdir(parents=True, exist_ok=True)
+    atomic_write_json(dst / "results.json", res)
+    hi_t = max(durations)
+    write_time_histogram(durations, dst / "duration_hist.png",
+                         f"attack-3v2 ({policy}, realism none): goal rate {goals / n:.3f} [{lo:.3f}, {hi:.3f}], n={n}",
+                         max_time_s=math.ceil(hi_t), xlabel="episode duration (s)", bin_s=max(0.25, math.ceil(hi_t) / 60))
+    return res
+
+
 def main() -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--policy", choices=("handcoded", "random"), required=True, help="benchmark policy")
@@ -100,7 +149,15 @@ def main() -> int:
     p.add_argument("--skills", choices=("learned", "baseline"), default="learned", help="both teams' skills")
     p.add_argument("--chunk", type=int, default=5, help="episodes per job (default 5)")
     p.add_argument("--out", required=True, help="output folder")
+    p.add_argument("--export", default=None, metavar="DIR",
+                   help="do not run: write DIR/results.json in eval-task's format from OUT/episodes.jsonl "
+                        "(the complete prefix of seeds, at most --episodes)")
     args = p.parse_args()
+    if args.export:
+        r = export(Path(args.out), Path(args.export), args.policy, args.seed, args.episodes)
+        print(f"{args.policy}: goal rate {r['goal_rate']:.3f} {r['goal_rate_ci95']} over {r['episodes']} episodes; "
+              f"outcomes {r['outcomes']} -> {args.export}/results.json")
+        return 0
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     log = out / "episodes.jsonl"

@@ -42,6 +42,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from ssl_marl.skills.networks import Actor, Critic  # noqa: E402
 from train.config import DDPGConfig  # noqa: E402
+from train.algos.base import adam  # noqa: E402
 from train.algos.ddpg import DDPG  # noqa: E402
 from train.replay import ReplayBuffer  # noqa: E402
 
@@ -56,10 +57,13 @@ def filled_buffer(batch: int) -> ReplayBuffer:
     return buf
 
 
-def ours(batch: int, bf16: bool = False, compiled: bool = False) -> Callable[[], None]:
+def ours(batch: int, bf16: bool = False, compiled: bool = False, torch_adam: bool = False) -> Callable[[], None]:
     torch.manual_seed(0)
     cfg = DDPGConfig(actor_hidden=HIDDEN, critic_hidden=HIDDEN, batch_size=batch, autocast_bf16=bf16, compile=compiled)
     agent, buf = DDPG(OBS_DIM, ACT_DIM, cfg), filled_buffer(batch)
+    if torch_adam:  # the optimiser step as before the lean Adam: torch.optim.Adam(fused=True).step()
+        agent.actor_opt = adam(agent.actor.parameters(), cfg.actor_lr)
+        agent.critic_opt = adam(agent.critic.parameters(), cfg.critic_lr, cfg.critic_weight_decay)
 
     def step() -> None:
         agent.update(buf.sample())
@@ -121,20 +125,25 @@ def sb3(batch: int) -> Callable[[], None] | None:
     return step
 
 
-def measure(fns: dict[str, Callable[[], None]], threads: int, seconds: float, rounds: int) -> dict[str, float]:
+def measure(fns: dict[str, Callable[[], None]], threads: int, seconds: float, rounds: int,
+            clock: str = "wall") -> dict[str, float]:
+    """Median updates/s per configuration over ``rounds`` interleaved rounds of ``seconds`` each;
+    ``clock`` "cpu" divides by this process's CPU time instead of wall time (updates per CPU
+    second: on a shared machine, close to the idle machine's 1-thread rate)."""
     torch.set_num_threads(threads)
     for fn in fns.values():  # warm-up
         for _ in range(5):
             fn()
+    timer = time.process_time if clock == "cpu" else time.perf_counter
     rates: dict[str, list[float]] = {k: [] for k in fns}
     for _ in range(rounds):
         for name, fn in fns.items():
             per_call = getattr(fn, "per_call", 1)
-            n, t0 = 0, time.perf_counter()
-            while time.perf_counter() - t0 < seconds:
+            n, t0 = 0, timer()
+            while timer() - t0 < seconds:
                 fn()
                 n += per_call
-            rates[name].append(n / (time.perf_counter() - t0))
+            rates[name].append(n / (timer() - t0))
     return {k: round(statistics.median(v), 1) for k, v in rates.items()}
 
 
@@ -148,9 +157,15 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--compile", action="store_true",
                    help="also measure ours with torch.compile (fp32 and, with --bf16, bf16)")
     p.add_argument("--no-naive", action="store_true")
+    p.add_argument("--clock", choices=("wall", "cpu"), default="wall",
+                   help="rate per wall second (default) or per CPU second of this process (shared machines)")
+    p.add_argument("--torch-adam", action="store_true",
+                   help="also measure ours with torch.optim.Adam(fused=True).step() instead of the lean Adam step")
     args = p.parse_args(argv)
 
     fns: dict[str, Callable[[], None]] = {"ours": ours(args.batch)}
+    if args.torch_adam:
+        fns["ours_torch_adam"] = ours(args.batch, torch_adam=True)
     if args.bf16:
         fns["ours_bf16"] = ours(args.batch, bf16=True)
     compile_s: dict[str, float] = {}
@@ -166,13 +181,15 @@ def main(argv: list[str] | None = None) -> int:
     sb = sb3(args.batch)
     if sb is not None:
         fns["sb3"] = sb
-    results = {f"threads_{t}": measure(fns, int(t), args.seconds, args.rounds) for t in args.threads.split(",")}
+    results = {f"threads_{t}": measure(fns, int(t), args.seconds, args.rounds, args.clock)
+               for t in args.threads.split(",")}
     cpu = next((ln.split(":", 1)[1].strip() for ln in Path("/proc/cpuinfo").read_text().splitlines()
                 if ln.startswith("model name")), platform.processor()) if Path("/proc/cpuinfo").exists() else ""
     out = {
         "benchmark": "DDPG updates/s (actor+critic step incl. replay sampling)",
         "sizes": {"obs": OBS_DIM, "act": ACT_DIM, "actor": list(HIDDEN), "critic": list(HIDDEN), "batch": args.batch},
         "updates_per_s": results,
+        "clock": args.clock,
         "compile_seconds": compile_s,
         "notes": ["ours and naive use layer norm after each hidden layer (paper)",
                   "sb3: stable_baselines3 DDPG has no layer norm" if sb is not None else

@@ -267,13 +267,15 @@ def cmd_eval_tactic(args: argparse.Namespace) -> int:
     skills = team_skills(args.skills, dict(args.skill), where="--skill") if args.skill else args.skills
     s = evaluate_tactic(skills=skills, episodes=args.episodes, seed=args.seed, workers=_workers(args),
                         realism=args.realism, out=args.out, field=args.field, progress=not args.quiet,
-                        backend=args.backend, address=args.address, tracker=args.tracker)
+                        backend=args.backend, address=args.address, tracker=args.tracker,
+                        tactic=args.tactic, realtime=args.realtime)
     t = s["time_s"]
     lo, hi = s["success_ci95"]
     mean = "n/a" if t["mean"] is None else f"{t['mean']:.2f} +/- {t['std']:.2f} s"
-    print(f"go-to-ball-and-shoot ({args.skills} skills): success {s['success_rate']:.3f} [95% CI {lo:.3f}-{hi:.3f}] "
+    missed = f", missed deadlines {s['missed_deadlines']}" if args.realtime else ""
+    print(f"{args.tactic} ({args.skills} skills): success {s['success_rate']:.3f} [95% CI {lo:.3f}-{hi:.3f}] "
           f"over {s['episodes']} episodes, time to goal {mean}, failures {s['failures']} "
-          f"(paper: 0.755, 7.49 +/- 3.87 s)" + (f" -> {args.out}/results.json" if args.out else ""))
+          f"(paper: 0.755, 7.49 +/- 3.87 s){missed}" + (f" -> {args.out}/results.json" if args.out else ""))
     return 0
 
 
@@ -432,8 +434,10 @@ def build_parser() -> argparse.ArgumentParser:
                    help="worker processes (default 1; with --backend ray: tasks in flight, default the cluster's CPUs)")
     e.add_argument("--out", default=None,
                    help="output folder for results.json and time_hist.png, created if missing (default: none)")
-    e.add_argument("--realism", choices=("none", "realistic"), default="none",
-                   help="vision noise / latency preset (default none)")
+    e.add_argument("--realism", choices=("none", "realistic", "randomized"), default="none",
+                   help="vision noise / latency preset (default none); randomized: each episode draws its own "
+                        "latency, noise, command loss, robot speed / acceleration and ball model "
+                        "(ssl_marl/envs/randomization.py)")
     e.add_argument("--realtime", action="store_true", help="run in real-time mode (slow: 60 steps per second)")
     e.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")
     _add_backend(e, "the episodes")
@@ -465,13 +469,21 @@ def build_parser() -> argparse.ArgumentParser:
                                    "15 s. Writes OUT/results.json and OUT/time_hist.png.")
     t.add_argument("--skills", choices=("learned", "baseline"), default="learned",
                    help="skills inside the tactic (default learned)")
+    t.add_argument("--tactic", choices=("go-to-ball-and-shoot", "dribble-and-shoot"), default="go-to-ball-and-shoot",
+                   help="the tactic: the paper's go-to-ball-and-shoot (default) or dribble-and-shoot (take the ball "
+                        "gently, dribble it to a shooting window, aim, shoot; issue 13)")
+    t.add_argument("--realtime", action="store_true",
+                   help="hold the tactic to the 1/60 s control deadline: a command computed too slowly is dropped "
+                        "(the robot keeps the previous one) and counted as a missed deadline")
     t.add_argument("--skill", type=_skill_source, action="append", default=[], metavar="SKILL=SOURCE",
                    help="replace one skill of --skills: " + SKILL_SOURCE_HELP)
     t.add_argument("--episodes", type=_positive_int("--episodes"), default=500, help="episodes (default 500)")
     t.add_argument("--seed", type=int, default=20_000, help="evaluation seed (default 20000)")
     t.add_argument("--workers", type=_positive_int("--workers"), default=None,
                    help="worker processes (default 1; with --backend ray: tasks in flight, default the cluster's CPUs)")
-    t.add_argument("--realism", choices=("none", "realistic"), default="none", help="noise / latency preset")
+    t.add_argument("--realism", choices=("none", "realistic", "randomized"), default="none",
+                   help="noise / latency preset; randomized: each episode draws its own latency, noise, command "
+                        "loss, robot speed / acceleration and ball model (ssl_marl/envs/randomization.py)")
     t.add_argument("--out", default=None,
                    help="output folder for results.json and time_hist.png, created if missing (default: none)")
     t.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")

@@ -166,7 +166,7 @@ def _scene(keeper0, takers, k1, k2):
 def test_handcoded_holds_when_takers_far_and_passes_to_the_open_keeper_when_pressed():
     env = _env()
     pol = HandcodedKeepawayPolicy()
-    # takers far (> 1.25 m): hold
+    # takers far (> hold_dist_m = 2 m): hold
     obs, infos = env.reset(seed=0, options=_scene((-1.5, 0.0), [(2.0, 2.0), (2.0, -2.0)], (1.5, 1.8), (1.5, -1.8)))
     assert infos["keeper_0"]["decision"]
     assert pol.act(env, "keeper_0", obs["keeper_0"], infos["keeper_0"]) == HOLD

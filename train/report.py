@@ -42,12 +42,28 @@ def tactic_rows(results: Path) -> list[str]:
             "|---|---|---|---|---|---|---|---|"]
     for f in sorted(results.glob("*/results.json")):
         r = json.loads(f.read_text())
-        if "protocol" not in r or "skills" not in r:
-            continue
+        if "protocol" not in r or "skills" not in r or r.get("tactic", "go-to-ball-and-shoot") != "go-to-ball-and-shoot":
+            continue  # other tactics have their own table
         lo, hi = r["success_ci95"]
         rows.append(f"| `{f.parent.name}` | {r['skills']} | {r['config'].get('realism', 'none')} | {r['episodes']} | "
                     f"{r['success_rate']:.3f} [{lo:.3f}, {hi:.3f}] | {_fmt_time(r['time_s'])} | "
                     f"{r['failures']} | 0.755, 7.49 +/- 3.87 |")
+    return rows
+
+
+def dribble_rows(results: Path) -> list[str]:
+    """Rows for the dribble-and-shoot runs (``results/tactic_dribble_*/results.json``, issue 13)."""
+    rows = ["| run | skills | realism | tracker | field | episodes | success [95% CI] | time to goal (s) | failures | "
+            "go-to-ball stalls (episodes) | missed deadlines |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for f in sorted(results.glob("tactic_dribble_*/results.json")):
+        r = json.loads(f.read_text())
+        c = r["config"]
+        lo, hi = r["success_ci95"]
+        missed = r["missed_deadlines"] if c.get("realtime") else "-"
+        rows.append(f"| `{f.parent.name}` | {r['skills']} | {c.get('realism', 'none')} | "
+                    f"{'on' if c.get('tracker') else 'off'} | {c.get('field')} | {r['episodes']} | "
+                    f"{r['success_rate']:.3f} [{lo:.3f}, {hi:.3f}] | {_fmt_time(r['time_s'])} | {r['failures']} | "
+                    f"{r.get('go_to_ball_stalls', '-')} ({r.get('episodes_with_stall', '-')}) | {missed} |")
     return rows
 
 
@@ -82,6 +98,8 @@ def main(argv: list[str] | None = None) -> str:
     res = Path(a.results)
     text = "\n".join(["### Skills (ssl-marl eval-skill)", "", *skill_rows(res), "",
                       "### Tactic (ssl-marl eval-tactic)", "", *tactic_rows(res), "",
+                      "### Dribble-and-shoot (ssl-marl eval-tactic --tactic dribble-and-shoot)", "",
+                      *dribble_rows(res), "",
                       "### Match series (ssl-marl match --matches K --json results/match_NAME.json)", "",
                       *match_rows(res), "",
                       "### Checkpoint selection (python -m train.select RUN)", "", *selection_rows(res), ""])

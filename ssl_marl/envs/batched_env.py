@@ -89,6 +89,10 @@ class BatchedSSLEnv:
                 raise ValueError("realtime: not supported by the batched env (use SSLParallelEnv)")
             if cfg.render_mode is not None:
                 raise ValueError("render_mode: not supported by the batched env (use SSLParallelEnv)")
+            if cfg.randomization is not None:
+                raise ValueError("randomization: per-episode domain randomisation (realism='randomized') is not "
+                                 "supported by the batched env: its worlds share one set of physics parameters "
+                                 "and one realism pipeline; use SSLParallelEnv")
             envs = [SSLParallelEnv(**config) for _ in range(n_worlds)]
         elif config:
             raise ValueError(f"pass either envs or env options, not both (got options {sorted(config)})")
@@ -97,6 +101,9 @@ class BatchedSSLEnv:
         self.envs = list(envs)
         self.config: EnvConfig = self.envs[0].config
         cfg = self.config
+        if any(e.config.randomization is not None for e in self.envs):
+            raise ValueError("randomization: per-episode domain randomisation (realism='randomized') is not "
+                             "supported by the batched env; use SSLParallelEnv")
         self.K = n_worlds
         self.field = cfg.field
         self.possible_agents = list(self.envs[0].possible_agents)

@@ -63,14 +63,16 @@ class RealismConfig:
     def preset(name: str) -> "RealismConfig":
         """"none" or "realistic" (ER-Force's realistic preset at 60 Hz: ball sigma 1.4 mm,
         robot 1.3 mm / 0.01 rad, ~45 ms vision delay -> 3 steps, 5 % ball dropout,
-        3 % commands lost, one step of radio delay)."""
+        3 % commands lost, one step of radio delay). "randomized" gives the same nominal
+        config: an env built with ``realism="randomized"`` draws each episode's conditions
+        around it (:mod:`ssl_marl.envs.randomization`); teams are told the nominal ones."""
         if name == "none":
             return RealismConfig()
-        if name == "realistic":
+        if name in ("realistic", "randomized"):
             return RealismConfig(robot_pos_sigma=0.0013, robot_angle_sigma=0.01, ball_pos_sigma=0.0014,
                                  vel_sigma=0.02, ball_dropout=0.05, obs_latency_steps=3, cmd_latency_steps=1,
                                  cmd_loss=0.03)
-        raise ValueError(f"realism: unknown preset {name!r}; expected 'none' or 'realistic'")
+        raise ValueError(f"realism: unknown preset {name!r}; expected 'none', 'realistic' or 'randomized'")
 
 
 @dataclass(frozen=True)
@@ -87,7 +89,13 @@ class EnvConfig:
         robot, ball: physical parameters.
         after_goal: "kickoff" (place the kickoff formation and play on) or "terminate".
         reward_scales: scale per named reward term ("goal", "ball_progress", "possession").
-        realism: noise / latency settings, or a preset name ("none", "realistic").
+        realism: noise / latency settings, or a preset name ("none", "realistic",
+            "randomized": the realistic preset as nominal conditions plus per-episode
+            domain randomisation, see ``randomization``).
+        randomization: per-episode domain randomisation
+            (:mod:`ssl_marl.envs.randomization`): None (off; the default unless
+            ``realism="randomized"``), True (default ranges), a dict of ranges, or a
+            ``RandomizationRanges`` / ``DomainRandomization``.
         realtime: advance with the wall clock; a command that arrives after the
             control deadline misses its step (the paper's evaluation mode).
         obs_max_teammates, obs_max_opponents: observation slots (padded with a mask);
@@ -130,9 +138,15 @@ class EnvConfig:
     render_trails: bool = False
     render_width_px: int = 960
     render_team_labels: Mapping[str, str] | None = None
+    randomization: Any = None
 
     def __post_init__(self) -> None:
+        from .randomization import resolve_randomization
         from .tasks import TASKS, Task
+
+        if isinstance(self.realism, str) and self.realism == "randomized" and self.randomization is None:
+            object.__setattr__(self, "randomization", True)
+        object.__setattr__(self, "randomization", resolve_randomization(self.randomization))
 
         if not (isinstance(self.task, Task) or (isinstance(self.task, str) and self.task in TASKS)):
             raise ValueError(f"task must be one of {tuple(TASKS)} or a Task object, got {self.task!r}")

@@ -98,6 +98,8 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
                                     cfg.physics_substeps)
         self.vision = Vision(cfg.realism)
         self.radio = Radio(cfg.realism, self.n, ACTION_DIM)
+        #: this episode's domain-randomised conditions (None without ``config.randomization``)
+        self.conditions = None
         self._truth: WorldState | None = None
         self._seen: WorldState | None = None
         self._noise_rng = np.random.default_rng(0)
@@ -130,6 +132,8 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         if seed is not None:
             self.np_random = np.random.default_rng(seed)
         self._noise_rng = np.random.default_rng(self.np_random.integers(2 ** 63))
+        if self.config.randomization is not None:
+            self._apply_conditions(np.random.default_rng(self.np_random.integers(2 ** 63)))
         options = dict(options or {})
         scene = self.task.reset_scene(self, options)
         self.physics.reset(scene.robot_pose, scene.ball_pos, scene.ball_vel)
@@ -145,9 +149,24 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         self._deadline.start()
         obs = self._observations()
         infos = {a: {"events": [], "score": dict(self.score)} for a in self.agents}
+        if self.conditions is not None:
+            cond = self.conditions.as_dict()
+            for a in self.agents:
+                infos[a]["conditions"] = cond
         if self.render_mode == "human":
             self.render()
         return obs, infos
+
+    def _apply_conditions(self, rng: np.random.Generator) -> None:
+        """Domain randomisation (``config.randomization``): draw this episode's conditions
+        and rebuild vision, radio and the physics parameters from them. Actions stay
+        scaled by the nominal ``config.robot`` (a command is a velocity in m/s; a slower
+        robot simply cannot follow a fast one)."""
+        cfg = self.config
+        self.conditions = cfg.randomization.draw(rng, cfg.robot, cfg.ball)
+        self.vision = Vision(self.conditions.realism)
+        self.radio = Radio(self.conditions.realism, self.n, ACTION_DIM)
+        self.physics.set_params(robot=self.conditions.robot, ball=self.conditions.ball)
 
     # -------------------------------------------------------------------- step
     def _action_array(self, actions: dict) -> np.ndarray:

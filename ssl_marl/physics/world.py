@@ -110,6 +110,24 @@ class PhysicsWorld:
         self._slide_until = math.inf  # ball slides while speed > this (m/s)
         self.kicks_this_step: list[tuple[int, float]] = []  # (robot index, ball speed)
 
+    def set_params(self, robot: RobotParams | None = None, ball: BallParams | None = None) -> None:
+        """Replace the robot and/or ball parameters (e.g. one episode's domain-randomised
+        draw); they take effect at the next :meth:`reset`, which builds a fresh world
+        (the cached fixture definitions carry the restitution coefficients and are
+        rebuilt). Radius and front distance must not change: observations and tactics
+        assume the nominal shape."""
+        for new, old_p, name in ((robot, self.robot, "robot"), (ball, self.ball_params, "ball")):
+            if new is None:
+                continue
+            if new.radius != old_p.radius or getattr(new, "front_distance", 0) != getattr(old_p, "front_distance", 0):
+                raise ValueError(f"set_params: the {name}'s shape (radius / front_distance) cannot change")
+        if robot is not None:
+            self.robot = robot
+        if ball is not None:
+            self.ball_params = ball
+        if hasattr(self, "_robot_fixdefs"):
+            del self._robot_fixdefs  # rebuilt at the next reset with the new coefficients
+
     # ---------------------------------------------------------------- building
     def _make_fixture_defs(self) -> None:
         """Shapes are built once; every reset reuses them (creating SWIG shapes is slow)."""

@@ -53,6 +53,22 @@ def sample_scene(rng: np.random.Generator, field) -> tuple[np.ndarray, np.ndarra
 
 _ENV_CACHE: dict[tuple, Any] = {}
 
+#: tactics ``evaluate_tactic(tactic=...)`` can run (CLI spelling -> class path); the
+#: default is the paper's. Both take the same (field, robot, ball, skills, dt) arguments.
+TACTIC_CHOICES = {"go-to-ball-and-shoot": "ssl_marl.plays.shoot:GoToBallAndShoot",
+                  "dribble-and-shoot": "ssl_marl.plays.dribble_shoot:DribbleAndShoot"}
+
+
+def tactic_class(name: str):
+    """The tactic class for a name in :data:`TACTIC_CHOICES` (``_`` may replace ``-``)."""
+    import importlib
+
+    key = str(name).replace("_", "-")
+    if key not in TACTIC_CHOICES:
+        raise ValueError(f"tactic: unknown tactic {name!r}; expected one of {sorted(TACTIC_CHOICES)}")
+    module, cls = TACTIC_CHOICES[key].split(":")
+    return getattr(importlib.import_module(module), cls)
+
 
 def _env(field: str, realism: Any, max_time_s: float, tracker: Any = "auto"):
     from ..envs import parallel_env
@@ -68,17 +84,17 @@ def _env(field: str, realism: Any, max_time_s: float, tracker: Any = "auto"):
 
 
 def run_episode(index: int, seed: int, skills: Any = "baseline", realism: Any = "none", field: Any = "div_b",
-                max_time_s: float = 15.0, realtime: bool = False, tracker: Any = "auto") -> dict:
+                max_time_s: float = 15.0, realtime: bool = False, tracker: Any = "auto",
+                tactic: str = "go-to-ball-and-shoot") -> dict:
     """One evaluation episode; returns a dict (index, seed, success, outcome, time_s,
     kicks, ball, robot, missed_deadlines)."""
-    from ..plays.shoot import GoToBallAndShoot
-
+    tactic_cls = tactic_class(tactic)
     env = _env(field, realism, max_time_s, tracker)
     es = episode_seed(seed, index)
     rng = np.random.default_rng(es)
     ball, pose = sample_scene(rng, env.field)
     env.reset(seed=es, options={"ball": {"pos": ball.tolist()}, "robots": {"blue_0": pose.tolist()}})
-    tactic = GoToBallAndShoot(env.field, env.config.robot, env.config.ball, skills=skills, dt=env.config.dt)
+    tactic = tactic_cls(env.field, env.config.robot, env.config.ball, skills=skills, dt=env.config.dt)
     outcome, t_end = "timeout", max_time_s
     deadline = ControlDeadline(env.config.dt)
     a = np.zeros(5, np.float32)
@@ -96,7 +112,8 @@ def run_episode(index: int, seed: int, skills: Any = "baseline", realism: Any = 
             t_end = float(env.world_state().t)
     return {"index": index, "seed": es, "success": outcome == "goal", "outcome": outcome, "time_s": t_end,
             "kicks": tactic.status.kicks, "ball": [float(v) for v in ball], "robot": [float(v) for v in pose],
-            "missed_deadlines": deadline.missed}
+            "missed_deadlines": deadline.missed,
+            **({"stalls": int(tactic.stalls)} if hasattr(tactic, "stalls") else {})}
 
 
 def _episodes_worker(job: tuple) -> list[dict]:
@@ -107,7 +124,8 @@ def _episodes_worker(job: tuple) -> list[dict]:
 def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0, workers: int = 1,
                     realism: Any = "none", out: str | os.PathLike | None = None, field: Any = "div_b",
                     max_time_s: float = 15.0, realtime: bool = False, progress: bool = True,
-                    backend: str = "local", address: str | None = None, tracker: Any = "auto") -> dict:
+                    backend: str = "local", address: str | None = None, tracker: Any = "auto",
+                    tactic: str = "go-to-ball-and-shoot") -> dict:
     """Evaluate go-to-ball-and-shoot as in the paper's section 5.2 (see the module docstring).
 
     Args:
@@ -127,6 +145,8 @@ def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0,
             (None: a local Ray instance). See :mod:`~ssl_marl.runners.pool`.
         tracker: "auto" (on unless realism is "none"), "on" or "off": the tactic reads
             :class:`~ssl_marl.envs.tracking.TrackedVisionEnv`'s tracked state.
+        tactic: a name in :data:`TACTIC_CHOICES`: "go-to-ball-and-shoot" (the paper's,
+            default) or "dribble-and-shoot" (:mod:`~ssl_marl.plays.dribble_shoot`).
 
     Returns: the results dict (also written to ``out/results.json``).
     """
@@ -136,14 +156,16 @@ def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0,
     from ..physics.field import FieldGeometry
     from ..plays.skillset import check_skills
 
+    tactic = str(tactic).replace("_", "-")
+    tactic_class(tactic)  # a bad name fails here
     check_skills(skills, FieldGeometry.from_name(field))  # fail here (e.g. a bad checkpoint), not in every worker
     t0 = time.perf_counter()
     from ..envs.tracking import resolve_tracker
 
     use_tracker = resolve_tracker(tracker, realism)
-    jobs = [(chunk, seed, skills, realism, field, max_time_s, realtime, use_tracker)
+    jobs = [(chunk, seed, skills, realism, field, max_time_s, realtime, use_tracker, tactic)
             for chunk in chunk_indices(episodes, workers)]
-    eps = [e for chunk in run_pool(_episodes_worker, jobs, workers, f"eval go-to-ball-and-shoot ({skills})",
+    eps = [e for chunk in run_pool(_episodes_worker, jobs, workers, f"eval {tactic} ({skills})",
                                    progress, unit="ep", backend=backend, address=address, size=len, total=episodes)
            for e in chunk]
     succ_times = [e["time_s"] for e in eps if e["success"]]
@@ -153,8 +175,9 @@ def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0,
                 "own_goal": sum(e["outcome"] == "own_goal" for e in eps)}
     field_name = field if isinstance(field, str) else getattr(field, "name", repr(field))
     results = {
-        "protocol": "paper section 5.2: one robot and the ball at random, go-to-ball-and-shoot until a goal "
+        "protocol": f"paper section 5.2: one robot and the ball at random, {tactic} until a goal "
                     f"or {max_time_s:g} s",
+        "tactic": tactic,
         "skills": skills if isinstance(skills, str) else dict(skills),
         "episodes": episodes, "seed": seed,
         "config": {"field": field_name, "realism": realism if isinstance(realism, str) else repr(realism),
@@ -165,6 +188,8 @@ def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0,
         "time_s": time_summary(succ_times), "failures": failures,
         "kicks_mean": float(np.mean([e["kicks"] for e in eps])),
         "missed_deadlines": int(sum(e["missed_deadlines"] for e in eps)),
+        **({"go_to_ball_stalls": int(sum(e["stalls"] for e in eps)),
+            "episodes_with_stall": int(sum(e["stalls"] > 0 for e in eps))} if eps and "stalls" in eps[0] else {}),
         "paper": PAPER_RESULT, "wall_time_s": time.perf_counter() - t0, "episodes_detail": eps,
     }
     if out is not None:
@@ -172,7 +197,7 @@ def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0,
         d.mkdir(parents=True, exist_ok=True)
         atomic_write_bytes(d / "results.json", (json.dumps(results, indent=2) + "\n").encode())
         ts = results["time_s"]
-        title = (f"go-to-ball-and-shoot ({results['skills']}), {field_name}: success {k}/{episodes} "
+        title = (f"{tactic} ({results['skills']}), {field_name}: success {k}/{episodes} "
                  f"= {100 * k / episodes:.1f} %" + (f", {ts['mean']:.2f} \u00b1 {ts['std']:.2f} s" if k else ""))
         write_time_histogram(succ_times, d / "time_hist.png", title, max_time_s, xlabel="time to score (s)")
     return results

@@ -97,7 +97,7 @@ def soft_update(target: Sequence[torch.Tensor], online: Sequence[torch.Tensor], 
     torch._foreach_lerp_(list(target), list(online), tau)
 
 
-def step_with_frozen(loss_fn: Any, frozen: Sequence[torch.Tensor], opt: torch.optim.Optimizer) -> torch.Tensor:
+def step_with_frozen(loss_fn: Any, frozen: Sequence[torch.Tensor], opt: Any) -> torch.Tensor:
     """One optimiser step on ``loss_fn()`` with ``frozen`` parameters excluded from the
     backward pass (the actor step needs dQ/da, not the critic's weight gradients);
     returns the loss."""
@@ -131,6 +131,76 @@ def adam(params: Any, lr: float, weight_decay: float = 0.0) -> torch.optim.Adam:
         return torch.optim.Adam(params, lr=lr, weight_decay=weight_decay, fused=True)
     except (RuntimeError, TypeError):
         return torch.optim.Adam(params, lr=lr, weight_decay=weight_decay, foreach=True)
+
+
+class LeanAdam:
+    """``torch.optim.Adam(fused=True)`` with a lean :meth:`step`: after the first step (which the
+    wrapped optimiser does, creating its state) every step is one ``torch._foreach_add_`` on the
+    step counters and one ``torch._fused_adam_`` call on cached lists of parameters and moments,
+    the two kernels ``Adam.step`` ends in; what is skipped is its per-step Python (hooks,
+    profiler scope, grouping tensors by device and dtype, state look-ups). Bit-identical to
+    ``torch.optim.Adam(fused=True)`` (tested); the state dict is the wrapped optimiser's, so
+    checkpoints are interchangeable. Parameters without a gradient, or a torch without the
+    fused CPU kernel, fall back to the wrapped optimiser's own step."""
+
+    def __init__(self, params: Any, lr: float, weight_decay: float = 0.0) -> None:
+        self.opt = torch.optim.Adam(params, lr=lr, weight_decay=weight_decay, fused=True)
+        if len(self.opt.param_groups) != 1:
+            raise ValueError("LeanAdam takes one parameter group")
+        self.params: list[torch.Tensor] = list(self.opt.param_groups[0]["params"])
+        self._lists: tuple[list[torch.Tensor], list[torch.Tensor], list[torch.Tensor]] | None = None
+
+    @property
+    def param_groups(self) -> list[dict[str, Any]]:
+        return self.opt.param_groups
+
+    @property
+    def state(self) -> Any:
+        return self.opt.state
+
+    def zero_grad(self, set_to_none: bool = True) -> None:
+        for p in self.params:
+            if set_to_none:
+                p.grad = None
+            elif p.grad is not None:
+                p.grad.zero_()
+
+    def _cache(self) -> None:
+        st = self.opt.state
+        if all(p in st and "exp_avg" in st[p] for p in self.params):
+            self._lists = ([st[p]["exp_avg"] for p in self.params], [st[p]["exp_avg_sq"] for p in self.params],
+                           [st[p]["step"] for p in self.params])
+
+    def step(self) -> None:
+        grads = [p.grad for p in self.params]
+        if self._lists is None or any(g is None for g in grads):
+            self.opt.step()
+            if self._lists is None:
+                self._cache()
+            return
+        g = self.opt.param_groups[0]
+        exp_avgs, exp_avg_sqs, steps = self._lists
+        beta1, beta2 = g["betas"]
+        torch._foreach_add_(steps, 1)
+        torch._fused_adam_(self.params, grads, exp_avgs, exp_avg_sqs, [], steps, amsgrad=False, lr=g["lr"],
+                           beta1=beta1, beta2=beta2, weight_decay=g["weight_decay"], eps=g["eps"],
+                           maximize=False, grad_scale=None, found_inf=None)
+
+    def state_dict(self) -> dict[str, Any]:
+        return self.opt.state_dict()
+
+    def load_state_dict(self, state: dict[str, Any]) -> None:
+        self.opt.load_state_dict(state)  # replaces the state tensors: rebuild the cached lists
+        self._lists = None
+        self._cache()
+
+
+def lean_adam(params: Any, lr: float, weight_decay: float = 0.0) -> LeanAdam | torch.optim.Adam:
+    """:class:`LeanAdam` where this torch has fused CPU Adam, else :func:`adam`."""
+    try:
+        return LeanAdam(params, lr, weight_decay)
+    except (RuntimeError, TypeError):
+        return adam(params, lr, weight_decay)
 
 
 def bf16_autocast(enabled: bool) -> Any:

@@ -5,11 +5,14 @@
     L_actor  = -mean(Q(s, mu(s))) [+ w_bc * mean((mu(s_d) - a_d)^2)]  # Adam step on the actor only
     theta'   <- theta' + tau * (theta - theta')                    # Polyak, both targets
 
+With n-step returns (``n_step`` > 1, :mod:`train.nstep`) ``r`` is the window's discounted
+reward sum and ``gamma`` the row's own ``gamma ** k`` (``Batch.discount``).
+
 Hyperparameters: :class:`train.config.TrainConfig` (``gamma``, ``tau``, learning rates,
 layer sizes, ``bc_weight``, ``autocast_bf16``, ``compile``).
 
 Speed (measured, see benchmarks/bench_ddpg.py and docs/BENCHMARKS.md): fused
-Adam; the critic's parameters frozen during the actor step (no critic weight
+Adam stepped through :class:`~train.algos.base.LeanAdam` (no per-step Python); the critic's parameters frozen during the actor step (no critic weight
 gradients); one ``torch._foreach_lerp_`` for the soft update; losses accumulated
 as tensors and read out every ``log_interval`` updates (no ``.item()`` sync per
 update). Options: ``autocast_bf16`` runs the matrix products in bfloat16 (on CPUs
@@ -32,7 +35,7 @@ from ssl_marl.skills.networks import Actor, Critic
 
 from ..config import TrainConfig
 from ..replay import Batch
-from .base import LossMeter, actor_act, adam, bf16_autocast, soft_update, step_with_frozen, td_target
+from .base import LossMeter, actor_act, bf16_autocast, lean_adam, soft_update, step_with_frozen, td_target
 
 __all__ = ["DDPG", "soft_update", "td_target"]
 
@@ -48,8 +51,8 @@ class DDPG:
         self.critic = Critic(obs_dim, act_dim, cfg.critic_hidden, cfg.layer_norm)
         self.actor_target = copy.deepcopy(self.actor).requires_grad_(False)
         self.critic_target = copy.deepcopy(self.critic).requires_grad_(False)
-        self.actor_opt = adam(self.actor.parameters(), cfg.actor_lr)
-        self.critic_opt = adam(self.critic.parameters(), cfg.critic_lr, cfg.critic_weight_decay)
+        self.actor_opt = lean_adam(self.actor.parameters(), cfg.actor_lr)
+        self.critic_opt = lean_adam(self.critic.parameters(), cfg.critic_lr, cfg.critic_weight_decay)
         self._critic_params = list(self.critic.parameters())
         self._online = list(self.actor.parameters()) + self._critic_params
         self._target = list(self.actor_target.parameters()) + list(self.critic_target.parameters())

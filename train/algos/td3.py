@@ -9,6 +9,9 @@ DDPG plus three fixes of its value over-estimation; one update in :meth:`TD3.upd
         L_actor = -mean(Q1(s, mu(s))) [+ w_bc * mean((mu(s_d) - a_d)^2)]  # Adam step on the actor
         theta'  <- theta' + tau * (theta - theta')                 # Polyak, all three targets
 
+With n-step returns (``n_step`` > 1) ``r`` and ``gamma`` are the row's window sum and
+``gamma ** k`` (:mod:`train.nstep`), as in DDPG.
+
 Hyperparameters: :class:`train.config.TrainConfig`; the TD3 ones are ``td3_policy_noise``
 (sigma_s, 0.2), ``td3_noise_clip`` (c, 0.5) and ``td3_policy_delay`` (d, 2), the paper's
 values, in the actor's normalised action units ([-1, 1]). Exploration is the loop's
@@ -33,7 +36,7 @@ from ssl_marl.skills.networks import Actor, Critic
 
 from ..config import TrainConfig
 from ..replay import Batch
-from .base import LossMeter, actor_act, adam, bf16_autocast, soft_update, step_with_frozen, td_target
+from .base import LossMeter, actor_act, bf16_autocast, lean_adam, soft_update, step_with_frozen, td_target
 
 
 class TD3:
@@ -49,8 +52,8 @@ class TD3:
         self.actor_target = copy.deepcopy(self.actor).requires_grad_(False)
         self.critic1_target = copy.deepcopy(self.critic1).requires_grad_(False)
         self.critic2_target = copy.deepcopy(self.critic2).requires_grad_(False)
-        self.actor_opt = adam(self.actor.parameters(), cfg.actor_lr)
-        self.critic_opt = adam(list(self.critic1.parameters()) + list(self.critic2.parameters()), cfg.critic_lr,
+        self.actor_opt = lean_adam(self.actor.parameters(), cfg.actor_lr)
+        self.critic_opt = lean_adam(list(self.critic1.parameters()) + list(self.critic2.parameters()), cfg.critic_lr,
                                cfg.critic_weight_decay)
         self._q1_params = list(self.critic1.parameters())
         self._online = [*self.actor.parameters(), *self.critic1.parameters(), *self.critic2.parameters()]
