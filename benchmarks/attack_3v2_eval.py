@@ -42,11 +42,12 @@ def _init(policy: str, skills: str) -> None:
     import torch
 
     torch.set_num_threads(1)
-    from ssl_marl.decisions.attack import Attack3v2Env, HandcodedAttackPolicy
-    from ssl_marl.decisions.policies import RandomPolicy
+    from ssl_marl.decisions import make_decision_policy
+    from ssl_marl.decisions.attack import Attack3v2Env
 
     _ENV = Attack3v2Env(skills=skills)
-    _POLICY = HandcodedAttackPolicy() if policy == "handcoded" else RandomPolicy(0)
+    # the registry's policies, as eval-task builds them (random: RandomPolicy(0); learned: the shipped actor)
+    _POLICY = make_decision_policy(policy, "attack-3v2", seed=0)
 
 
 def _run(seeds: list[int]) -> list[dict]:
@@ -142,7 +143,8 @@ def export(src: Path, dst: Path, policy: str, seed: int, episodes: int | None) -
 
 def main() -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("--policy", choices=("handcoded", "random"), required=True, help="benchmark policy")
+    p.add_argument("--policy", choices=("handcoded", "random", "learned"), required=True,
+                   help="benchmark policy, or learned (the shipped pretrained/attack_3v2.pt)")
     p.add_argument("--episodes", type=int, default=1000, help="episodes (default 1000)")
     p.add_argument("--seed", type=int, default=41000, help="episode i uses seed + i (default 41000)")
     p.add_argument("--workers", type=int, default=1, help="worker processes (default 1)")
