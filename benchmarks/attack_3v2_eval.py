@@ -26,17 +26,6 @@ _ENV = None
 _POLICY = None
 
 
-def wilson(k: int, n: int, z: float = 1.959963984540054) -> tuple[float, float]:
-    """95 % Wilson score interval of a rate k / n."""
-    if n == 0:
-        return (0.0, 1.0)
-    p = k / n
-    d = 1 + z * z / n
-    c = (p + z * z / (2 * n)) / d
-    h = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / d
-    return (max(0.0, c - h), min(1.0, c + h))
-
-
 def _init(policy: str, skills: str) -> None:
     global _ENV, _POLICY
     import torch
@@ -82,7 +71,9 @@ def summarize(rows: list[dict], args: argparse.Namespace, wall: float) -> dict:
     for r in rows:
         for k, v in r["options"].items():
             opts[k] = opts.get(k, 0) + v
-    lo, hi = wilson(goals, n)
+    from ssl_marl.io import wilson_interval
+
+    lo, hi = wilson_interval(goals, n)
     return {"task": "attack-3v2", "policy": args.policy, "skills": args.skills, "episodes": n,
             "episodes_requested": args.episodes, "seeds": [args.seed, args.seed + n - 1], "seed": args.seed, "goal_rate": goals / n if n else None,
             "goal_rate_ci95": [lo, hi], "goals": goals, "outcomes": dict(sorted(outcomes.items())),
