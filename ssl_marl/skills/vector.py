@@ -13,7 +13,7 @@ and ``exp``, rewards).
 
 Spaces, autoreset and infos follow Gymnasium's vector API: ``metadata
 ["autoreset_mode"]`` is ``NEXT_STEP`` (as the trainer's ``SyncVectorEnv``); infos
-are dicts of arrays with ``_key`` masks (``reward_terms`` every step; ``is_success``,
+are dicts of arrays with ``_key`` masks (``reward_terms`` every step that steps a world, absent when every world autoresets; ``is_success``,
 ``failure_reason``, ``time_s`` where an episode ended; ``kicked`` for aim-to-shoot).
 Bad actions (wrong shape, NaN or inf) raise ``ValueError`` naming the sub-env.
 
