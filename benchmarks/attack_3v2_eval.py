@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import os
 import platform
 import sys
@@ -88,10 +87,7 @@ def export(src: Path, dst: Path, policy: str, seed: int, episodes: int | None) -
     from the longest complete prefix of seeds in ``src/episodes.jsonl`` (at most ``episodes``).
     The episodes are the ones eval-task plays (same env, same seeds, ``RandomPolicy(0)``),
     so the figures equal ``ssl-marl eval-task attack-3v2 --policy POLICY --episodes N --seed SEED``."""
-    from collections import Counter
-
-    from ssl_marl.io import atomic_write_json, time_summary, wilson_interval
-    from ssl_marl.runners.plots import write_time_histogram
+    from ssl_marl.runners.task_eval import task_results, write_task_results
 
     rows = {}
     for line in (src / "episodes.jsonl").read_text().splitlines():
@@ -104,31 +100,15 @@ def export(src: Path, dst: Path, policy: str, seed: int, episodes: int | None) -
         eps.append({"index": len(eps), "seed": r["seed"], "outcome": r["outcome"], "duration_s": float(r["t_s"]),
                     "decisions": int(r["decisions"]), "steps": int(r["steps"]), "options": r["options"],
                     "goal": int(r["goal"])})
-    n = len(eps)
-    durations = [e["duration_s"] for e in eps]
-    goals = sum(e["goal"] for e in eps)
-    lo, hi = wilson_interval(goals, n)
-    opt: Counter = Counter()
-    for e in eps:
-        opt.update(e["options"])
     wall = sum(rows[e["seed"]]["wall_s"] for e in eps)
     dec = sum(e["decisions"] for e in eps)
-    res = {"task": "attack-3v2", "policy": policy, "actor": None, "episodes": n, "seed": seed,
-           "seeds": f"episode i uses seed {seed} + i",
-           "config": {"realism": "none", "field": "div_b", "workers": None, "backend": "local",
-                      "runner": "benchmarks/attack_3v2_eval.py (same episodes as ssl-marl eval-task)"},
-           "outcomes": dict(sorted(Counter(e["outcome"] for e in eps).items())),
-           "duration_s": time_summary(durations), "goals": goals, "goal_rate": goals / n, "goal_rate_ci95": [lo, hi],
-           "options": dict(opt), "decisions": dec,
-           "throughput": {"episode_wall_s_sum": wall, "decisions_per_s": dec / wall, "sim_s_per_s": sum(durations) / wall,
-                          "note": "per worker process on the shared 2-core machine (load 8-13); not deterministic"},
-           "episodes_detail": eps}
-    dst.mkdir(parents=True, exist_ok=True)
-    atomic_write_json(dst / "results.json", res)
-    hi_t = max(durations)
-    write_time_histogram(durations, dst / "duration_hist.png",
-                         f"attack-3v2 ({policy}, realism none): goal rate {goals / n:.3f} [{lo:.3f}, {hi:.3f}], n={n}",
-                         max_time_s=math.ceil(hi_t), xlabel="episode duration (s)", bin_s=max(0.25, math.ceil(hi_t) / 60))
+    throughput = {"episode_wall_s_sum": wall, "decisions_per_s": dec / wall,
+                  "sim_s_per_s": sum(e["duration_s"] for e in eps) / wall,
+                  "note": "per worker process on the shared 2-core machine (load 8-13); not deterministic"}
+    config = {"realism": "none", "field": "div_b", "workers": None, "backend": "local",
+              "runner": "benchmarks/attack_3v2_eval.py (same episodes as ssl-marl eval-task)"}
+    res = task_results("attack-3v2", policy, eps, seed=seed, actor=None, config=config, throughput=throughput)
+    write_task_results(res, dst)
     return res
 
 

@@ -93,6 +93,64 @@ def _chunk_worker(job: tuple) -> list[dict]:
     return [run_task_episode(i, *rest) for i in indices]
 
 
+def task_results(task: str, policy: str, eps: list[dict], *, seed: int, actor: str | None,
+                 config: dict, throughput: dict) -> dict:
+    """eval-task's results dict from per-episode records (``duration_s``, ``outcome``,
+    ``decisions``, ``options``; attack: ``goal``; keepaway: ``passes_*``): the score with its
+    95 % interval (t-interval of the mean duration, or Wilson of the goal rate), outcome and
+    option counts, and every episode."""
+    n = len(eps)
+    durations = [e["duration_s"] for e in eps]
+    results: dict[str, Any] = {
+        "task": task, "policy": policy, "actor": actor, "episodes": n, "seed": seed,
+        "seeds": f"episode i uses seed {seed} + i",
+        "config": config,
+        "outcomes": dict(sorted(Counter(e["outcome"] for e in eps).items())),
+        "duration_s": time_summary(durations),
+    }
+    if TASK_SCORES[task] == "duration":
+        lo, hi = t_interval(durations)
+        results["mean_duration_s"] = float(np.mean(durations))
+        results["mean_duration_ci95"] = [lo, hi]
+    else:
+        goals = sum(int(bool(e.get("goal", e["outcome"] == "goal"))) for e in eps)
+        lo, hi = wilson_interval(goals, n)
+        results["goals"] = goals
+        results["goal_rate"] = goals / n
+        results["goal_rate_ci95"] = [lo, hi]
+    opt_tot: Counter = Counter()
+    for e in eps:
+        opt_tot.update(e["options"])
+    results["options"] = dict(opt_tot)
+    results["decisions"] = sum(e["decisions"] for e in eps)
+    if "passes_kicked" in eps[0]:
+        results["passes_kicked"] = int(sum(e.get("passes_kicked", 0) for e in eps))
+        results["passes_completed"] = int(sum(e.get("passes_completed", 0) for e in eps))
+    results["throughput"] = throughput
+    results["episodes_detail"] = eps
+    return results
+
+
+def write_task_results(results: dict, out: str | os.PathLike) -> None:
+    """``out/results.json`` (atomic) and ``out/duration_hist.png`` for :func:`task_results`."""
+    d = Path(out)
+    d.mkdir(parents=True, exist_ok=True)
+    atomic_write_json(d / "results.json", results)
+    task, policy, n = results["task"], results["policy"], results["episodes"]
+    realism = results["config"].get("realism", "none")
+    if TASK_SCORES[task] == "duration":
+        lo, hi = results["mean_duration_ci95"]
+        title = (f"{task} ({policy}, realism {realism}): mean {results['mean_duration_s']:.2f} s "
+                 f"[{lo:.2f}, {hi:.2f}], n={n}")
+    else:
+        lo, hi = results["goal_rate_ci95"]
+        title = f"{task} ({policy}, realism {realism}): goal rate {results['goal_rate']:.3f} [{lo:.3f}, {hi:.3f}], n={n}"
+    durations = [e["duration_s"] for e in results["episodes_detail"]]
+    hi_t = max(durations) if durations else 1.0
+    write_time_histogram(durations, d / "duration_hist.png", title, max_time_s=math.ceil(hi_t),
+                         xlabel="episode duration (s)", bin_s=max(0.25, math.ceil(hi_t) / 60))
+
+
 def evaluate_task(task: str, policy: str, episodes: int = 1000, seed: int | None = None, workers: int | None = 1,
                   realism: str = "none", field: str = "div_b", actor: str | None = None,
                   out: str | os.PathLike | None = None, progress: bool = True, backend: str = "local",
@@ -137,56 +195,19 @@ def evaluate_task(task: str, policy: str, episodes: int = 1000, seed: int | None
            for r in chunk]
     wall = time.perf_counter() - t0
     eps = [r["episode"] for r in res]
-    durations = [e["duration_s"] for e in eps]
-    outcomes = Counter(e["outcome"] for e in eps)
-    decisions = sum(e["decisions"] for e in eps)
     worker_wall = sum(r["wall_s"] for r in res)
-    results: dict[str, Any] = {
-        "task": task, "policy": policy, "actor": actor, "episodes": episodes, "seed": seed,
-        "seeds": f"episode i uses seed {seed} + i",
-        "config": {"realism": realism, "field": field, "workers": workers, "backend": backend},
-        "outcomes": dict(sorted(outcomes.items())),
-        "duration_s": time_summary(durations),
-    }
-    if TASK_SCORES[task] == "duration":
-        lo, hi = t_interval(durations)
-        results["mean_duration_s"] = float(np.mean(durations))
-        results["mean_duration_ci95"] = [lo, hi]
-    else:
-        goals = sum(int(bool(e.get("goal", e["outcome"] == "goal"))) for e in eps)
-        lo, hi = wilson_interval(goals, episodes)
-        results["goals"] = goals
-        results["goal_rate"] = goals / episodes
-        results["goal_rate_ci95"] = [lo, hi]
-    opt_tot: Counter = Counter()
-    for e in eps:
-        opt_tot.update(e["options"])
-    results["options"] = dict(opt_tot)
-    results["decisions"] = decisions
-    if "passes_kicked" in eps[0]:
-        results["passes_kicked"] = int(sum(e.get("passes_kicked", 0) for e in eps))
-        results["passes_completed"] = int(sum(e.get("passes_completed", 0) for e in eps))
-    results["throughput"] = {"wall_time_s": wall, "episode_wall_s_sum": worker_wall,
-                             "decisions_per_s": decisions / worker_wall if worker_wall > 0 else None,
-                             "sim_s_per_s": sum(durations) / worker_wall if worker_wall > 0 else None,
-                             "ticks_per_s": sum(r["ticks"] for r in res) / worker_wall if worker_wall > 0 else None,
-                             "note": "per worker process (episode wall time summed over workers); not deterministic"}
-    results["episodes_detail"] = eps
+    durations = [e["duration_s"] for e in eps]
+    decisions = sum(e["decisions"] for e in eps)
+    throughput = {"wall_time_s": wall, "episode_wall_s_sum": worker_wall,
+                  "decisions_per_s": decisions / worker_wall if worker_wall > 0 else None,
+                  "sim_s_per_s": sum(durations) / worker_wall if worker_wall > 0 else None,
+                  "ticks_per_s": sum(r["ticks"] for r in res) / worker_wall if worker_wall > 0 else None,
+                  "note": "per worker process (episode wall time summed over workers); not deterministic"}
+    results = task_results(task, policy, eps, seed=seed, actor=actor, throughput=throughput,
+                           config={"realism": realism, "field": field, "workers": workers, "backend": backend})
     if out is not None:
-        d = Path(out)
-        d.mkdir(parents=True, exist_ok=True)
-        atomic_write_json(d / "results.json", results)
-        if TASK_SCORES[task] == "duration":
-            lo, hi = results["mean_duration_ci95"]
-            title = (f"{task} ({policy}, realism {realism}): mean {results['mean_duration_s']:.2f} s "
-                     f"[{lo:.2f}, {hi:.2f}], n={episodes}")
-        else:
-            lo, hi = results["goal_rate_ci95"]
-            title = f"{task} ({policy}, realism {realism}): goal rate {results['goal_rate']:.3f} [{lo:.3f}, {hi:.3f}]"
-        hi_t = max(durations) if durations else 1.0
-        write_time_histogram(durations, d / "duration_hist.png", title, max_time_s=math.ceil(hi_t),
-                             xlabel="episode duration (s)", bin_s=max(0.25, math.ceil(hi_t) / 60))
+        write_task_results(results, out)
     return results
 
 
-__all__ = ["evaluate_task", "run_task_episode", "t_interval", "TASK_SCORES", "DEFAULT_SEEDS"]
+__all__ = ["evaluate_task", "run_task_episode", "task_results", "write_task_results", "t_interval", "TASK_SCORES", "DEFAULT_SEEDS"]
