@@ -92,6 +92,7 @@ from ..plays.pass_tactic import Pass, PassState
 from ..plays.receive_tactic import Receive, ReceiveState
 from ..plays.shoot import govern_approach
 from ..skills.baseline import GoToBallBaseline, approach_speed, velocity_command
+from ..skills.batched_features import dribbler_ball_distance_batch
 from ..skills.navigation import NavigateToPoint, detour_waypoint
 from .base import DecisionEnv
 
@@ -224,7 +225,6 @@ class KeepawayEnv(DecisionEnv):
         self._hold_ticks = max(1, int(round(p.hold_s / self.dt)))
         self._max_option_ticks = max(1, int(round(self.max_interval_s / self.dt)))
         self._half = self.rules.half
-        self._face_reach = rp.front_distance
 
     # --------------------------------------------------------------- hooks
     def make_task(self) -> KeepawayTask:
@@ -292,7 +292,7 @@ class KeepawayEnv(DecisionEnv):
         if self.option == HOLD:
             if self.option_ticks >= self._hold_ticks:
                 self._end_option()
-            elif self._ctrl_ticks[i] == 0 and self._dribbler_distance(i) > 0.05:
+            elif self._ctrl_ticks[i] == 0 and self._dribbler_distances()[i] > 0.05:
                 self._end_option()  # ball lost while holding: loose
             return
         # a pass
@@ -320,17 +320,15 @@ class KeepawayEnv(DecisionEnv):
         self.holder, self.option, self.receiver, self.kicked = None, None, None, False
 
     # ------------------------------------------------------------- control
-    def _dribbler_distance(self, i: int) -> float:
-        w = self._truth
-        h = float(w.blue.heading[i])
-        face = w.blue.pos[i] + self._face_reach * np.array([math.cos(h), math.sin(h)])
-        return max(float(np.hypot(*(w.ball_pos - face))) - self.bp.radius, 0.0)
+    def _dribbler_distances(self) -> np.ndarray:
+        """(3,) m: each keeper's d_{d-b} (the skills' dribbler-ball distance)."""
+        b, ball = self._truth.blue, self._truth.ball_pos
+        return dribbler_ball_distance_batch(b.pos, b.heading, np.broadcast_to(ball, b.pos.shape), self.rp, self.bp)
 
     def _update_control(self) -> None:
         w, p = self._truth, self.params
         b = w.blue
-        face = b.pos + self._face_reach * np.column_stack([np.cos(b.heading), np.sin(b.heading)])
-        d = np.sqrt(((w.ball_pos - face) ** 2).sum(axis=1)) - self.bp.radius
+        d = self._dribbler_distances()
         rel = np.sqrt(((w.ball_vel - b.vel) ** 2).sum(axis=1))
         ok = (d <= p.control_m) & (rel <= p.control_rel_speed)
         self._ctrl_ticks = np.where(ok, self._ctrl_ticks + 1, 0)
