@@ -114,7 +114,7 @@ def test_decision_flags_are_honest_and_obs_in_bounds():
             a = deciders[0]
             i = int(a[-1])
             assert env.controller() == i and env.holder is None
-            assert env._dribbler_distance(i) <= env.params.control_m + 1e-9
+            assert env._dribbler_distances()[i] <= env.params.control_m + 1e-9
             assert obs[a][6] == 1.0
             n_dec += 1
         acts = {a: (pol.act(env, a, obs[a], infos[a]) if infos[a]["decision"] else 0) for a in env.possible_agents}
