@@ -11,7 +11,7 @@ import pytest
 
 from ssl_marl.decisions import make_decision_env, make_decision_policy
 from ssl_marl.decisions.keepaway import (HOLD, OBS_DIM, PASS1, PASS2, STATE_DIM, AlwaysHoldPolicy,
-                                         HandcodedKeepawayPolicy, KeepawayEnv)
+                                         HandcodedKeepawayPolicy, KeepawayEnv, KeepawayParams)
 from ssl_marl.decisions.policies import RandomPolicy, run_episode
 from ssl_marl.envs.tasks.keepaway import KeepawayRules
 
@@ -200,3 +200,31 @@ def test_policy_registry_and_random_is_legal():
         assert r["duration_s"] == pytest.approx(r["t_s"], abs=1e-9)
     with pytest.raises(ValueError, match="always-hold"):
         make_decision_policy("always-hold", "attack-3v2")
+
+
+def test_both_takers_go_for_a_held_ball_and_end_a_hold():
+    """The standard 3v2 takers ("with two takers both go for the ball"): against a keeper
+    that only holds, both takers close on the ball (the presser on the flank the chaser
+    leaves open) and win it; the earlier lane-blocking second taker stays away."""
+    scene = _scene((0.0, 0.0), [(1.5, 1.0), (1.5, -1.0)], (-2.0, 2.0), (-2.0, -2.0))
+
+    def closest_approach(params):
+        env = _env(params=params)
+        obs, infos = env.reset(seed=0, options=scene)
+        pol = AlwaysHoldPolicy()
+        near = [np.inf, np.inf]
+        while env.agents:
+            acts = {a: pol.act(env, a, obs[a], infos[a]) if infos[a]["decision"] else 0 for a in env.agents}
+            obs, _, _, _, infos = env.step(acts)
+            w = env.engine.world_state()
+            d = np.sqrt(((w.yellow.pos - w.ball_pos) ** 2).sum(axis=1))
+            near = [min(near[i], float(d[i])) for i in range(2)]
+        return near, env.task.outcome
+
+    near, outcome = closest_approach(KeepawayParams())
+    assert max(near) < 0.35, near  # both takers reached the ball
+    assert outcome in ("taker_control", "out")
+    near_block, _ = closest_approach(KeepawayParams(takers="block"))
+    assert max(near_block) > 0.2  # the blocker stays on a lane
+    with pytest.raises(ValueError, match="takers"):
+        KeepawayParams(takers="zone")

@@ -42,14 +42,21 @@ to the point of a 5 x 5 grid 0.6 m inside the square that maximises
 to the takers, pi/4) - penalties`` (within 1.2 m of the ball: -2; within 1.5 m of
 another keeper's spot: -2), re-planned every 0.2 s, keepers in index order.
 
-**Takers** (the standard hand-coded policy; both are "the two nearest"): the taker
-nearest to the ball (0.2 m hysteresis) goes to the ball with the go-to-ball skill at
+**Takers** (the standard hand-coded policy of the original 3v2: "with two takers both
+go for the ball", ``KeepawayParams.takers = "press"``): the taker nearest to the ball
+(0.2 m hysteresis) is the *chaser*: it goes to the ball with the go-to-ball skill at
 full speed, around a keeper that shields the ball (to the ball's exposed side first,
 see ``_chase_action``: the go-to-ball skill alone would push the keeper's back
-forever); the other blocks the most dangerous pass lane: of the keepers other than
-the one nearest the ball, the one whose lane from the ball makes the largest angle
-with the chasing taker (0.15 rad hysteresis); it stands on that lane 40 % of the way
-from the ball (at least 0.6 m from it), facing the ball.
+forever). The other is the *presser*: it also goes for the ball; while a keeper holds
+it (within 0.2 m), it closes the pincer on the flank the chaser leaves open (the point
+``ball + 0.13 m * rot(unit(ball - keeper), +-press_angle)`` on the side farther from
+the chaser, so a keeper that turns its back to one taker shows the ball to the other),
+otherwise it runs the go-to-ball skill like the chaser. ``takers = "block"`` keeps the
+earlier policy, in which the second taker blocked the most dangerous pass lane (of the
+keepers other than the one nearest the ball, the one whose lane from the ball makes the
+largest angle with the chaser, 0.15 rad hysteresis; 40 % of the way along it, at least
+0.6 m from the ball, facing the ball); a shielding keeper could then hold for the full
+60 s (docs/RESULTS.md, "Keepaway 3v2").
 
 **Timing**: a step runs until a keeper decides, the episode ends, or
 ``max_interval_s`` passes. Reward per step = its simulated duration (the task gives
@@ -119,7 +126,11 @@ class KeepawayParams:
         getopen_grid: grid points per side.
         getopen_replan_s: get-open spots are re-planned this often (s).
         fetch_touch_speed: keepers' go-to-ball governor speed at contact (m/s).
-        block_fraction: the blocking taker stands this far along the lane (fraction).
+        takers: the takers' policy: "press" (both go for the ball, the default) or
+            "block" (the second taker blocks a pass lane; see the module docstring).
+        press_angle: the presser's flank point, this far round the ball from the
+            holder's front (rad; 75 degrees).
+        block_fraction: ("block") the blocking taker stands this far along the lane (fraction).
         block_min_m: ... at least this far from the ball (m).
         pass_arrival_speed: the Pass tactic's ``arrival_speed`` (m/s): the pass skill
             picks the kick speed from the ball model so the ball reaches the receiver
@@ -143,6 +154,8 @@ class KeepawayParams:
     getopen_grid: int = 5
     getopen_replan_s: float = 0.2
     fetch_touch_speed: float = 0.8
+    takers: str = "press"
+    press_angle: float = math.radians(75.0)
     block_fraction: float = 0.4
     block_min_m: float = 0.6
     pass_arrival_speed: float = 3.0
@@ -155,6 +168,9 @@ class KeepawayParams:
             if f.name == "skills":
                 if v not in ("baseline", "learned"):
                     raise ValueError(f"KeepawayParams.skills must be 'baseline' or 'learned', got {v!r}")
+            elif f.name == "takers":
+                if v not in ("press", "block"):
+                    raise ValueError(f"KeepawayParams.takers must be 'press' or 'block', got {v!r}")
             elif f.name in ("control_ticks", "getopen_grid", "positioning_every"):
                 if not isinstance(v, int) or isinstance(v, bool) or v < 1:
                     raise ValueError(f"KeepawayParams.{f.name} must be a positive integer, got {v!r}")
@@ -484,6 +500,9 @@ class KeepawayEnv(DecisionEnv):
         o = 1 - c
         kp = seen.blue.pos
         acts = {f"yellow_{c}": self._chase_action(seen, c, ball, tk[c], kp)}
+        if self.params.takers == "press":
+            acts[f"yellow_{o}"] = self._press_action(seen, o, ball, tk[o], kp, tk[c])
+            return acts
         dk = np.sqrt(((kp - ball) ** 2).sum(axis=1))
         on_ball = int(np.argmin(dk)) if self.holder is None else self.holder
         cv = tk[c] - ball
@@ -514,6 +533,47 @@ class KeepawayEnv(DecisionEnv):
         acts[name] = self._pos_cmd[name]
         return acts
 
+    def _press_action(self, seen, o: int, ball: np.ndarray, me: np.ndarray, kp: np.ndarray,
+                      chaser: np.ndarray) -> np.ndarray:
+        """The presser (``takers = "press"``): while a keeper holds the ball (within 0.2 m),
+        go round it to the flank point ``ball + 0.13 m * rot(unit(ball - keeper), +-a)``
+        (``a = press_angle``) on the side farther from the chaser, then (within 6 cm of it)
+        and whenever no keeper holds the ball, go to the ball with the go-to-ball skill."""
+        dk = np.sqrt(((kp - ball) ** 2).sum(axis=1))
+        k = int(np.argmin(dk))
+        if dk[k] > 0.2:
+            return self.taker_chase[o].act(seen, o)
+        u = ball - kp[k]
+        u = u / max(math.hypot(u[0], u[1]), 1e-9)
+        a = self.params.press_angle
+        flanks = [ball + 0.13 * np.array([u[0] * math.cos(s * a) - u[1] * math.sin(s * a),
+                                          u[0] * math.sin(s * a) + u[1] * math.cos(s * a)])
+                  for s in (1.0, -1.0)]
+        dc = [math.hypot(*(f - chaser)) for f in flanks]
+        side = flanks[int(np.argmax(dc))]
+        dist = math.hypot(*(side - me))
+        if dist <= 0.06:
+            return self.taker_chase[o].act(seen, o)
+        # lead the moving pair (a keeper turning away drags the flank round a circle)
+        lead = np.asarray(seen.ball_vel, float) * min(dist / self.rp.max_speed, 0.6)
+        return self._go_round(seen, o, ball, me, kp[k] + lead, side + lead)
+
+    def _go_round(self, seen, i: int, ball: np.ndarray, me: np.ndarray, keeper: np.ndarray,
+                  side: np.ndarray) -> np.ndarray:
+        """Taker ``i`` at full speed to ``side`` (a point touching the ball), passing the
+        keeper at ``keeper`` at 0.24 m, facing the ball, dribbler on."""
+        to_side = side - me
+        dist = math.hypot(to_side[0], to_side[1])
+        way = detour_waypoint(me, side, keeper[None, :], 0.22, 0.02)
+        way = side if way is None else way
+        d = way - me
+        nd = max(math.hypot(d[0], d[1]), 1e-9)
+        speed = min(self.rp.max_speed, approach_speed(dist, self.rp, v_end=2.0))
+        h = float(seen.yellow.heading[i])
+        err = float(wrap_angle(math.atan2(ball[1] - me[1], ball[0] - me[0]) - h))
+        omega = float(np.clip(6.0 * err, -self.rp.max_omega, self.rp.max_omega))
+        return velocity_command(seen, i, d * (speed / nd), omega, self.rp, dribble=True)
+
     def _chase_action(self, seen, c: int, ball: np.ndarray, me: np.ndarray, kp: np.ndarray) -> np.ndarray:
         """The chasing taker: go-to-ball, but around a keeper that shields the ball (a
         keeper within 0.2 m of the ball while the taker is on the keeper's side of it):
@@ -530,15 +590,7 @@ class KeepawayEnv(DecisionEnv):
             to_side = side - me
             dist = math.hypot(to_side[0], to_side[1])
             if float((ball - me) @ u) > 0.0 and dist > 0.06:
-                way = detour_waypoint(me, side, kp[k:k + 1], 0.22, 0.02)
-                way = side if way is None else way
-                d = way - me
-                nd = max(math.hypot(d[0], d[1]), 1e-9)
-                speed = min(self.rp.max_speed, approach_speed(dist, self.rp, v_end=2.0))
-                h = float(seen.yellow.heading[c])
-                err = float(wrap_angle(math.atan2(ball[1] - me[1], ball[0] - me[0]) - h))
-                omega = float(np.clip(6.0 * err, -self.rp.max_omega, self.rp.max_omega))
-                return velocity_command(seen, c, d * (speed / nd), omega, self.rp, dribble=True)
+                return self._go_round(seen, c, ball, me, kp[k], side)
         return self.taker_chase[c].act(seen, c)
 
     # --------------------------------------------------------- observations
