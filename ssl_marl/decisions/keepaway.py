@@ -48,10 +48,12 @@ go for the ball", ``KeepawayParams.takers = "press"``): the taker nearest to the
 full speed, around a keeper that shields the ball (to the ball's exposed side first,
 see ``_chase_action``: the go-to-ball skill alone would push the keeper's back
 forever). The other is the *presser*: it also goes for the ball; while a keeper holds
-it (within 0.2 m), it closes the pincer on the flank the chaser leaves open (the point
-``ball + 0.13 m * rot(unit(ball - keeper), +-press_angle)`` on the side farther from
-the chaser, so a keeper that turns its back to one taker shows the ball to the other),
-otherwise it runs the go-to-ball skill like the chaser. ``takers = "block"`` keeps the
+it (within 0.2 m), it goes round the keeper to the spot just beyond it on the far side
+from the chaser (``keeper + press_m * unit(keeper - chaser)``, led by the ball's
+velocity; from farther than 0.5 m it first runs at the keeper, since the spot turns
+with the keeper too fast to chase round a wide circle), so a keeper that turns its back
+to the chaser turns the ball into the presser; otherwise it runs the go-to-ball skill
+like the chaser. ``takers = "block"`` keeps the
 earlier policy, in which the second taker blocked the most dangerous pass lane (of the
 keepers other than the one nearest the ball, the one whose lane from the ball makes the
 largest angle with the chaser, 0.15 rad hysteresis; 40 % of the way along it, at least
@@ -128,8 +130,9 @@ class KeepawayParams:
         fetch_touch_speed: keepers' go-to-ball governor speed at contact (m/s).
         takers: the takers' policy: "press" (both go for the ball, the default) or
             "block" (the second taker blocks a pass lane; see the module docstring).
-        press_angle: the presser's flank point, this far round the ball from the
-            holder's front (rad; 75 degrees).
+        press_m: the presser's spot, this far beyond a holding keeper's centre on the far
+            side from the chaser (m; robot diameter 0.18 m + 2 cm: the ball, on the
+            keeper's dribbler when it faces that way, is then pressed against the presser).
         block_fraction: ("block") the blocking taker stands this far along the lane (fraction).
         block_min_m: ... at least this far from the ball (m).
         pass_arrival_speed: the Pass tactic's ``arrival_speed`` (m/s): the pass skill
@@ -155,7 +158,7 @@ class KeepawayParams:
     getopen_replan_s: float = 0.2
     fetch_touch_speed: float = 0.8
     takers: str = "press"
-    press_angle: float = math.radians(75.0)
+    press_m: float = 0.2
     block_fraction: float = 0.4
     block_min_m: float = 0.6
     pass_arrival_speed: float = 3.0
@@ -536,27 +539,29 @@ class KeepawayEnv(DecisionEnv):
     def _press_action(self, seen, o: int, ball: np.ndarray, me: np.ndarray, kp: np.ndarray,
                       chaser: np.ndarray) -> np.ndarray:
         """The presser (``takers = "press"``): while a keeper holds the ball (within 0.2 m),
-        go round it to the flank point ``ball + 0.13 m * rot(unit(ball - keeper), +-a)``
-        (``a = press_angle``) on the side farther from the chaser, then (within 6 cm of it)
-        and whenever no keeper holds the ball, go to the ball with the go-to-ball skill."""
+        go round it to the point ``press_m`` beyond it on the far side from the chaser,
+        ``keeper + press_m * unit(keeper - chaser)`` (led by the ball's velocity): a keeper
+        that turns its back to the chaser turns the ball into the presser. Within 6 cm of
+        that point, and whenever no keeper holds the ball, go to the ball with the
+        go-to-ball skill."""
         dk = np.sqrt(((kp - ball) ** 2).sum(axis=1))
         k = int(np.argmin(dk))
         if dk[k] > 0.2:
             return self.taker_chase[o].act(seen, o)
-        u = ball - kp[k]
+        u = kp[k] - chaser
         u = u / max(math.hypot(u[0], u[1]), 1e-9)
-        a = self.params.press_angle
-        flanks = [ball + 0.13 * np.array([u[0] * math.cos(s * a) - u[1] * math.sin(s * a),
-                                          u[0] * math.sin(s * a) + u[1] * math.cos(s * a)])
-                  for s in (1.0, -1.0)]
-        dc = [math.hypot(*(f - chaser)) for f in flanks]
-        side = flanks[int(np.argmax(dc))]
-        dist = math.hypot(*(side - me))
+        spot = kp[k] + self.params.press_m * u
+        dist = math.hypot(*(spot - me))
         if dist <= 0.06:
             return self.taker_chase[o].act(seen, o)
-        # lead the moving pair (a keeper turning away drags the flank round a circle)
         lead = np.asarray(seen.ball_vel, float) * min(dist / self.rp.max_speed, 0.6)
-        return self._go_round(seen, o, ball, me, kp[k] + lead, side + lead)
+        away = me - kp[k]
+        r = math.hypot(away[0], away[1])
+        if r > 0.5:
+            # far: run at the keeper itself (the spot turns with the keeper at up to 2 rad/s,
+            # too fast to chase round a wide circle), to the 0.3 m ring on this side
+            spot = kp[k] + 0.3 * away / r
+        return self._go_round(seen, o, ball, me, kp[k] + lead, spot + lead)
 
     def _go_round(self, seen, i: int, ball: np.ndarray, me: np.ndarray, keeper: np.ndarray,
                   side: np.ndarray) -> np.ndarray:
