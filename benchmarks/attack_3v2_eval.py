@@ -104,7 +104,7 @@ def export(src: Path, dst: Path, policy: str, seed: int, episodes: int | None) -
     dec = sum(e["decisions"] for e in eps)
     throughput = {"episode_wall_s_sum": wall, "decisions_per_s": dec / wall,
                   "sim_s_per_s": sum(e["duration_s"] for e in eps) / wall,
-                  "note": "per worker process on the shared 2-core machine (load 8-13); not deterministic"}
+                  "note": "per worker process (episode wall time summed); not deterministic"}
     config = {"realism": "none", "field": "div_b", "workers": None, "backend": "local",
               "runner": "benchmarks/attack_3v2_eval.py (same episodes as ssl-marl eval-task)"}
     res = task_results("attack-3v2", policy, eps, seed=seed, actor=None, config=config, throughput=throughput)
