@@ -4,6 +4,7 @@ masks, shapes, collection on the toy tasks, reproducibility, resume, and a short
 from __future__ import annotations
 
 import csv
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -261,3 +262,51 @@ def test_decision_actor_file_is_refused_when_not_one(tmp_path: Path) -> None:
     torch.save({"format": "something else"}, tmp_path / "x.pt")
     with pytest.raises(ValueError, match="not a valid ssl_marl decision actor"):
         load_decision_actor(tmp_path / "x.pt")
+
+
+def test_warm_start_loads_the_actor_and_warmup_trains_only_the_critic(tmp_path: Path) -> None:
+    """``init_actor`` starts the shared actor from an actor file (checked against the run);
+    during ``actor_warmup_rollouts`` the actor is held fixed while the critic learns."""
+    cfg = task_config("toy-signal", num_envs=2, rollout_steps=4, total_decisions=16, val_episodes=2)
+    src = MAPPOTrainer(cfg, 1, tmp_path / "src", progress=False)
+    src.run()
+    src.save_actor(tmp_path / "init.pt")
+    want = {k: v.clone() for k, v in src.agent.actor.state_dict().items()}
+    src.close()
+    warm = replace(cfg, init_actor=str(tmp_path / "init.pt"), actor_warmup_rollouts=2, total_decisions=10_000)
+    tr = MAPPOTrainer(warm, 5, tmp_path / "warm", progress=False)
+    critic0 = {k: v.clone() for k, v in tr.agent.critic.state_dict().items()}
+    for k, v in tr.agent.actor.state_dict().items():
+        torch.testing.assert_close(v, want[k])
+    tr.run(stop_after_rollouts=2)
+    for k, v in tr.agent.actor.state_dict().items():      # warm-up: actor untouched ...
+        torch.testing.assert_close(v, want[k])
+    assert any(not torch.equal(v, critic0[k]) for k, v in tr.agent.critic.state_dict().items())  # ... critic learns
+    tr.run(stop_after_rollouts=1)
+    assert any(not torch.equal(v, want[k]) for k, v in tr.agent.actor.state_dict().items())
+    tr.close()
+    bad = replace(cfg, init_actor=str(tmp_path / "init.pt"), algo=replace(cfg.algo, hidden=(32,)))
+    with pytest.raises(ValueError, match="hidden is \\[64, 64\\], this run needs \\[32\\]"):
+        MAPPOTrainer(bad, 0, tmp_path / "bad", progress=False)
+
+
+def test_behaviour_cloning_imitates_a_benchmark_policy(tmp_path: Path) -> None:
+    """train.mappo_bc: demonstrations of keepaway's always-hold keepers are fitted exactly, and
+    the written actor plays them back greedily."""
+    from ssl_marl.decisions.keepaway import HOLD, KeepawayEnv
+    from ssl_marl.decisions.learned import LearnedDecisionPolicy
+    from train.mappo_bc import collect_demonstrations, fit_actor, save_bc_actor
+
+    demos = collect_demonstrations("keepaway", "always-hold", 3, 100000, progress=False)
+    assert len(demos["option"]) >= 3 and set(demos["option"].tolist()) == {HOLD}
+    assert demos["obs"].shape == (len(demos["option"]), 39) and demos["mask"].shape == (len(demos["option"]), 3)
+    agent, stats = fit_actor("keepaway", demos, epochs=30, holdout=0.0)
+    assert stats["train_accuracy"] == 1.0 and stats["decisions"] == len(demos["option"])
+    save_bc_actor(agent, "keepaway", tmp_path / "bc.pt", bc=stats)
+    env = KeepawayEnv()
+    pol = LearnedDecisionPolicy(tmp_path / "bc.pt", task="keepaway")
+    obs, infos = env.reset(seed=7)
+    pol.reset(env)
+    assert pol.act(env, "keeper_0", obs["keeper_0"], infos["keeper_0"]) == HOLD
+    with pytest.raises(ValueError, match="episodes must be >= 1"):
+        collect_demonstrations("keepaway", "always-hold", 0, 0, progress=False)

@@ -71,6 +71,8 @@ class MAPPORunConfig:
     val_episodes: int = 50            # greedy validation episodes (seeds val_seed + i)
     val_seed: int = 5000              # validation seed base (never an evaluation seed)
     torch_threads: int = 1
+    init_actor: str | None = None     # decision-actor file whose weights start the actor (train.mappo_bc)
+    actor_warmup_rollouts: int = 0    # first rollouts in which only the critic learns
     algo: MAPPOConfig = field(default_factory=MAPPOConfig)
 
     def to_dict(self) -> dict[str, Any]:
@@ -157,11 +159,30 @@ class MAPPOTrainer:
         if resume:
             self._load()
         else:
+            if cfg.init_actor:
+                self.load_init_actor(cfg.init_actor)
             self.progress_log.clear()
             self.val_log.clear()
             atomic_write_json(self.out / "config.json", {"seed": self.seed, **cfg.to_dict()})
         self.tb = TensorBoardLog(self.out / "tb", purge_step=self.counters["decisions"] if resume else None)
         self._cut()
+
+    def load_init_actor(self, path: str | Path) -> None:
+        """Start the shared actor from a decision-actor file (e.g. behaviour cloning of a
+        benchmark policy, :mod:`train.mappo_bc`), loaded with ``weights_only=True``; its task,
+        sizes, hidden layers and observation scaling must be this run's."""
+        data = safe_torch_load(path, "ssl_marl decision actor")
+        if not isinstance(data, dict) or data.get("format") != ACTOR_FORMAT:
+            raise ValueError(f"init_actor {path} is not a decision actor file (no {ACTOR_FORMAT!r} format tag)")
+        want = {"task": self.cfg.task, "obs_dim": self.agent.obs_dim, "n_options": self.agent.n_out,
+                "hidden": list(self.cfg.algo.hidden)}
+        for k, v in want.items():
+            got = list(data.get(k)) if k == "hidden" and data.get(k) is not None else data.get(k)
+            if got != v:
+                raise ValueError(f"init_actor {path}: {k} is {got!r}, this run needs {v!r}")
+        if not (np.allclose(np.asarray(data["obs_mean"]), self.obs_c) and np.allclose(np.asarray(data["obs_std"]), self.obs_s)):
+            raise ValueError(f"init_actor {path}: its observation scaling differs from this run's")
+        self.agent.actor.load_state_dict(data["state_dict"])
 
     # --- scaling and acting ----------------------------------------------------------------------
     def _obs(self, x: np.ndarray) -> np.ndarray:
@@ -363,7 +384,8 @@ class MAPPOTrainer:
                 before = self.counters["decisions"]
                 batch, st = self.collect()
                 t_collect = time.perf_counter() - t0
-                losses = self.agent.update(batch, self.gen)
+                losses = self.agent.update(batch, self.gen,
+                                           train_actor=self.counters["rollout"] >= cfg.actor_warmup_rollouts)
                 dt = time.perf_counter() - t0
                 self.wall += dt
                 self.counters["rollout"] += 1

@@ -238,8 +238,10 @@ class MAPPO:
         return (self.value_norm.denormalize(v) if self.cfg.value_norm else v).numpy().astype(np.float64)
 
     # --- learning -----------------------------------------------------------------------------
-    def update(self, batch: dict[str, np.ndarray], gen: torch.Generator | None = None) -> dict[str, float]:
-        """PPO epochs over one rollout's samples: ``obs, state, agent, act, logp, mask, adv, ret``."""
+    def update(self, batch: dict[str, np.ndarray], gen: torch.Generator | None = None,
+               train_actor: bool = True) -> dict[str, float]:
+        """PPO epochs over one rollout's samples: ``obs, state, agent, act, logp, mask, adv, ret``.
+        ``train_actor=False``: only the critic learns (a warm-started actor's warm-up)."""
         c = self.cfg
         t = {k: torch.as_tensor(v) for k, v in batch.items()}
         x_actor, x_critic = self.actor_input(batch["obs"], batch["agent"]), self.critic_input(batch["state"], batch["agent"])
@@ -263,10 +265,11 @@ class MAPPO:
                 ratio = log_ratio.exp()
                 pg = -torch.min(ratio * adv, ratio.clamp(1 - c.clip, 1 + c.clip) * adv).mean()
                 ent = _entropy(d, c.continuous).mean()
-                self.actor_opt.zero_grad(set_to_none=True)
-                (pg - c.ent_coef * ent).backward()
-                nn.utils.clip_grad_norm_(self.actor.parameters(), c.max_grad_norm)
-                self.actor_opt.step()
+                if train_actor:
+                    self.actor_opt.zero_grad(set_to_none=True)
+                    (pg - c.ent_coef * ent).backward()
+                    nn.utils.clip_grad_norm_(self.actor.parameters(), c.max_grad_norm)
+                    self.actor_opt.step()
                 v_loss = 0.5 * ((self.critic(x_critic[i]) - ret[i]) ** 2).mean()
                 self.critic_opt.zero_grad(set_to_none=True)
                 (c.vf_coef * v_loss).backward()
