@@ -23,6 +23,7 @@ so the first PPO steps do not push the cloned actor around with a random critic'
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 import sys
 from pathlib import Path
@@ -76,8 +77,10 @@ def collect_demonstrations(task: str, policy: str, episodes: int, seed: int,
     return {k: np.stack(v) if k in ("obs", "mask") else np.asarray(v, np.int64) for k, v in rows.items()}
 
 
+@functools.lru_cache(maxsize=None)
 def _task_spec(task: str) -> dict[str, Any]:
-    """Sizes, observation scaling, option and agent names of the task's default env."""
+    """Sizes, observation scaling, option and agent names of the task's default env (built
+    once per task; read-only)."""
     cfg = task_config(task)
     env = get_task(task).factory(**cfg.task_kwargs)
     a0 = env.possible_agents[0]

@@ -169,20 +169,22 @@ class MAPPOTrainer:
 
     def load_init_actor(self, path: str | Path) -> None:
         """Start the shared actor from a decision-actor file (e.g. behaviour cloning of a
-        benchmark policy, :mod:`train.mappo_bc`), loaded with ``weights_only=True``; its task,
-        sizes, hidden layers and observation scaling must be this run's."""
-        data = safe_torch_load(path, "ssl_marl decision actor")
-        if not isinstance(data, dict) or data.get("format") != ACTOR_FORMAT:
-            raise ValueError(f"init_actor {path} is not a decision actor file (no {ACTOR_FORMAT!r} format tag)")
+        benchmark policy, :mod:`train.mappo_bc`), read by the one loader of that format
+        (:func:`ssl_marl.decisions.learned.load_decision_actor`, ``weights_only=True``); its
+        task, sizes, hidden layers and observation scaling must be this run's."""
+        from ssl_marl.decisions.learned import load_decision_actor
+
+        actor, meta = load_decision_actor(path)
         want = {"task": self.cfg.task, "obs_dim": self.agent.obs_dim, "n_options": self.agent.n_out,
                 "hidden": list(self.cfg.algo.hidden)}
+        got = {"task": meta.get("task"), "obs_dim": actor.obs_dim, "n_options": actor.n_options,
+               "hidden": list(actor.hidden)}
         for k, v in want.items():
-            got = list(data.get(k)) if k == "hidden" and data.get(k) is not None else data.get(k)
-            if got != v:
-                raise ValueError(f"init_actor {path}: {k} is {got!r}, this run needs {v!r}")
-        if not (np.allclose(np.asarray(data["obs_mean"]), self.obs_c) and np.allclose(np.asarray(data["obs_std"]), self.obs_s)):
+            if got[k] != v:
+                raise ValueError(f"init_actor {path}: {k} is {got[k]!r}, this run needs {v!r}")
+        if not (np.allclose(actor.obs_mean.numpy(), self.obs_c) and np.allclose(actor.obs_std.numpy(), self.obs_s)):
             raise ValueError(f"init_actor {path}: its observation scaling differs from this run's")
-        self.agent.actor.load_state_dict(data["state_dict"])
+        self.agent.actor.net.load_state_dict(actor.net.state_dict())
 
     # --- scaling and acting ----------------------------------------------------------------------
     def _obs(self, x: np.ndarray) -> np.ndarray:

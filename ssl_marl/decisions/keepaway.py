@@ -502,9 +502,10 @@ class KeepawayEnv(DecisionEnv):
         self.chaser = c
         o = 1 - c
         kp = seen.blue.pos
-        acts = {f"yellow_{c}": self._chase_action(seen, c, ball, tk[c], kp)}
+        held = self._holding_keeper(kp, ball)
+        acts = {f"yellow_{c}": self._chase_action(seen, c, ball, tk[c], kp, held)}
         if self.params.takers == "press":
-            acts[f"yellow_{o}"] = self._press_action(seen, o, ball, tk[o], kp, tk[c])
+            acts[f"yellow_{o}"] = self._press_action(seen, o, ball, tk[o], kp, tk[c], held)
             return acts
         dk = np.sqrt(((kp - ball) ** 2).sum(axis=1))
         on_ball = int(np.argmin(dk)) if self.holder is None else self.holder
@@ -536,17 +537,22 @@ class KeepawayEnv(DecisionEnv):
         acts[name] = self._pos_cmd[name]
         return acts
 
+    @staticmethod
+    def _holding_keeper(kp: np.ndarray, ball: np.ndarray) -> int | None:
+        """The keeper nearest the ball if it is within 0.2 m of it (it holds / shields it)."""
+        dk = np.sqrt(((kp - ball) ** 2).sum(axis=1))
+        k = int(np.argmin(dk))
+        return k if dk[k] <= 0.2 else None
+
     def _press_action(self, seen, o: int, ball: np.ndarray, me: np.ndarray, kp: np.ndarray,
-                      chaser: np.ndarray) -> np.ndarray:
+                      chaser: np.ndarray, k: int | None) -> np.ndarray:
         """The presser (``takers = "press"``): while a keeper holds the ball (within 0.2 m),
         go round it to the point ``press_m`` beyond it on the far side from the chaser,
         ``keeper + press_m * unit(keeper - chaser)`` (led by the ball's velocity): a keeper
         that turns its back to the chaser turns the ball into the presser. Within 6 cm of
         that point, and whenever no keeper holds the ball, go to the ball with the
-        go-to-ball skill."""
-        dk = np.sqrt(((kp - ball) ** 2).sum(axis=1))
-        k = int(np.argmin(dk))
-        if dk[k] > 0.2:
+        go-to-ball skill. ``k``: the holding keeper (:meth:`_holding_keeper`) or None."""
+        if k is None:
             return self.taker_chase[o].act(seen, o)
         u = kp[k] - chaser
         u = u / max(math.hypot(u[0], u[1]), 1e-9)
@@ -579,16 +585,16 @@ class KeepawayEnv(DecisionEnv):
         omega = float(np.clip(6.0 * err, -self.rp.max_omega, self.rp.max_omega))
         return velocity_command(seen, i, d * (speed / nd), omega, self.rp, dribble=True)
 
-    def _chase_action(self, seen, c: int, ball: np.ndarray, me: np.ndarray, kp: np.ndarray) -> np.ndarray:
+    def _chase_action(self, seen, c: int, ball: np.ndarray, me: np.ndarray, kp: np.ndarray,
+                      k: int | None) -> np.ndarray:
         """The chasing taker: go-to-ball, but around a keeper that shields the ball (a
         keeper within 0.2 m of the ball while the taker is on the keeper's side of it):
         first at full speed to the ball's exposed side, ``ball + 0.13 m * unit(ball -
         keeper)`` (there its face touches the ball), passing the keeper at 0.24 m, then
         go-to-ball. The go-to-ball skill alone would push the keeper's back forever, and
-        the navigation's 0.25 m clearance would keep it orbiting."""
-        dk = np.sqrt(((kp - ball) ** 2).sum(axis=1))
-        k = int(np.argmin(dk))
-        if dk[k] <= 0.2:
+        the navigation's 0.25 m clearance would keep it orbiting. ``k``: the holding keeper
+        (:meth:`_holding_keeper`) or None."""
+        if k is not None:
             u = ball - kp[k]
             u = u / max(math.hypot(u[0], u[1]), 1e-9)
             side = ball + 0.13 * u
