@@ -55,16 +55,19 @@ def _cpu(env) -> float:
     return float(env.worker_cpu_seconds().sum()) if hasattr(env, "worker_cpu_seconds") else time.process_time()
 
 
-def _rate(env, acts: np.ndarray, seconds: float) -> tuple[float, float]:
-    """(world-steps per wall second, world-steps per CPU second of the stepping processes)."""
-    calls, t0, c0 = 0, time.perf_counter(), _cpu(env)
+def _rate(env, acts: np.ndarray, seconds: float) -> tuple[float, float, float]:
+    """(world-steps per wall second, world-steps per CPU second of the stepping processes,
+    CPU microseconds of this driving process per world-step: for a sharded env the
+    driver's own share - writing actions, signalling, waiting, reading results)."""
+    calls, t0, c0, d0 = 0, time.perf_counter(), _cpu(env), time.process_time()
     while True:
         for _ in range(5):
             env.step(acts[calls % len(acts)])
             calls += 1
         el = time.perf_counter() - t0
         if el >= seconds:
-            return calls * env.K / el, calls * env.K / max(_cpu(env) - c0, 1e-9)
+            n = calls * env.K
+            return n / el, n / max(_cpu(env) - c0, 1e-9), 1e6 * (time.process_time() - d0) / n
 
 
 def measure(config: dict, worlds: int, seconds: float, rounds: int) -> dict:
@@ -78,18 +81,21 @@ def measure(config: dict, worlds: int, seconds: float, rounds: int) -> dict:
         e.reset(seed=0)
     rates: dict[str, list[float]] = {k: [] for k in envs}
     cpu_rates: dict[str, list[float]] = {k: [] for k in envs}
+    driver_us: dict[str, list[float]] = {k: [] for k in envs}
     try:
         for r in range(rounds + 1):
             for k, e in envs.items():
-                x, c = _rate(e, acts[k], seconds if r else 0.3)
+                x, c, d = _rate(e, acts[k], seconds if r else 0.3)
                 if r:
                     rates[k].append(x)
                     cpu_rates[k].append(c)
+                    driver_us[k].append(d)
     finally:
         for k in ("sharded_1", "sharded_2"):
             envs[k].close()
     out = {k: {"world_steps_per_s": round(statistics.median(v)), "rounds": [round(x) for x in v],
-               "world_steps_per_cpu_s": round(statistics.median(cpu_rates[k]))} for k, v in rates.items()}
+               "world_steps_per_cpu_s": round(statistics.median(cpu_rates[k])),
+               "driver_cpu_us_per_world_step": round(statistics.median(driver_us[k]), 2)} for k, v in rates.items()}
     out["speedup_2_over_1"] = round(statistics.median(rates["sharded_2"]) / statistics.median(rates["sharded_1"]), 3)
     # per CPU second: 1.0 means a second worker costs no extra CPU per world-step, i.e. with a free
     # core each, 2 workers would run 2x the world-steps of one
