@@ -297,11 +297,11 @@ def test_compare_reports_windows_evaluations_and_samples_to_target(tmp_path, cap
     (run / "config.json").write_text(json.dumps({"algo": "td3", "seed": 1}))
     (run / "progress.csv").write_text("phase,samples,return,success\ndemo,0,-1,1\ntrain,400,-10,0\ntrain,900,-5,1\n"
                                       "train,1500,-2,1\n")
-    (run / "eval.csv").write_text("samples,success_rate\n1000,0.5\n")
+    (run / "eval.csv").write_text("samples,success_rate,wall_time\n1000,0.5,12.5\n2000,0.8,30.25\n")
     (run / "selection.json").write_text(json.dumps({"validation_seed": 5000, "episodes": 100, "candidates": [
         {"samples": 2000, "success_rate": 0.995}, {"samples": 1000, "success_rate": 0.9}]}))
     compare_main([str(run), "--window", "1000", "--target", "0.99"])
     out = capsys.readouterr().out
     assert "| `r` | td3 | 1,000 | 2 | 0.500 | -7.5 |" in out  # demo rows are not training episodes
     assert "| `r` | td3 | 1,500 | 1 | 1.000 | -2.0 |" in out  # the last, partial window
-    assert "1k: 0.5" in out and "1k: 0.900, 2k: 0.995 | 2,000 |" in out
+    assert "1k: 0.5" in out and "1k: 0.900, 2k: 0.995 | 2,000 | 30 s |" in out  # wall clock at that checkpoint

@@ -7,7 +7,9 @@ For each run folder (or ``results/training/<run>`` copy): its algorithm (from
 exploration noise) in windows of ``--window`` env samples (``progress.csv``), its
 deterministic evaluations (``eval.csv``, the trainer's 10-episode checks on seed + 1000),
 its validation selection (``selection.json`` from ``python -m train.select``) and the
-first checkpoint whose validation success reaches ``--target`` ("samples to target").
+first checkpoint whose validation success reaches ``--target`` ("samples to target") with the
+trainer's wall clock at that checkpoint (``eval.csv``; demo burn-in included, checkpoint
+selection not).
 Prints markdown.
 """
 
@@ -45,7 +47,19 @@ def summarize(run: Path, window: int, upto: int | None, target: float) -> dict[s
     cands = sorted(sel["candidates"], key=lambda c: c["samples"]) if sel else []
     hit = next((c["samples"] for c in cands if c["success_rate"] >= target), None)
     return {"run": run.name, "algo": cfg.get("algo", "ddpg"), "seed": cfg.get("seed"), "windows": windows,
-            "evals": evals, "selection": sel, "candidates": cands, "samples_to_target": hit}
+            "evals": evals, "selection": sel, "candidates": cands, "samples_to_target": hit,
+            "wall_s_to_target": None if hit is None else _wall_at(run, hit)}
+
+
+def _wall_at(run: Path, samples: int) -> float | None:
+    """The trainer's wall clock (s since its start, demo burn-in included) when it had
+    ``samples`` env samples: the ``eval.csv`` row taken at that checkpoint, else the
+    last ``progress.csv`` row at or before it (None without logs)."""
+    for r in _csv(run / "eval.csv"):
+        if int(r["samples"]) == samples and r.get("wall_time"):
+            return float(r["wall_time"])
+    rows = [r for r in _csv(run / "progress.csv") if int(r["samples"]) <= samples and r.get("wall_time")]
+    return float(rows[-1]["wall_time"]) if rows else None
 
 
 def _fmt(v: float | None, spec: str) -> str:
@@ -64,17 +78,19 @@ def markdown(runs: list[dict[str, Any]], target: float) -> str:
         evs = ", ".join(f"{s // 1000}k: {_fmt(None if e['success_rate'] == '' else float(e['success_rate']), '.1f')}"
                         for s, e in sorted(r["evals"].items()))
         out.append(f"| `{r['run']}` | {r['algo']} | {evs or '-'} |")
-    out += ["", f"| run | algo | validation (seed x episodes) | success per checkpoint | samples to {target} |",
-            "|---|---|---|---|---|"]
+    out += ["", f"| run | algo | validation (seed x episodes) | success per checkpoint | samples to {target} "
+                f"| trainer wall time to it |", "|---|---|---|---|---|---|"]
     for r in runs:
         sel = r["selection"]
         if sel is None:
-            out.append(f"| `{r['run']}` | {r['algo']} | - | not selected yet | - |")
+            out.append(f"| `{r['run']}` | {r['algo']} | - | not selected yet | - | - |")
             continue
         per = ", ".join(f"{c['samples'] // 1000}k: {c['success_rate']:.3f}" for c in r["candidates"])
         hit = f"{r['samples_to_target']:,}" if r["samples_to_target"] else \
             f"not reached (checkpoints up to {r['candidates'][-1]['samples']:,})"
-        out.append(f"| `{r['run']}` | {r['algo']} | {sel['validation_seed']} x {sel['episodes']} | {per} | {hit} |")
+        wall = "-" if r["wall_s_to_target"] is None else f"{r['wall_s_to_target']:,.0f} s"
+        out.append(f"| `{r['run']}` | {r['algo']} | {sel['validation_seed']} x {sel['episodes']} | {per} | {hit} "
+                   f"| {wall} |")
     return "\n".join(out)
 
 
