@@ -31,7 +31,8 @@ def _csv(path: Path) -> list[dict[str, str]]:
 
 def summarize(run: Path, window: int, upto: int | None, target: float) -> dict[str, Any]:
     cfg = json.loads((run / "config.json").read_text()) if (run / "config.json").exists() else {}
-    train = [r for r in _csv(run / "progress.csv") if r["phase"] == "train"]
+    progress, eval_rows = _csv(run / "progress.csv"), _csv(run / "eval.csv")
+    train = [r for r in progress if r["phase"] == "train"]
     last = max((int(r["samples"]) for r in train), default=0)
     end = min(last, upto) if upto else last
     windows = []
@@ -42,23 +43,23 @@ def summarize(run: Path, window: int, upto: int | None, target: float) -> dict[s
         windows.append({"samples": min(lo + window, end), "episodes": len(rows),
                         "success": sum(succ) / len(succ) if succ else None,
                         "mean_return": sum(rets) / len(rets) if rets else None})
-    evals = {int(r["samples"]): r for r in _csv(run / "eval.csv") if not upto or int(r["samples"]) <= upto}
+    evals = {int(r["samples"]): r for r in eval_rows if not upto or int(r["samples"]) <= upto}
     sel = json.loads((run / "selection.json").read_text()) if (run / "selection.json").exists() else None
     cands = sorted(sel["candidates"], key=lambda c: c["samples"]) if sel else []
     hit = next((c["samples"] for c in cands if c["success_rate"] >= target), None)
     return {"run": run.name, "algo": cfg.get("algo", "ddpg"), "seed": cfg.get("seed"), "windows": windows,
             "evals": evals, "selection": sel, "candidates": cands, "samples_to_target": hit,
-            "wall_s_to_target": None if hit is None else _wall_at(run, hit)}
+            "wall_s_to_target": None if hit is None else _wall_at(eval_rows, progress, hit)}
 
 
-def _wall_at(run: Path, samples: int) -> float | None:
+def _wall_at(eval_rows: list[dict[str, str]], progress: list[dict[str, str]], samples: int) -> float | None:
     """The trainer's wall clock (s since its start, demo burn-in included) when it had
     ``samples`` env samples: the ``eval.csv`` row taken at that checkpoint, else the
     last ``progress.csv`` row at or before it (None without logs)."""
-    for r in _csv(run / "eval.csv"):
+    for r in eval_rows:
         if int(r["samples"]) == samples and r.get("wall_time"):
             return float(r["wall_time"])
-    rows = [r for r in _csv(run / "progress.csv") if int(r["samples"]) <= samples and r.get("wall_time")]
+    rows = [r for r in progress if int(r["samples"]) <= samples and r.get("wall_time")]
     return float(rows[-1]["wall_time"]) if rows else None
 
 
