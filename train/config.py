@@ -99,6 +99,7 @@ class TrainConfig:
     skill: str = "go_to_ball"  #: skill name stored in the exported actor's metadata
     env_id: str = "ssl_marl/GoToBall-v0"  #: Gymnasium id ("module:id" imports module first)
     env_kwargs: dict[str, Any] = field(default_factory=dict)  #: passed to gym.make and the demo function
+    env_variants: list[dict[str, Any]] = field(default_factory=list)  #: overrides of env_kwargs, one per block of sub-envs (e.g. [{"field": "div_a"}, {"field": "div_b"}]): the num_envs sub-envs, the demo steps and the trainer's evaluation episodes are split evenly across them; [] = one configuration
     max_episode_steps: int | None = None  #: TimeLimit override for gym.make (None: the env's own)
     demo_fn: str | None = None  #: "module:function" yielding Transition(obs, action, reward, ...)
     demo_steps: int = 0  #: demonstration transitions put in the replay before training (burn-in)
@@ -163,7 +164,13 @@ class TrainConfig:
         self.actor_hidden = tuple(int(h) for h in self.actor_hidden)
         self.critic_hidden = tuple(int(h) for h in self.critic_hidden)
         self.env_kwargs = dict(self.env_kwargs)
+        self.env_variants = [dict(v) if isinstance(v, dict) else v for v in self.env_variants]
         problems = []
+        if not all(isinstance(v, dict) for v in self.env_variants):
+            problems.append(f"env_variants must be a list of dicts (got {self.env_variants!r})")
+        elif self.env_variants and self.num_envs % len(self.env_variants):
+            problems.append(f"num_envs ({self.num_envs}) must be a multiple of the number of env_variants "
+                            f"({len(self.env_variants)})")
         for name in ("actor_lr", "critic_lr", "batch_size", "buffer_size", "num_envs", "eval_episodes",
                      "checkpoint_interval", "log_interval"):
             if not getattr(self, name) > 0:
@@ -201,6 +208,10 @@ class TrainConfig:
             problems.append(f"demo_steps ({self.demo_steps}) exceeds buffer_size ({self.buffer_size})")
         if problems:
             raise ValueError("invalid training config: " + "; ".join(problems))
+
+    def variant_kwargs(self) -> list[dict[str, Any]]:
+        """The env keyword arguments of each block of sub-envs (``[env_kwargs]`` without variants)."""
+        return [{**self.env_kwargs, **v} for v in self.env_variants] or [dict(self.env_kwargs)]
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-safe dict (tuples as lists)."""

@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import copy
 import importlib
+import itertools
 import random
 import time
 from collections import deque
@@ -90,6 +91,22 @@ def _masked(info: Mapping[str, Any], key: str, i: int) -> Any:
     return info[key][i]
 
 
+def pool_results(parts: list[dict[str, Any]]) -> dict[str, Any]:
+    """Pool :func:`~train.evaluate.run_episodes` results of the env variants (one: unchanged);
+    the per-variant figures (without their returns) are kept under ``"variants"``."""
+    if len(parts) == 1:
+        return parts[0]
+    episodes = sum(p["episodes"] for p in parts)
+    returns = [r for p in parts for r in p["returns"]]
+    rates = [p["success_rate"] for p in parts]
+    return {**{k: v for k, v in parts[0].items() if k not in ("returns", "success_rate")},
+            "episodes": episodes, "mean_return": float(np.mean(returns)), "std_return": float(np.std(returns)),
+            "mean_length": float(sum(p["mean_length"] * p["episodes"] for p in parts) / episodes),
+            "success_rate": None if None in rates else float(sum(r * p["episodes"] for r, p in zip(rates, parts))
+                                                              / episodes),
+            "returns": returns, "variants": [{k: v for k, v in p.items() if k != "returns"} for p in parts]}
+
+
 class Trainer:
     """One training run writing to ``out``; :meth:`run` trains to ``cfg.total_samples`` env samples."""
 
@@ -104,8 +121,14 @@ class Trainer:
         ss = np.random.SeedSequence(seed)
         noise_rng, replay_rng, self.rng = (np.random.default_rng(s) for s in ss.spawn(3))
 
-        self.eval_env = make_env(cfg.env_id, cfg.env_kwargs, cfg.max_episode_steps)
+        variants = cfg.variant_kwargs()  # one dict per block of sub-envs (config.env_variants)
+        self.eval_envs = [make_env(cfg.env_id, kw, cfg.max_episode_steps) for kw in variants]
+        self.eval_env = self.eval_envs[0]
         obs_space, act_space = self.eval_env.observation_space, self.eval_env.action_space
+        for e in self.eval_envs[1:]:
+            if e.observation_space.shape != obs_space.shape or e.action_space != act_space:
+                raise ValueError(f"invalid training config: env_variants give different spaces ({e.observation_space}, "
+                                 f"{e.action_space} vs {obs_space}, {act_space})")
         if not isinstance(obs_space, gym.spaces.Box) or len(obs_space.shape) != 1:
             raise ValueError(f"{cfg.algo} needs a flat Box observation space, got {obs_space}")
         self.obs_dim, self.act_dim = obs_space.shape[0], int(np.prod(act_space.shape))
@@ -120,16 +143,25 @@ class Trainer:
         self.buffer = ReplayBuffer(cfg.buffer_size, self.obs_dim, self.act_dim, cfg.batch_size, replay_rng,
                                    discount=self.nstep is not None, default_discount=cfg.gamma)
         self.noise = make_exploration(cfg, cfg.num_envs, self.act_dim, noise_rng)
-        env_fns = [lambda: make_env(cfg.env_id, cfg.env_kwargs, cfg.max_episode_steps)] * cfg.num_envs
+        per_block = cfg.num_envs // len(variants)  # sub-envs [j * per_block, (j + 1) * per_block) use variants[j]
+        env_fns = [lambda kw=kw: make_env(cfg.env_id, kw, cfg.max_episode_steps) for kw in variants
+                   for _ in range(per_block)]
         if cfg.vector_mode == "batched":  # the skill tasks' worlds stepped together (ssl_marl.skills.vector)
             from ssl_marl.skills.vector import make_skill_vector_env
 
             if cfg.max_episode_steps:
                 raise ValueError("vector_mode 'batched' does not take max_episode_steps (the tasks time out themselves)")
-            self.envs = make_skill_vector_env(cfg.env_id, cfg.num_envs, cfg.env_kwargs)
+            blocks = [make_skill_vector_env(cfg.env_id, per_block, kw) for kw in variants]
+            if len(blocks) == 1:
+                self.envs = blocks[0]
+            else:  # one batched world set per configuration (a field each), side by side
+                from ssl_marl.skills.concat_vector import ConcatVectorEnv
+
+                self.envs = ConcatVectorEnv(blocks)
         else:
             vec_cls = SyncVectorEnv if cfg.vector_mode == "sync" else AsyncVectorEnv
-            self.envs = vec_cls(env_fns, autoreset_mode=AutoresetMode.NEXT_STEP)
+            self.envs = vec_cls(env_fns, autoreset_mode=AutoresetMode.NEXT_STEP,  # variants: bounds differ per field
+                                observation_mode="different" if len(variants) > 1 else "same")
 
         # counters (all saved in the checkpoint)
         self.samples = 0  # env samples stored by the learner (excludes demos)
@@ -196,7 +228,11 @@ class Trainer:
             self.transitions = start + stored
             self._log_episode("demo", ret, length, success, terms)
 
-        demos = self.demo_fn(n_steps=cfg.demo_steps, seed=self.seed, **cfg.env_kwargs)
+        variants = cfg.variant_kwargs()
+        shares = [cfg.demo_steps // len(variants) + (j < cfg.demo_steps % len(variants)) for j in range(len(variants))]
+        demos = itertools.chain.from_iterable(
+            itertools.islice(self.demo_fn(n_steps=n, seed=self.seed + j, **kw), n)
+            for j, (n, kw) in enumerate(zip(shares, variants)))
         self.transitions = start + fill_replay(demos, cfg.demo_steps, self.buffer, self.scaler, self.obs_dim,
                                                cfg.reward_scale, on_episode, self.progress)
         self.demo_done = True
@@ -276,10 +312,16 @@ class Trainer:
         self.agent.cfg.bc_weight = w
         return w > 0
 
+    def _shares(self, episodes: int) -> list[int]:
+        """``episodes`` split evenly across the env variants (earlier variants take the remainder)."""
+        n = len(self.eval_envs)
+        return [episodes // n + (j < episodes % n) for j in range(n)]
+
     def evaluate(self) -> dict[str, Any]:
         """Deterministic evaluation on the fixed eval start states (seed + 1000); logged to eval.csv."""
-        res = run_episodes(self.eval_env, lambda o: self.agent.act(o[None])[0], self.cfg.eval_episodes,
-                           self.seed + 1000)
+        policy = lambda o: self.agent.act(o[None])[0]  # noqa: E731
+        res = pool_results([run_episodes(e, policy, n, self.seed + 1000)
+                            for e, n in zip(self.eval_envs, self._shares(self.cfg.eval_episodes)) if n > 0])
         row = {"samples": self.samples, "transitions": self.transitions, "updates": self.agent.updates,
                "wall_time": round(self.wall_time(), 3), **{k: res[k] for k in EVAL_FIELDS if k in res}}
         self.eval_log.write(row)
@@ -405,11 +447,14 @@ class Trainer:
     def finish(self) -> dict[str, Any]:
         """Export the actor, evaluate it (``eval.json``), draw the learning curve."""
         actor_path = self.export_actor()
-        result = evaluate_actor(self.cfg.env_id, actor_path, self.cfg.eval_episodes, self.seed + 1000,
-                                self.cfg.env_kwargs, self.cfg.max_episode_steps)
+        result = pool_results([evaluate_actor(self.cfg.env_id, actor_path, n, self.seed + 1000, kw,
+                                              self.cfg.max_episode_steps)
+                               for kw, n in zip(self.cfg.variant_kwargs(), self._shares(self.cfg.eval_episodes))
+                               if n > 0])
         result["wall_time_s"] = round(self.wall_time(), 1)
         atomic_write_json(self.out / "eval.json", result)
-        self.eval_env.close()
+        for e in self.eval_envs:
+            e.close()
         try:
             from .plots import plot_run
             plot_run(self.out)
