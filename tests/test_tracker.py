@@ -336,3 +336,26 @@ def test_evaluations_run_through_the_tracker(tmp_path):
     s = evaluate_skill("go-to-ball", "baseline", episodes=2, seed=10000, realism="realistic", progress=False,
                        tracker="on")
     assert s["config"]["tracker"] is True and s["episodes"] == 2
+
+
+def test_skill_task_env_trains_through_the_tracker():
+    """``tracker=True`` on a skill task env: the robot's features come from the tracker's
+    estimate (not the raw delayed frame), the env passes Gymnasium's checker, and a bad
+    value is refused by name."""
+    from gymnasium.utils.env_checker import check_env
+
+    from ssl_marl.envs.tracking import TrackedVisionEnv
+    from ssl_marl.skills.features import go_to_ball_features
+    from ssl_marl.skills.wrappers import GoToBallEnv
+
+    env = GoToBallEnv(realism="randomized", tracker=True)
+    assert isinstance(env.env, TrackedVisionEnv)
+    check_env(env, skip_render_check=True)
+    obs, _ = env.reset(seed=3)
+    for _ in range(30):
+        obs, *_ = env.step(np.array([1.0, 0.0, 0.5], np.float32))
+    np.testing.assert_allclose(obs, go_to_ball_features(env.env.vision_state("blue"), 0, env.field), rtol=1e-6)
+    raw = go_to_ball_features(env.env.env.vision_state("blue"), 0, env.field)
+    assert not np.allclose(obs, raw)  # the raw frame is older: the tracker predicts ahead
+    with pytest.raises(ValueError, match="tracker must be True or False"):
+        GoToBallEnv(tracker="yes")

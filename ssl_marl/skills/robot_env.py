@@ -293,17 +293,28 @@ class OneRobotSkillEnv(RobotSkillEnv, EzPickle):
     Traffic (what a training config names in ``env_kwargs``): other robots stand still,
     except that ``opponent_policy="chase"`` drives the opponents with the hand-coded
     go-to-ball, and ``traffic="module:function"`` adds drivers built by
-    ``function(env)`` (e.g. ``"ssl_marl.plays.team:stp_traffic"``: STP teams)."""
+    ``function(env)`` (e.g. ``"ssl_marl.plays.team:stp_traffic"``: STP teams).
+
+    ``tracker=True``: the robot reads tracked, latency-compensated vision
+    (:class:`~ssl_marl.envs.tracking.TrackedVisionEnv` around the env), as deployed skills
+    do under realism; so a skill can be trained through the tracker it will run behind
+    (with ``realism="randomized"``: through its estimates under randomised conditions)."""
 
     def __init__(self, task: SkillTask, field: str = "div_b", n_opponents: int = 0, opponent_policy: str = "static",
                  n_teammates: int = 0, traffic: str | None = None, realism: Any = "none", realtime: bool = False,
-                 render_mode: str | None = None, **env_kwargs: Any) -> None:
+                 render_mode: str | None = None, tracker: bool = False, **env_kwargs: Any) -> None:
         if opponent_policy not in ("static", "chase"):
             raise ValueError(f"opponent_policy must be 'static' or 'chase', got {opponent_policy!r}")
         env = SSLParallelEnv(n_blue=1 + n_teammates, n_yellow=n_opponents, field=field, realism=realism,
                              realtime=realtime, task="free_play", render_mode=render_mode,
                              obs_max_teammates=max(n_teammates, 0), obs_max_opponents=max(n_opponents, 0),
                              **env_kwargs)
+        if not isinstance(tracker, bool):
+            raise ValueError(f"tracker must be True or False, got {tracker!r}")
+        if tracker:
+            from ..envs.tracking import TrackedVisionEnv
+
+            env = TrackedVisionEnv(env)
         drivers: list[RobotDriver] = []
         if n_opponents and opponent_policy == "chase":
             from .baseline import GoToBallBaseline
