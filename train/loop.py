@@ -91,6 +91,11 @@ def _masked(info: Mapping[str, Any], key: str, i: int) -> Any:
     return info[key][i]
 
 
+def split_evenly(total: int, parts: int) -> list[int]:
+    """``total`` split into ``parts`` counts differing by at most one (the first ones larger)."""
+    return [total // parts + (j < total % parts) for j in range(parts)]
+
+
 def pool_results(parts: list[dict[str, Any]]) -> dict[str, Any]:
     """Pool :func:`~train.evaluate.run_episodes` results of the env variants (one: unchanged);
     the per-variant figures (without their returns) are kept under ``"variants"``."""
@@ -229,7 +234,7 @@ class Trainer:
             self._log_episode("demo", ret, length, success, terms)
 
         variants = cfg.variant_kwargs()
-        shares = [cfg.demo_steps // len(variants) + (j < cfg.demo_steps % len(variants)) for j in range(len(variants))]
+        shares = split_evenly(cfg.demo_steps, len(variants))
         demos = itertools.chain.from_iterable(
             itertools.islice(self.demo_fn(n_steps=n, seed=self.seed + j, **kw), n)
             for j, (n, kw) in enumerate(zip(shares, variants)))
@@ -312,16 +317,12 @@ class Trainer:
         self.agent.cfg.bc_weight = w
         return w > 0
 
-    def _shares(self, episodes: int) -> list[int]:
-        """``episodes`` split evenly across the env variants (earlier variants take the remainder)."""
-        n = len(self.eval_envs)
-        return [episodes // n + (j < episodes % n) for j in range(n)]
-
     def evaluate(self) -> dict[str, Any]:
         """Deterministic evaluation on the fixed eval start states (seed + 1000); logged to eval.csv."""
         policy = lambda o: self.agent.act(o[None])[0]  # noqa: E731
+        shares = split_evenly(self.cfg.eval_episodes, len(self.eval_envs))  # per env variant
         res = pool_results([run_episodes(e, policy, n, self.seed + 1000)
-                            for e, n in zip(self.eval_envs, self._shares(self.cfg.eval_episodes)) if n > 0])
+                            for e, n in zip(self.eval_envs, shares) if n > 0])
         row = {"samples": self.samples, "transitions": self.transitions, "updates": self.agent.updates,
                "wall_time": round(self.wall_time(), 3), **{k: res[k] for k in EVAL_FIELDS if k in res}}
         self.eval_log.write(row)
@@ -447,10 +448,10 @@ class Trainer:
     def finish(self) -> dict[str, Any]:
         """Export the actor, evaluate it (``eval.json``), draw the learning curve."""
         actor_path = self.export_actor()
+        shares = split_evenly(self.cfg.eval_episodes, len(self.eval_envs))  # per env variant
         result = pool_results([evaluate_actor(self.cfg.env_id, actor_path, n, self.seed + 1000, kw,
                                               self.cfg.max_episode_steps)
-                               for kw, n in zip(self.cfg.variant_kwargs(), self._shares(self.cfg.eval_episodes))
-                               if n > 0])
+                               for kw, n in zip(self.cfg.variant_kwargs(), shares) if n > 0])
         result["wall_time_s"] = round(self.wall_time(), 1)
         atomic_write_json(self.out / "eval.json", result)
         for e in self.eval_envs:
