@@ -20,8 +20,8 @@ Arrays (K worlds, n = n_blue + n_yellow agents in ``possible_agents`` order):
 * ``reset(seed=None, options=None) -> obs (K, n, D) float32, info``
 * ``step(actions (K, n, 5)) -> obs, rewards (K, n) float64, terminated (K,) bool,
   truncated (K,) bool, info`` (a dict of arrays: ``goal`` (K,) +1 blue scored /
-  -1 yellow scored / 0, ``ball_out`` (K,), ``kicker`` (K,) index of the robot whose
-  kick fired (-1 none), ``kick_speed`` (K,) m/s, ``score`` (K, 2) blue/yellow,
+  -1 yellow scored / 0, ``ball_out`` (K,), ``no_progress`` (K,) (the referee's
+  no-progress restart), ``kicker`` (K,) index of the robot whose kick fired (-1 none), ``kick_speed`` (K,) m/s, ``score`` (K, 2) blue/yellow,
   ``t`` (K,) s, ``reward_terms`` {term: (K, n)}, ``autoreset`` (K,)).
 
 Autoreset: Gymnasium's "next step" mode. A world whose episode ended in the last
@@ -49,7 +49,7 @@ from .actions import ACTION_DIM, scale_actions
 from .batched_obs import batched_observations
 from .config import EnvConfig, make_config
 from .observation import all_observations, state_vector
-from .referee import clear_robots_from, kickoff_poses, placement_point
+from .referee import NoProgressWatch, clear_robots_from, kickoff_poses, placement_point
 from .ssl_env import SSLParallelEnv
 from .tasks import FreePlayTask, MatchRules, MatchTask
 
@@ -126,6 +126,7 @@ class BatchedSSLEnv:
         self.rules = _batched_rules(self.envs[0])
         scales = self.rules.reward_scales
         self._scales = (float(scales["goal"]), float(scales["ball_progress"]), float(scales["possession"]))
+        self._watch = NoProgressWatch(K, self.rules.no_progress_s if self.rules.referee else None)
 
     # ------------------------------------------------------------------ reset
     def reset(self, seed: int | Sequence[int | None] | None = None, options: dict | Sequence[dict | None] | None = None):
@@ -159,6 +160,7 @@ class BatchedSSLEnv:
         self.physics.pull(k)
         self.score[k] = 0
         self.prev_ball_x[k] = self.physics.ball_pos[k, 0]
+        self._watch.restart(np.array([k]), self.physics.ball_pos[k][None, :], self.physics.t[k:k + 1])
         self.needs_reset[k] = False
         self._was_reset[k] = True
         self._seen[k] = env._seen
@@ -211,8 +213,9 @@ class BatchedSSLEnv:
         ph.step(v.reshape(m, n, 2), w.reshape(m, n), drib.reshape(m, n), kick.reshape(m, n), worlds=worlds)
         goal = np.zeros(K, np.int64)
         ball_out = np.zeros(K, bool)
+        no_progress = np.zeros(K, bool)
         if self.rules.referee:
-            self._referee(idx, goal, ball_out)
+            self._referee(idx, goal, ball_out, no_progress)
         # rewards (SSLParallelEnv._rewards)
         bx = ph.ball_pos[idx, 0]
         progress = (bx - self.prev_ball_x[idx]) / self.field.half_length
@@ -242,33 +245,38 @@ class BatchedSSLEnv:
             for j in np.flatnonzero(g != 0):
                 self._kickoff(int(idx[j]))
         self._observe(idx)
-        info = {"goal": goal, "ball_out": ball_out, "kicker": np.full(K, -1), "kick_speed": np.zeros(K),
-                "score": self.score.copy(), "t": ph.t.copy(), "reward_terms": terms}
+        info = {"goal": goal, "ball_out": ball_out, "no_progress": no_progress, "kicker": np.full(K, -1),
+                "kick_speed": np.zeros(K), "score": self.score.copy(), "t": ph.t.copy(), "reward_terms": terms}
         info["kicker"][idx] = ph.kicker if worlds is None else ph.kicker[idx]
         info["kick_speed"][idx] = ph.kick_speed if worlds is None else ph.kick_speed[idx]
         return self.obs.copy(), rewards, terminated, truncated, info
 
     def _empty_info(self) -> dict:
         K, n = self.K, self.n
-        return {"goal": np.zeros(K, np.int64), "ball_out": np.zeros(K, bool), "kicker": np.full(K, -1),
+        return {"goal": np.zeros(K, np.int64), "ball_out": np.zeros(K, bool), "no_progress": np.zeros(K, bool),
+                "kicker": np.full(K, -1),
                 "kick_speed": np.zeros(K), "score": self.score.copy(), "t": self.physics.t.copy(),
                 "reward_terms": {k: np.zeros((K, n)) for k in ("goal", "ball_progress", "possession")}}
 
-    def _referee(self, idx: np.ndarray, goal: np.ndarray, ball_out: np.ndarray) -> None:
-        """Vectorised :func:`ssl_marl.envs.referee.judge`; the rare calls handled per world."""
+    def _referee(self, idx: np.ndarray, goal: np.ndarray, ball_out: np.ndarray, no_progress: np.ndarray) -> None:
+        """Vectorised :func:`ssl_marl.envs.referee.judge` and the no-progress call; the
+        rare calls handled per world."""
         f, br, ph = self.field, self.config.ball.radius, self.physics
         bp = ph.ball_pos[idx]
         x, y = bp[:, 0], bp[:, 1]
         in_goal = (np.abs(y) <= f.goal_width / 2.0) & (np.abs(x) >= f.half_length + br)
         out = ~in_goal & ((np.abs(x) >= f.half_length + br) | (np.abs(y) >= f.half_width + br))
-        for j in np.flatnonzero(in_goal | out):
+        stalled = np.zeros(idx.size, bool)
+        rest = ~(in_goal | out)
+        stalled[rest] = self._watch.update(idx[rest], bp[rest], ph.t[idx[rest]])
+        for j in np.flatnonzero(in_goal | out | stalled):
             k = int(idx[j])
             if in_goal[j]:
                 side = 1 if x[j] > 0 else -1
                 goal[k] = side
                 self.score[k, 0 if side > 0 else 1] += 1
                 continue
-            ball_out[k] = True
+            ball_out[k], no_progress[k] = bool(out[j]), bool(stalled[j])
             place = placement_point(ph.ball_pos[k], f)
             new_pos = clear_robots_from(place, ph.pos[k], f)
             moved = np.flatnonzero(np.any(new_pos != ph.pos[k], axis=1))
@@ -278,12 +286,14 @@ class BatchedSSLEnv:
                 ph.set_robots(k, pose, only=moved)
             ph.set_ball(k, place)
             self.prev_ball_x[k] = ph.ball_pos[k, 0]
+            self._watch.restart(np.array([k]), ph.ball_pos[k][None, :], ph.t[k:k + 1])
 
     def _kickoff(self, k: int) -> None:
         cfg = self.config
         self.physics.set_robots(k, kickoff_poses(self.field, cfg.n_blue, cfg.n_yellow))
         self.physics.set_ball(k, np.zeros(2))
         self.prev_ball_x[k] = 0.0
+        self._watch.restart(np.array([k]), np.zeros((1, 2)), self.physics.t[k:k + 1])
 
     def _observe(self, idx: np.ndarray) -> None:
         cfg, ph = self.config, self.physics
@@ -396,6 +406,8 @@ class BatchedWorldView(ParallelEnv):
             events.append({"type": "goal", "team": "blue" if info["goal"][k] > 0 else "yellow", "t": float(info["t"][k])})
         if info["ball_out"][k]:
             events.append({"type": "ball_out", "t": float(info["t"][k])})
+        if info["no_progress"][k]:
+            events.append({"type": "no_progress", "t": float(info["t"][k])})
         o = {a: obs[k, i] for i, a in enumerate(self.agents)}
         r = {a: float(rew[k, i]) for i, a in enumerate(self.agents)}
         te = {a: bool(term[k]) for a in self.agents}

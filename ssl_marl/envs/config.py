@@ -108,6 +108,13 @@ class EnvConfig:
         randomize_reset: True: robots and ball at random on reset; False: kickoff formation.
         referee: False switches goal / out-of-play handling off (the walls still hold
             everything in).
+        no_progress_s: the referee's "lack of progress" call (SSL rules, Force Start:
+            "a clear lack of progress for at least 10 seconds"): when the ball has stayed
+            within ``NO_PROGRESS_RADIUS_M`` of one spot for this long (s), play is
+            restarted as after the ball left the field (the ball placed at least 0.2 m
+            inside the lines and out of the defense areas, robots within 0.5 m moved
+            out; event ``no_progress``), which breaks two robots pinning the ball
+            against each other. None = off (the rule before 2026-11-26).
         render_mode: None, "rgb_array" or "human".
         render_trails: draw trajectories (the paper's Fig. 7).
         render_width_px: frame width in pixels.
@@ -133,6 +140,7 @@ class EnvConfig:
     task: Any = "match"
     randomize_reset: bool = False
     referee: bool = True
+    no_progress_s: float | None = 10.0
     enforce_division_limit: bool = False
     render_mode: str | None = None
     render_trails: bool = False
@@ -174,6 +182,7 @@ class EnvConfig:
             raise ValueError(f"physics_substeps must be an integer >= 1, got {self.physics_substeps!r}")
         if self.after_goal not in AFTER_GOAL:
             raise ValueError(f"after_goal must be one of {AFTER_GOAL}, got {self.after_goal!r}")
+        check_no_progress_s(self.no_progress_s)
         scales = dict(self.reward_scales)
         for k, v in scales.items():
             if k not in REWARD_TERMS:
@@ -203,6 +212,12 @@ class EnvConfig:
 
     def with_(self, **changes: Any) -> "EnvConfig":
         return replace(self, **changes)
+
+
+def check_no_progress_s(v: Any) -> None:
+    """ValueError unless ``v`` (``no_progress_s``) is None or a positive finite number of seconds."""
+    if v is not None and not (isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and v > 0):
+        raise ValueError(f"no_progress_s must be None (off) or a positive finite number of seconds, got {v!r}")
 
 
 def make_config(**kwargs: Any) -> EnvConfig:

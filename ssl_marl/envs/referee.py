@@ -7,6 +7,11 @@
   outside the goal. The restart places the ball 0.2 m inside the field at the
   crossing point (out of the defense area), stopped, and moves robots that stand
   within 0.5 m of it outwards to 0.5 m (SSL: robots keep 0.5 m at restarts).
+* No progress (SSL rules, Force Start: the referee restarts play after "a clear lack
+  of progress for at least 10 seconds"): the ball has stayed within
+  ``NO_PROGRESS_RADIUS_M`` of one spot for ``no_progress_s`` (EnvConfig); the restart
+  is the ball-out one at the ball's own position (:func:`placement_point`,
+  :func:`clear_robots_from`), so two robots pinning the ball between them are parted.
 * After a goal: kickoff formation (both teams in their own halves, ball at the
   centre mark) or termination, per ``EnvConfig.after_goal``.
 """
@@ -22,6 +27,9 @@ from ..physics.state import WorldState
 
 PLACEMENT_INSET = 0.2  # m inside the lines
 RESTART_CLEARANCE = 0.5  # m between the placed ball and any robot centre
+#: m: a ball that stays within this of one spot makes no progress (the SSL rules leave
+#: "clear lack of progress" to the referee; two robots pinning the ball move it a few cm)
+NO_PROGRESS_RADIUS_M = 0.25
 
 
 @dataclass(frozen=True)
@@ -70,6 +78,33 @@ def clear_robots_from(point: np.ndarray, robot_pos: np.ndarray, field: FieldGeom
             cand = point - u * clearance
         pos[i] = cand
     return pos
+
+
+class NoProgressWatch:
+    """The no-progress call for K worlds (module docstring): per world, the spot the ball
+    was at when it last moved more than ``radius`` m away from the previous spot, and
+    when. ``limit_s`` None switches the call off."""
+
+    def __init__(self, n_worlds: int, limit_s: float | None, radius: float = NO_PROGRESS_RADIUS_M) -> None:
+        self.limit_s, self.radius = limit_s, float(radius)
+        self.anchor = np.zeros((n_worlds, 2))
+        self.since = np.zeros(n_worlds)
+
+    def restart(self, idx: np.ndarray, ball_pos: np.ndarray, t: np.ndarray) -> None:
+        """Worlds ``idx`` start a new watch at ball positions (m, 2) and times (m,) s."""
+        self.anchor[idx] = ball_pos
+        self.since[idx] = t
+
+    def update(self, idx: np.ndarray, ball_pos: np.ndarray, t: np.ndarray) -> np.ndarray:
+        """(m,) True where world ``idx[j]``'s ball has stayed within ``radius`` for
+        ``limit_s`` (the caller restarts play and then calls :meth:`restart`)."""
+        if self.limit_s is None:
+            return np.zeros(len(idx), bool)
+        d = ball_pos - self.anchor[idx]
+        moved = d[:, 0] ** 2 + d[:, 1] ** 2 > self.radius ** 2
+        if moved.any():
+            self.restart(idx[moved], ball_pos[moved], t[moved])
+        return ~moved & (t - self.since[idx] >= self.limit_s - 1e-9)
 
 
 def kickoff_formation(field: FieldGeometry, n: int) -> np.ndarray:

@@ -10,7 +10,7 @@ pipe, and waits for a one-byte answer. Nothing is pickled per step.
 World g = w * worlds_per_worker + j (worker w, world j) behaves exactly as world g
 of one ``BatchedSSLEnv`` with all the worlds (seed ``seed + g``; tested). Arrays
 are as :class:`BatchedSSLEnv`'s with K = n_workers * worlds_per_worker; ``info``
-holds ``goal``, ``ball_out``, ``kicker``, ``kick_speed``, ``t``, ``autoreset``
+holds ``goal``, ``ball_out``, ``no_progress``, ``kicker``, ``kick_speed``, ``t``, ``autoreset``
 (K,) and ``score`` (K, 2); the returned arrays are copies.
 
 Workers are started with the "spawn" method (no fork after torch or threads) and
@@ -36,6 +36,7 @@ def _layout(K: int, n: int, d: int, W: int = 1) -> dict[str, tuple[tuple[int, ..
     """Name -> (shape, dtype) of every shared array (W workers)."""
     return {"cpu_s": ((W,), "f8"), "actions": ((K, n, ACTION_DIM), "f8"), "obs": ((K, n, d), "f4"), "rewards": ((K, n), "f8"),
             "terminated": ((K,), "?"), "truncated": ((K,), "?"), "goal": ((K,), "i8"), "ball_out": ((K,), "?"),
+            "no_progress": ((K,), "?"),
             "kicker": ((K,), "i8"), "kick_speed": ((K,), "f8"), "t": ((K,), "f8"), "autoreset": ((K,), "?"),
             "score": ((K, 2), "i8"), "seeds": ((K,), "i8")}
 
@@ -75,7 +76,7 @@ def _worker(conn, shm_name: str, K_total: int, n: int, d: int, W: int, w: int, l
                     obs, info = env.reset(seed=[None if x < 0 else int(x) for x in s])
                     arr["obs"][sl] = obs
                     arr["rewards"][sl] = 0.0
-                    for k in ("terminated", "truncated", "autoreset", "ball_out"):
+                    for k in ("terminated", "truncated", "autoreset", "ball_out", "no_progress"):
                         arr[k][sl] = False
                     arr["goal"][sl], arr["kicker"][sl], arr["kick_speed"][sl] = 0, -1, 0.0
                     arr["t"][sl], arr["score"][sl] = info["t"], 0
@@ -83,7 +84,7 @@ def _worker(conn, shm_name: str, K_total: int, n: int, d: int, W: int, w: int, l
                     obs, rew, term, trunc, info = env.step(arr["actions"][sl])
                     arr["obs"][sl], arr["rewards"][sl] = obs, rew
                     arr["terminated"][sl], arr["truncated"][sl] = term, trunc
-                    for k in ("goal", "ball_out", "kicker", "kick_speed", "t", "autoreset", "score"):
+                    for k in ("goal", "ball_out", "no_progress", "kicker", "kick_speed", "t", "autoreset", "score"):
                         arr[k][sl] = info[k]
                 arr["cpu_s"][w] = time.process_time()
                 conn.send_bytes(_OK)
@@ -191,7 +192,7 @@ class ShardedBatchedEnv:
         self._arr["actions"][:] = a
         self._send(_STEP)
         r = self._arr
-        info = self._result(("goal", "ball_out", "kicker", "kick_speed", "t", "autoreset", "score"))
+        info = self._result(("goal", "ball_out", "no_progress", "kicker", "kick_speed", "t", "autoreset", "score"))
         return r["obs"].copy(), r["rewards"].copy(), r["terminated"].copy(), r["truncated"].copy(), info
 
     def worker_cpu_seconds(self) -> np.ndarray:

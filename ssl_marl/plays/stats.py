@@ -1,7 +1,8 @@
 """Match statistics from what the referee sees: kicks, shots, passes, interceptions, goals.
 
 :class:`MatchStatsTracker` observes every step's ground-truth world (field frame) and the
-env's events (``"kick"`` with the kicking agent, ``"goal"``, ``"ball_out"``); it knows
+env's events (``"kick"`` with the kicking agent, ``"goal"``, ``"ball_out"``,
+``"no_progress"``); it knows
 nothing of either team's plans, so it rates a passing team and a no-pass team by the
 same rules:
 
@@ -179,8 +180,10 @@ class MatchStatsTracker:
                 self.log.append({"t": t, "type": "goal", "team": e["team"]})
                 self._close("lost", None, t)
                 self._held.clear()
-            elif kind == "ball_out":
+            elif kind in ("ball_out", "no_progress"):  # the referee restarts play
                 self._close("lost", None, t)
+                if kind == "no_progress":
+                    self.log.append({"t": t, "type": "no_progress"})
                 self._held.clear()
         held = {}
         for team in TEAMS:

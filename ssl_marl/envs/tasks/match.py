@@ -6,7 +6,9 @@ Start
 Rules, after every control tick (``referee``, see :mod:`ssl_marl.envs.referee`)
     Goal: the scoring team's score + 1, event ``goal``; the step's remaining ticks are
     skipped. Ball out of play: event ``ball_out``; the ball is placed 0.2 m inside the
-    field and robots within 0.5 m of it are moved out.
+    field and robots within 0.5 m of it are moved out. No progress (the ball within
+    0.25 m of one spot for ``no_progress_s``, default 10 s, the SSL referee's force
+    start): event ``no_progress`` and the same restart at the ball's position.
 Reward
     Shared by a team: sum over named terms x ``reward_scales``. ``goal``: +1 when the
     team scores, -1 when it concedes. ``ball_progress``: ball displacement towards the
@@ -24,8 +26,8 @@ from typing import TYPE_CHECKING, Mapping
 
 import numpy as np
 
-from ..config import AFTER_GOAL, EnvConfig
-from ..referee import clear_robots_from, judge, kickoff_poses
+from ..config import AFTER_GOAL, EnvConfig, check_no_progress_s
+from ..referee import NoProgressWatch, clear_robots_from, judge, kickoff_poses, placement_point
 from .base import Scene, Task
 from .scene import scene_from_options
 
@@ -43,6 +45,8 @@ class MatchRules:
         max_time_s: truncation time (s of simulated time).
         reward_scales: scale per reward term ("goal", "ball_progress", "possession").
         randomize_reset: random robots and ball on reset (False: kickoff formation).
+        no_progress_s: the no-progress call after this many seconds (None: off; see
+            :mod:`ssl_marl.envs.referee`).
     """
 
     referee: bool = True
@@ -51,15 +55,18 @@ class MatchRules:
     reward_scales: Mapping[str, float] = field(default_factory=lambda: {"goal": 1.0, "ball_progress": 0.0,
                                                                         "possession": 0.0})
     randomize_reset: bool = False
+    no_progress_s: float | None = 10.0
 
     def __post_init__(self) -> None:
         if self.after_goal not in AFTER_GOAL:
             raise ValueError(f"after_goal must be one of {AFTER_GOAL}, got {self.after_goal!r}")
+        check_no_progress_s(self.no_progress_s)
 
     @staticmethod
     def from_config(cfg: EnvConfig) -> "MatchRules":
         return MatchRules(referee=cfg.referee, after_goal=cfg.after_goal, max_time_s=cfg.max_time_s,
-                          reward_scales=dict(cfg.reward_scales), randomize_reset=cfg.randomize_reset)
+                          reward_scales=dict(cfg.reward_scales), randomize_reset=cfg.randomize_reset,
+                          no_progress_s=cfg.no_progress_s)
 
 
 class MatchTask(Task):
@@ -72,6 +79,7 @@ class MatchTask(Task):
         self.rules = rules
         self.goal_for: str | None = None  #: team that scored in the current step
         self._prev_ball_x = 0.0
+        self._watch: NoProgressWatch | None = None
 
     def bind(self, env: "SSLParallelEnv") -> None:
         super().bind(env)
@@ -84,6 +92,12 @@ class MatchTask(Task):
     def start(self, env: "SSLParallelEnv") -> None:
         self.goal_for = None
         self._prev_ball_x = float(env.world_state().ball_pos[0])
+        self._watch = NoProgressWatch(1, self.rules.no_progress_s)
+        self._restart_watch(env)
+
+    def _restart_watch(self, env: "SSLParallelEnv") -> None:
+        w = env.world_state()
+        self._watch.restart(np.array([0]), w.ball_pos[None, :], np.array([w.t]))
 
     def begin_step(self, env: "SSLParallelEnv") -> None:
         self.goal_for = None
@@ -99,15 +113,25 @@ class MatchTask(Task):
             return True
         if call.ball_out:
             events.append({"type": "ball_out", "t": truth.t, "placement": call.placement.tolist()})
-            pose = env.robot_poses()
-            new_pos = clear_robots_from(call.placement, pose[:, 0:2], f)
-            moved = np.flatnonzero(np.any(new_pos != pose[:, 0:2], axis=1))
-            if moved.size:
-                pose[moved, 0:2] = new_pos[moved]
-                env.place_robots(pose, only=moved)
-            env.place_ball(call.placement)
-            self._prev_ball_x = float(env.world_state().ball_pos[0])
+            self._restart_play(env, call.placement)
+        elif self._watch is not None and self._watch.update(np.array([0]), truth.ball_pos[None, :],
+                                                            np.array([truth.t]))[0]:
+            place = placement_point(truth.ball_pos, f)
+            events.append({"type": "no_progress", "t": truth.t, "placement": place.tolist()})
+            self._restart_play(env, place)
         return False
+
+    def _restart_play(self, env: "SSLParallelEnv", place: np.ndarray) -> None:
+        """Ball at ``place`` (m, at rest), robots within 0.5 m of it moved out."""
+        pose = env.robot_poses()
+        new_pos = clear_robots_from(place, pose[:, 0:2], env.field)
+        moved = np.flatnonzero(np.any(new_pos != pose[:, 0:2], axis=1))
+        if moved.size:
+            pose[moved, 0:2] = new_pos[moved]
+            env.place_robots(pose, only=moved)
+        env.place_ball(place)
+        self._prev_ball_x = float(env.world_state().ball_pos[0])
+        self._restart_watch(env)
 
     def rewards(self, env: "SSLParallelEnv") -> tuple[dict[str, float], dict[str, dict[str, float]]]:
         scales = self.rules.reward_scales
@@ -135,3 +159,4 @@ class MatchTask(Task):
             env.place_robots(kickoff_poses(env.field, env.config.n_blue, env.config.n_yellow))
             env.place_ball(np.zeros(2))
             self._prev_ball_x = 0.0
+            self._restart_watch(env)
