@@ -430,6 +430,38 @@ def test_coordinator_follows_the_handshake_to_completion_and_aborts_on_failure()
     assert c.plan is None and c.counters.aborted == 2
 
 
+CONTESTED = dict(BLOCKED, yellow=[(3.3, -0.2, math.pi), (3.3, 0.0, math.pi), (1.75, 0.0, math.pi)],
+                 yellow_on_dribbler=[False, False, True])
+
+
+class _Recorder:
+    def set_params(self, **kw):
+        self.params = kw
+
+
+def test_contested_setup_turns_urgent_and_the_passer_kicks_without_ready():
+    from ssl_marl.plays.passing_play import PassCoordinator, PassingParams, PassPhase, PassPlan, passer_role
+
+    c = PassCoordinator(PassingParams(contested_kick=True))
+    c.plan = PassPlan(1, 2, np.array([2.0, 2.2]), PassPhase.SETUP, 1.9)
+    ctx = _ctx(make_world(**CONTESTED, t=2.0, frame="blue"),
+               {"passer": _status(PassState.HOLD), "receiver": _status(ReceiveState.POSITION)})
+    c.prepare(ctx)
+    assert c.plan is not None and c.plan.urgent and c.counters.aborted == 0
+    rec = _Recorder()
+    passer_role(c).update(rec, ctx, None)
+    assert rec.params["receiver_ready"] is True  # the receiver is still positioning: no READY needed
+    # in flight, an opponent on the ball is an interception
+    c.plan.phase, c.plan.t_kick = PassPhase.IN_FLIGHT, 2.1
+    c.prepare(_ctx(make_world(**CONTESTED, t=2.2, frame="blue"), {"receiver": _status(ReceiveState.RECEIVING)}))
+    assert c.plan is None and c.counters.aborted == 1
+    # with contested_kick off (the default), the contested setup is dropped
+    c = PassCoordinator()
+    c.plan = PassPlan(1, 2, np.array([2.0, 2.2]), PassPhase.SETUP, 1.9)
+    c.prepare(ctx)
+    assert c.plan is None and c.counters.aborted == 1
+
+
 def test_restart_play_applies_at_the_centre_mark_and_free_kick_spots():
     from ssl_marl.plays.passing_play import restart_applicable
 

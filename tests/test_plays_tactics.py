@@ -424,3 +424,39 @@ def test_goalie_and_defender_share_one_clearing_behaviour():
     assert clear_phase(True, BALL_LOST_DISTANCE, False, DefenderParams()) is ClearPhase.KICK
     g, d = Goalie(F), Defender(F)
     assert isinstance(g.clearing, BallClearing) and isinstance(d.clearing, BallClearing)
+
+
+class _NeverKicks:
+    """An aim-to-shoot stand-in that turns nowhere and never kicks."""
+
+    status = SkillStatus.RUNNING
+
+    def reset(self):
+        pass
+
+    def act(self, world, robot):
+        from ssl_marl.skills.base import make_action
+        return make_action(dribble=True)
+
+
+def _aiming_attacker(robot, snap_shot):
+    tac = Attacker(F, snap_shot=snap_shot)
+    tac.aim_to_shoot = _NeverKicks()
+    tac.act(scene(robot, gap=0.0), 0)
+    for k in range(1, 70):
+        a = tac.act(scene(robot, gap=0.0, t=k * DT), 0)
+        if tac.state is S.AIM_TO_SHOOT:
+            return tac, a
+    raise AssertionError("never reached AIM_TO_SHOOT")
+
+
+@pytest.mark.parametrize("heading,snap_shot,kicks", [
+    (0.0, True, True),            # facing the goal centre from (2, 0): between the posts -> kick at once
+    (0.0, False, False),          # without the snap shot the skill alone decides (this one never kicks)
+    (math.pi / 2, True, False),   # facing +y: not between the posts, the skill keeps turning
+])
+def test_snap_shot_kicks_when_the_heading_is_between_the_posts(heading, snap_shot, kicks):
+    tac, a = _aiming_attacker((2.0, 0.0, heading), snap_shot)
+    assert bool(a[4] > 0.0) is kicks
+    if kicks:
+        assert a[4] == 1.0 and legal(a)

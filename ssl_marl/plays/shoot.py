@@ -40,7 +40,7 @@ from ..physics.state import WorldState
 from ..physics.state import wrap_angle
 from ..skills.base import SkillStatus, make_action
 from ..skills.baseline import DriveForward
-from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance
+from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance, goal_post_angles
 from .navigation import NavigateToPoint, NavParams, defense_rect, facing_towards, push_out_of_rect
 from .tactic_base import NEAR_BALL_M, Tactic, skill_status
 
@@ -86,6 +86,12 @@ class ShootParams:
         keep_speed: KEEP's forward creep (m/s; scaled to 0 as free space ahead shrinks).
         keep_target: (x, y) point (m, team frame) KEEP turns and creeps towards; None =
             the opponent goal centre (a decider's "dribble toward a point" sets it).
+        snap_shot: in AIM_TO_SHOOT, kick at full strength as soon as the heading lies
+            between the posts (the hand-coded skill's first-opportunity rule, applied by
+            the tactic whatever the skill; False = the skill alone decides when to kick).
+            The passing plays set it: a carrier in a match is pressed within a few tenths
+            of a second, and a learned aim-to-shoot trained without opponents waits for a
+            centred aim that rarely comes (docs/RESULTS.md, "Passing game").
     """
 
     near_ball_m: float = NEAR_BALL_M
@@ -104,6 +110,7 @@ class ShootParams:
     keep_turn_rate: float = 3.0
     keep_speed: float = 0.3
     keep_target: tuple[float, float] | None = None
+    snap_shot: bool = False
 
 
 @dataclass(frozen=True)
@@ -213,6 +220,9 @@ class GoToBallAndShoot(Tactic):
             self.nav.facing = facing_towards(pos, world.ball_pos)
         if self.state is ShootState.KEEP:
             return self.keep_action(world, robot)
+        if self.state is ShootState.AIM_TO_SHOOT and self.params.snap_shot and heading_between_posts(
+                world, robot, self.field):
+            return make_action(dribble=True, kick=1.0)
         action = self._current_skill().act(world, robot)
         if self.state is ShootState.GO_TO_BALL and self.params.approach_speed is not None:
             action = govern_approach(action, world, robot, self.rp, self.bp, self.params.approach_speed,
@@ -232,6 +242,12 @@ class GoToBallAndShoot(Tactic):
         free = free_distance_ahead(world.ball_pos, heading, self.field)
         speed = p.keep_speed * min(max((free - 0.3) / 0.5, 0.0), 1.0) if abs(err) < 0.4 else 0.0
         return make_action(vx=speed / self.rp.max_speed, omega=omega / self.rp.max_omega, dribble=True)
+
+
+def heading_between_posts(world: WorldState, robot: int, field) -> bool:
+    """The robot's heading lies between the opponent goal posts and its kicker is ready."""
+    al, ar = goal_post_angles(world, robot, field)
+    return al > 0.0 > ar and bool(world.team(world.frame).kick_ready[robot])
 
 
 def govern_approach(action: np.ndarray, world: WorldState, robot: int, rp, bp, v_touch: float,
