@@ -7,7 +7,7 @@ Usage (after a series written with ``ssl-marl match ... --json FILE``)::
 
 It replays, in order, the series' matches in which ``--team`` scored (step mode is
 deterministic for a seed: the same controllers, seeds and start jitter as
-:func:`ssl_marl.plays.match.play_match`), with the match-statistics tracker, until a goal
+:func:`ssl_marl.runners.match.play_match`), with the match-statistics tracker, until a goal
 by ``--team`` comes at most ``--within`` seconds after a completed pass of that team,
 and writes the frames from ``--before`` seconds before the pass kick to ``--after``
 seconds after the goal.
@@ -26,7 +26,7 @@ def controller(cfg: dict, side: str, field, seed: int, ck: dict):
     """The team controller the match ran: its kind, and the skill kinds recorded in the
     match config (so that a replay uses the actors that played, even if others have been
     shipped since)."""
-    from ssl_marl.plays.match import make_controller
+    from ssl_marl.runners.controllers import make_controller
 
     kind, skills = cfg[side], (cfg.get("skills") or {}).get(side)
     if kind.startswith("passing-") and isinstance(skills, dict):
@@ -47,7 +47,7 @@ def replay_for_passing_goal(match: dict, team: str, within: float, before: float
     from collections import deque
 
     from ssl_marl.envs import parallel_env
-    from ssl_marl.plays.match import start_options
+    from ssl_marl.runners.match import start_options
     from ssl_marl.plays.stats import MatchStatsTracker
 
     cfg = match["config"]
