@@ -1,7 +1,8 @@
 """Tune the passing plays on tuning seeds: N matches of ``passing-learned`` with overridden
 :class:`~ssl_marl.plays.passing_play.PassingParams` / ``DecisionParams`` fields against an
-opponent team kind, played on a process pool; writes one JSON (per-match score, possession and
-referee statistics) and prints a summary line.
+opponent team kind, played on a process pool; writes one JSON (per-match score, possession,
+referee statistics, no-progress restarts and the blue coordinator's own pass counters: planned,
+kicked, completed, aborted) and prints a summary line.
 
     python benchmarks/tune_passing.py --opponent baseline --seed 45220 --matches 40 \\
         --override '{"passing": {"contested_kick": false}}' --out results/tuning/passing_nocont.json
@@ -28,9 +29,14 @@ def play(args: tuple) -> dict:
     params = PassingParams(decision=DecisionParams(**override.get("decision", {})), **override.get("passing", {}))
     blue = make_controller(kind, "blue", 6, "div_b", seed=seed, plays=passing_plays(params), skills=skills)
     r = play_match(blue, opponent, robots=6, field="div_b", seconds=seconds, seed=seed, progress=False)
+    from dataclasses import asdict
+
+    from ssl_marl.plays.passing_play import coordinator_of
+
     return dict(seed=seed, score=r.score, possession=r.possession,
                 stats={k: v for k, v in r.stats.items() if k != "events"},
-                no_progress=sum(e["type"] == "no_progress" for e in r.stats["events"]))
+                no_progress=sum(e["type"] == "no_progress" for e in r.stats["events"]),
+                coordinator=asdict(coordinator_of(blue.selector.plays).counters))
 
 
 def summary(matches: list[dict]) -> str:
@@ -44,9 +50,15 @@ def summary(matches: list[dict]) -> str:
 
     sides = " | ".join(f"{t}: shots {tot(t, 'shots')}, kicks {tot(t, 'kicks')}, passes "
                        f"{tot(t, 'passes_completed')}/{tot(t, 'passes_attempted')}" for t in ("blue", "yellow"))
+    coord = ""
+    if all("coordinator" in m for m in matches):
+        c = {k: sum(m["coordinator"][k] for m in matches) for k in ("planned", "kicked", "completed", "aborted")}
+        coord = (f" | blue's planned passes: {c['planned']} planned, {c['kicked']} kicked, {c['completed']} "
+                 f"completed, {c['aborted']} aborted")
     restarts = ("" if any("no_progress" not in m for m in matches)
                 else f" | no-progress restarts {sum(m['no_progress'] for m in matches)}")
-    return f"{len(matches)} matches: W-D-L {w}-{len(matches) - w - lost}-{lost}, goals {gf}-{ga} | {sides}{restarts}"
+    return (f"{len(matches)} matches: W-D-L {w}-{len(matches) - w - lost}-{lost}, goals {gf}-{ga} | {sides}"
+            f"{restarts}{coord}")
 
 
 def main(argv: list[str] | None = None) -> int:
