@@ -71,6 +71,18 @@ def _positive_float(name: str):
     return parse
 
 
+def _non_negative_float(name: str):
+    def parse(text: str) -> float:
+        try:
+            v = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{name} must be a number, got {text!r}") from None
+        if not (0 <= v < float("inf")):
+            raise argparse.ArgumentTypeError(f"{name} must be a finite number >= 0, got {text}")
+        return v
+    return parse
+
+
 def _team(text: str) -> str:
     if text in TEAM_KINDS or text.lower().endswith(".json"):
         return text
@@ -185,7 +197,8 @@ def cmd_match(args: argparse.Namespace) -> int:
     yellow, yellow_skills = _resolve_team("yellow", args.yellow, args.skill + args.yellow_skill)
     common = dict(robots=args.robots, field=args.field, seconds=args.seconds, realism=args.realism,
                   realtime=args.realtime, blue_skills=blue_skills, yellow_skills=yellow_skills,
-                  tracker=args.tracker, blue_decision=args.blue_decision, yellow_decision=args.yellow_decision)
+                  tracker=args.tracker, blue_decision=args.blue_decision, yellow_decision=args.yellow_decision,
+                  env_kwargs={"no_progress_s": args.no_progress_s or None})
     render = None if str(args.render).lower() == "none" else args.render
     if render is not None and args.matches == 1:
         prepare_output_file(render, VIDEO_SUFFIXES, "--render")
@@ -417,6 +430,10 @@ def build_parser() -> argparse.ArgumentParser:
     m.add_argument("--json", default=None, metavar="PATH",
                    help="also write the result as JSON to PATH (missing folders are created)")
     m.add_argument("--quiet", action="store_true", help="no progress bar")
+    m.add_argument("--no-progress-s", type=_non_negative_float("--no-progress-s"), default=10.0,
+                   help="the referee restarts play when the ball stays within 0.25 m of one spot this long "
+                        "(SSL force start after a lack of progress; seconds, default 10; 0 switches the call off, "
+                        "as in matches recorded before 2026-11-26)")
     _add_tracker_option(m)
     m.set_defaults(func=cmd_match)
 

@@ -11,6 +11,7 @@ from ssl_marl.cli import build_parser, main
     (["match", "--robots", "12"], "between 1 and 11"),
     (["match", "--seconds", "-5"], "positive"),
     (["match", "--blue", "telepathic"], "invalid choice"),
+    (["match", "--no-progress-s", "-1"], ">= 0"),
     (["eval-skill", "go-to-ball", "--episodes", "0"], ">= 1"),
     (["eval-skill", "juggle"], "invalid choice"),
     (["demo", "--field", "div_c"], "invalid choice"),
@@ -48,3 +49,14 @@ def test_eval_skill_writes_results(tmp_path, capsys):
     res = json.loads((tmp_path / "results.json").read_text())
     assert res["episodes"] == 4 and res["success_rate"] == 1.0 and res["seed"] == 1
     assert (tmp_path / "time_hist.png").exists()
+
+
+@pytest.mark.parametrize("flag,expected", [("0", None), ("4", 4.0)])
+def test_match_no_progress_option_reaches_the_referee(flag, expected, tmp_path):
+    out = tmp_path / "m.json"
+    assert main(["match", "--blue", "idle", "--yellow", "idle", "--robots", "1", "--seconds", "5", "--render", "none",
+                 "--no-progress-s", flag, "--quiet", "--json", str(out)]) == 0
+    res = json.loads(out.read_text())
+    assert res["config"]["no_progress_s"] == expected
+    # idle robots, ball resting at the centre mark: called after 4 s only when the call is on
+    assert any(e["type"] == "no_progress" for e in res["stats"]["events"]) is (expected is not None)
