@@ -59,28 +59,26 @@ def _int_at_least(name: str, lowest: int):
     return parse
 
 
-def _positive_float(name: str):
+def _finite_float(name: str, lowest: float, inclusive: bool, rule: str):
+    """Parser of a finite float above ``lowest`` (or equal to it when ``inclusive``);
+    ``rule`` completes "NAME must be ..." in the error."""
     def parse(text: str) -> float:
         try:
             v = float(text)
         except ValueError:
             raise argparse.ArgumentTypeError(f"{name} must be a number, got {text!r}") from None
-        if not (v > 0 and v < float("inf")):
-            raise argparse.ArgumentTypeError(f"{name} must be a positive number, got {text}")
+        if not ((v >= lowest if inclusive else v > lowest) and v < float("inf")):
+            raise argparse.ArgumentTypeError(f"{name} must be {rule}, got {text}")
         return v
     return parse
+
+
+def _positive_float(name: str):
+    return _finite_float(name, 0.0, False, "a positive number")
 
 
 def _non_negative_float(name: str):
-    def parse(text: str) -> float:
-        try:
-            v = float(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{name} must be a number, got {text!r}") from None
-        if not (0 <= v < float("inf")):
-            raise argparse.ArgumentTypeError(f"{name} must be a finite number >= 0, got {text}")
-        return v
-    return parse
+    return _finite_float(name, 0.0, True, "a finite number >= 0")
 
 
 def _team(text: str) -> str:

@@ -122,9 +122,11 @@ class PassingParams:
             (:class:`~ssl_marl.plays.shoot.ShootParams`, ``snap_shot``).
         contested_kick: during setup, an opponent's dribbler on the ball while the passer
             still holds it does not drop the pass: the plan turns urgent and the passer
-            kicks as soon as it faces the receive point, without the receiver's READY
-            (False: drop the pass, the behaviour before 2026-11-26; in matches against
-            pressing teams 9 of 11 setups were dropped this way, most within 0.1 s).
+            kicks as soon as it faces the receive point, without the receiver's READY.
+            Off (drop the pass): on 60 tuning matches against the no-pass baseline
+            (seeds 45200-45259) it completed fewer passes by the referee's count (52 % vs
+            56 %) and scored 11-2 against 17-3 without it (docs/RESULTS.md, "Passing
+            game"), although 9 of 11 setups in probe matches were dropped this way.
     """
 
     decision: DecisionParams = DecisionParams()

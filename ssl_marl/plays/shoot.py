@@ -40,7 +40,7 @@ from ..physics.state import WorldState
 from ..physics.state import wrap_angle
 from ..skills.base import SkillStatus, make_action
 from ..skills.baseline import DriveForward
-from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance, goal_post_angles
+from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance, heading_between_posts
 from .navigation import NavigateToPoint, NavParams, defense_rect, facing_towards, push_out_of_rect
 from .tactic_base import NEAR_BALL_M, Tactic, skill_status
 
@@ -220,8 +220,8 @@ class GoToBallAndShoot(Tactic):
             self.nav.facing = facing_towards(pos, world.ball_pos)
         if self.state is ShootState.KEEP:
             return self.keep_action(world, robot)
-        if self.state is ShootState.AIM_TO_SHOOT and self.params.snap_shot and heading_between_posts(
-                world, robot, self.field):
+        if (self.state is ShootState.AIM_TO_SHOOT and self.params.snap_shot
+                and bool(world.team(world.frame).kick_ready[robot]) and heading_between_posts(world, robot, self.field)):
             return make_action(dribble=True, kick=1.0)
         action = self._current_skill().act(world, robot)
         if self.state is ShootState.GO_TO_BALL and self.params.approach_speed is not None:
@@ -242,12 +242,6 @@ class GoToBallAndShoot(Tactic):
         free = free_distance_ahead(world.ball_pos, heading, self.field)
         speed = p.keep_speed * min(max((free - 0.3) / 0.5, 0.0), 1.0) if abs(err) < 0.4 else 0.0
         return make_action(vx=speed / self.rp.max_speed, omega=omega / self.rp.max_omega, dribble=True)
-
-
-def heading_between_posts(world: WorldState, robot: int, field) -> bool:
-    """The robot's heading lies between the opponent goal posts and its kicker is ready."""
-    al, ar = goal_post_angles(world, robot, field)
-    return al > 0.0 > ar and bool(world.team(world.frame).kick_ready[robot])
 
 
 def govern_approach(action: np.ndarray, world: WorldState, robot: int, rp, bp, v_touch: float,

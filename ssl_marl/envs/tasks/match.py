@@ -31,6 +31,8 @@ from ..referee import NoProgressWatch, clear_robots_from, judge, kickoff_poses, 
 from .base import Scene, Task
 from .scene import scene_from_options
 
+_WORLD = np.zeros(1, np.intp)  # the single env is world 0 of a one-world NoProgressWatch
+
 if TYPE_CHECKING:  # pragma: no cover
     from ..ssl_env import SSLParallelEnv
 
@@ -97,7 +99,7 @@ class MatchTask(Task):
 
     def _restart_watch(self, env: "SSLParallelEnv") -> None:
         w = env.world_state()
-        self._watch.restart(np.array([0]), w.ball_pos[None, :], np.array([w.t]))
+        self._watch.restart(_WORLD, w.ball_pos[None, :], np.array([w.t]))
 
     def begin_step(self, env: "SSLParallelEnv") -> None:
         self.goal_for = None
@@ -114,8 +116,7 @@ class MatchTask(Task):
         if call.ball_out:
             events.append({"type": "ball_out", "t": truth.t, "placement": call.placement.tolist()})
             self._restart_play(env, call.placement)
-        elif self._watch is not None and self._watch.update(np.array([0]), truth.ball_pos[None, :],
-                                                            np.array([truth.t]))[0]:
+        elif self._watch.update(_WORLD, truth.ball_pos[None, :], np.array([truth.t]))[0]:
             place = placement_point(truth.ball_pos, f)
             events.append({"type": "no_progress", "t": truth.t, "placement": place.tolist()})
             self._restart_play(env, place)
