@@ -11,9 +11,11 @@ Usage::
     PYTHONPATH=$PWD python benchmarks/compare_episodes.py record /tmp/after
     python benchmarks/compare_episodes.py compare /tmp/before /tmp/after
 
-Compared: every field of ``episodes_detail`` (skill and tactic evaluations: success,
-times, failure reasons, returns, steps, spawns) and, for the match series, every
-field of every match except wall-clock times. Exact equality (floats included).
+Recorded: the skill evaluations (go-to-ball, aim-to-shoot, pass, receive; hand-coded and
+learned; without realism and realistic with the tracker off), the paper's tactic and
+dribble-and-shoot, the decision tasks (keepaway, attack 3v2; hand-coded and learned, no
+realism), the pass-endurance drill, and match series of STP, passing and learned-decision
+teams. Compared: every field of every episode / run / match except wall-clock times. Exact equality (floats included).
 Exit status 0 when all are identical.
 """
 
@@ -34,6 +36,22 @@ RUNS = {  # name -> ssl-marl arguments (output path appended)
                             "--workers", "1", "--quiet", "--out"] for skills in ("baseline", "learned")},
     "tactic-learned-realistic": ["eval-tactic", "--skills", "learned", "--episodes", str(EPISODES), "--seed", "20000",
                                  "--workers", "1", "--realism", "realistic", "--quiet", "--out"],
+    **{f"{skill}-{policy}{'-realistic' if real else ''}":
+       ["eval-skill", skill, "--policy", policy, "--episodes", "30", "--seed", "10000", "--workers", "1"]
+       + (["--realism", "realistic"] if real else []) + ["--quiet", "--out"]
+       for skill in ("pass", "receive") for policy in ("baseline", "learned") for real in (False, True)},
+    **{f"dribble-{skills}": ["eval-tactic", "--tactic", "dribble-and-shoot", "--skills", skills, "--episodes", "20",
+                             "--seed", "20000", "--workers", "1", "--quiet", "--out"] for skills in ("baseline", "learned")},
+    **{f"task-{task}-{policy}": ["eval-task", task, "--policy", policy, "--episodes", "30", "--workers", "1",
+                                 "--quiet", "--out"]
+       for task in ("keepaway", "attack-3v2") for policy in ("handcoded", "learned")},
+    "drill-pass-endurance": ["eval-drill", "pass-endurance", "--policy", "learned", "--receive-policy", "learned",
+                             "--runs", "2", "--duration", "30", "--seed", "10000", "--quiet", "--out"],
+    "series-passing.json": ["match", "--blue", "passing-learned", "--yellow", "baseline", "--robots", "6",
+                            "--seconds", "60", "--matches", "2", "--seed", "30000", "--workers", "1", "--quiet", "--json"],
+    "series-decision.json": ["match", "--blue", "passing-learned-decision", "--yellow", "passing-baseline",
+                             "--robots", "6", "--seconds", "60", "--matches", "2", "--seed", "30100", "--workers", "1",
+                             "--quiet", "--json"],
     "series.json": ["match", "--matches", "2", "--seed", "30000", "--workers", "1", "--quiet", "--json"],
     "series90.json": ["match", "--blue", "learned", "--yellow", "baseline", "--robots", "6", "--seconds", "90",
                       "--matches", "2", "--seed", "30000", "--workers", "1", "--quiet", "--json"],
@@ -60,11 +78,19 @@ def record(out: Path) -> None:
         subprocess.run(cmd, check=True)
 
 
+def _strip(rows: list) -> list:
+    return [{k: v for k, v in r.items() if k not in WALL} if isinstance(r, dict) else r for r in rows]
+
+
 def _load(path: Path) -> object:
+    """The per-episode (per-match, per-run) rows of one recorded run, wall-clock fields left out."""
     if path.suffix == ".json":
-        data = json.loads(path.read_text())
-        return [{k: v for k, v in m.items() if k not in WALL} for m in data["matches"]]
-    return json.loads((path / "results.json").read_text())["episodes_detail"]
+        return _strip(json.loads(path.read_text())["matches"])
+    data = json.loads((path / "results.json").read_text())
+    for key in ("episodes_detail", "runs_detail"):
+        if key in data:
+            return _strip(data[key])
+    raise KeyError(f"{path / 'results.json'}: no episodes_detail or runs_detail")
 
 
 def compare(before: Path, after: Path) -> int:
