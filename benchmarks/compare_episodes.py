@@ -21,6 +21,9 @@ Exit status 0 when all are identical.
 
 from __future__ import annotations
 
+import csv
+import gzip
+import io
 import json
 import subprocess
 import sys
@@ -82,15 +85,26 @@ def _strip(rows: list) -> list:
     return [{k: v for k, v in r.items() if k not in WALL} if isinstance(r, dict) else r for r in rows]
 
 
-def _load(path: Path) -> object:
-    """The per-episode (per-match, per-run) rows of one recorded run, wall-clock fields left out."""
-    if path.suffix == ".json":
-        return _strip(json.loads(path.read_text())["matches"])
-    data = json.loads((path / "results.json").read_text())
-    for key in ("episodes_detail", "runs_detail"):
+def _load(path: Path) -> list:
+    """The per-episode (per-match, per-run) rows of one recorded run, wall-clock fields left out.
+
+    Reads both record layouts: rows inside ``results.json`` (or the series file) under
+    ``episodes_detail`` / ``runs_detail`` / ``matches``, or in the gzip CSV that its
+    ``rows_file`` names (``ssl_marl.runners.result.write_result_folder``: every cell one JSON
+    value, an empty cell a missing field). Read here without importing ``ssl_marl``, so that
+    records of any two checkouts compare.
+    """
+    file = path / "results.json" if path.is_dir() else path
+    data = json.loads(file.read_text())
+    if "rows_file" in data:
+        text = gzip.decompress((file.parent / data["rows_file"]).read_bytes()).decode()
+        reader = csv.reader(io.StringIO(text))
+        header = next(reader, [])
+        return _strip([{c: json.loads(v) for c, v in zip(header, line) if v != ""} for line in reader])
+    for key in ("episodes_detail", "runs_detail", "matches"):
         if key in data:
             return _strip(data[key])
-    raise KeyError(f"{path / 'results.json'}: no episodes_detail or runs_detail")
+    raise KeyError(f"{file}: no episodes_detail, runs_detail, matches or rows_file")
 
 
 def compare(before: Path, after: Path) -> int:

@@ -1,9 +1,11 @@
 """Merge match-series JSON parts (``ssl-marl match --matches K --json PART``) into one series file.
 
 A long series can be played in parts (e.g. 2 matches per part, seeds S, S+2, ...), so that
-an interrupted run keeps what it finished; this writes the same file one
-``ssl-marl match --matches N --json OUT`` would: ``{"summary": ..., "matches": [...]}`` with
-the matches in seed order and the summary recomputed by ``ssl_marl.runners.result.summarize``.
+an interrupted run keeps what it finished; this writes the same record one
+``ssl-marl match --matches N --json OUT`` would (``ssl_marl.runners.result.write_series_file``:
+OUT with the summary, ``<stem>.matches.csv.gz`` with the matches in seed order,
+``<stem>.manifest.json``), the summary recomputed by ``ssl_marl.runners.result.summarize``
+and the manifest listing the parts' own manifests under ``"parts"``.
 
     python benchmarks/merge_match_series.py runs/parts/pl_vs_b_*.json --out results/series.json
 
@@ -14,7 +16,6 @@ seed or a mismatch is an error.
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from dataclasses import fields
 
@@ -24,9 +25,10 @@ SETTINGS = ("blue", "yellow", "robots", "field", "seconds", "realism", "realtime
 def load_matches(paths: list[str]) -> list[dict]:
     matches: dict[int, dict] = {}
     ref = None
+    from ssl_marl.runners.result import load_result
+
     for path in paths:
-        with open(path) as fh:
-            data = json.load(fh)
+        data = load_result(path)
         for m in data["matches"] if "matches" in data else [data]:
             settings = {k: m["config"].get(k) for k in SETTINGS}
             if ref is None:
@@ -44,14 +46,17 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("parts", nargs="+", help="series or single-match JSON files")
     ap.add_argument("--out", required=True, help="merged series JSON")
     args = ap.parse_args(argv)
-    from ssl_marl.io import atomic_write_json
-    from ssl_marl.runners.result import MatchResult, summarize
+    from ssl_marl.runners.provenance import build_manifest
+    from ssl_marl.runners.result import MatchResult, load_manifest, summarize, write_series_file
 
     dicts = load_matches(args.parts)
     names = {f.name for f in fields(MatchResult)}
     results = [MatchResult(**{k: v for k, v in d.items() if k in names}) for d in dicts]
     summary = summarize(results)
-    atomic_write_json(args.out, {"summary": summary, "matches": [r.to_dict() for r in results]})
+    manifest = build_manifest(rules={"runner": "merge_match_series", **{k: dicts[0]["config"].get(k) for k in SETTINGS}},
+                              seeds={"seeds": [d["seed"] for d in dicts]})
+    manifest["parts"] = {p: load_manifest(p) for p in args.parts}
+    write_series_file(args.out, summary, [r.to_dict() for r in results], manifest)
     print(f"{len(results)} matches (seeds {dicts[0]['seed']}-{dicts[-1]['seed']}) -> {args.out}: "
           f"W {summary['wins']} D {summary['draws']} L {summary['losses']}, "
           f"goals {summary['goals_for']}-{summary['goals_against']}")

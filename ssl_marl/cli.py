@@ -187,6 +187,8 @@ def cmd_match(args: argparse.Namespace) -> int:
     """Play one match (or a series) between two team controllers."""
     from .io import atomic_write_json, prepare_output_file
     from .runners.match import play_match
+    from .runners.provenance import build_manifest
+    from .runners.result import write_series_file
     from .runners.series import play_series
 
     if args.address is not None and args.backend != "ray":
@@ -226,7 +228,10 @@ def cmd_match(args: argparse.Namespace) -> int:
               f"({pc}), intercepted {st['passes_intercepted']}, interceptions {st['interceptions']}, "
               f"goals {st['goals']}")
     if args.json:
-        atomic_write_json(args.json, {"summary": summary, "matches": [r.to_dict() for r in results]})
+        write_series_file(args.json, summary, [r.to_dict() for r in results], build_manifest(
+            rules={"runner": "match", "blue": args.blue, "yellow": args.yellow, **common,
+                   "no_progress_s": common["env_kwargs"]["no_progress_s"]},
+            seeds={"seed": args.seed, "matches": args.matches}))
     return 0
 
 

@@ -1,6 +1,5 @@
 """Match runner, series, real-time accounting, rendering, and the tactic evaluation."""
 
-import json
 import time
 
 import numpy as np
@@ -10,7 +9,7 @@ from ssl_marl.envs import parallel_env
 from ssl_marl.io import episode_seed, wilson_interval
 from ssl_marl.runners.tactic_eval import evaluate_tactic
 from ssl_marl.runners.match import play_match
-from ssl_marl.runners.result import MatchResult, summarize
+from ssl_marl.runners.result import MatchResult, load_result, summarize
 from ssl_marl.runners.series import play_series
 from ssl_marl.plays.team import TeamController
 
@@ -127,7 +126,7 @@ def test_wilson_interval_known_values():
 
 def test_evaluate_tactic_writes_results_and_is_worker_independent(tmp_path):
     res = evaluate_tactic("baseline", episodes=4, seed=7, workers=1, out=tmp_path, progress=False, max_time_s=6.0)
-    saved = json.loads((tmp_path / "results.json").read_text())
+    saved = load_result(tmp_path)
     assert saved["success_rate"] == res["success_rate"] == res["successes"] / 4
     lo, hi = saved["success_ci95"]
     assert 0.0 <= lo <= saved["success_rate"] <= hi <= 1.0

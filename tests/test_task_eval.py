@@ -3,12 +3,12 @@ independent of the worker count, bad arguments rejected."""
 
 from __future__ import annotations
 
-import json
 
 import numpy as np
 import pytest
 
 from ssl_marl.cli import main
+from ssl_marl.runners.result import load_result
 from ssl_marl.runners.task_eval import evaluate_task, t_interval
 
 
@@ -17,7 +17,7 @@ def _run(tmp_path, name, workers):
     rc = main(["eval-task", "keepaway", "--policy", "random", "--episodes", "2", "--seed", "7",
                "--workers", str(workers), "--out", str(out), "--quiet"])
     assert rc == 0
-    return json.loads((out / "results.json").read_text()), out
+    return load_result(out), out
 
 
 def test_cli_run_and_workers_do_not_change_results(tmp_path, capsys):

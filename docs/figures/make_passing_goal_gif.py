@@ -2,7 +2,7 @@
 
 Usage (after a series written with ``ssl-marl match ... --json FILE``)::
 
-    python docs/figures/make_passing_goal_gif.py results/match_passing_learned_vs_baseline.json \
+    python docs/figures/make_passing_goal_gif.py results/match_passing_learned_vs_baseline_snap.json \
         --out docs/figures/passing_goal.gif
 
 It replays, in order, the series' matches in which ``--team`` scored (step mode is
@@ -16,7 +16,6 @@ seconds after the goal.
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 
 import numpy as np
@@ -100,8 +99,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--width", type=int, default=360, help="frame width (px)")
     ap.add_argument("--fps", type=float, default=12.0, help="frames per simulated second")
     args = ap.parse_args(argv)
-    with open(args.series) as fh:
-        series = json.load(fh)
+    from ssl_marl.runners.result import load_result
+
+    series = load_result(args.series)
     for match in series["matches"]:
         if not any(g["team"] == args.team for g in match["goals"]):
             continue

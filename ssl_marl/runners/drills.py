@@ -36,10 +36,12 @@ from typing import Any
 import numpy as np
 
 from ..envs.ssl_env import SSLParallelEnv
-from ..io import atomic_write_json, episode_seed, wilson_interval
+from ..io import episode_seed, wilson_interval
 from ..physics.state import WorldState
 from ..skills.base import SkillStatus, make_action
 from ..skills.baseline import MoveToPoint
+from .provenance import build_manifest
+from .result import write_result_folder
 
 DRILLS = ("pass-endurance",)
 AGENTS = ("blue_0", "blue_1")
@@ -186,7 +188,8 @@ def evaluate_drill(drill: str = "pass-endurance", policy: str = "baseline", runs
                    receive_policy: str | None = None) -> dict[str, Any]:
     """``runs`` drill runs (run ``i`` seeded with ``episode_seed(seed, i)``); the summary
     (completion rate with its 95 % Wilson interval, passes per minute, losses by reason)
-    is written to ``out/results.json`` when ``out`` is given."""
+    is written to the result folder ``out`` when given
+    (:func:`~ssl_marl.runners.result.write_result_folder`)."""
     if drill not in DRILLS:
         raise ValueError(f"unknown drill {drill!r}; expected one of {DRILLS}")
     if not isinstance(runs, int) or runs < 1:
@@ -211,5 +214,8 @@ def evaluate_drill(drill: str = "pass-endurance", policy: str = "baseline", runs
                "passes_per_minute": comp / (runs * duration_s / 60.0), "losses": dict(losses),
                "wall_time_s": time.perf_counter() - t0, "runs_detail": results}
     if out is not None:
-        atomic_write_json(Path(out) / "results.json", summary)
+        write_result_folder(out, summary, build_manifest(
+            rules={"runner": "eval-drill", "drill": drill, "policy": policy, "receive_policy": receive_policy,
+                   "realism": realism, "field": field, "duration_s": duration_s},
+            seeds={"seed": seed, "runs": runs}))
     return summary

@@ -1,8 +1,16 @@
-"""The outcome of a match and the summary of a series (plain data, JSON-ready)."""
+"""The outcome of a match, the summary of a series (plain data, JSON-ready), and how
+result records are written to and read from disk."""
 
 from __future__ import annotations
 
+import csv
+import gzip
+import io
+import json
+import os
 from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -76,3 +84,107 @@ def summarize(results: list[MatchResult]) -> dict:
             "missed_deadlines_yellow": sum(r.missed_deadlines["yellow"] for r in results),
             "wall_time_s_total": float(sum(r.wall_time_s for r in results)),
             "stats": summarize_stats([r.stats for r in results if r.stats])}
+
+
+# ------------------------------------------------------------------ result records on disk
+#
+# A result folder holds ``results.json`` (the summary), ``manifest.json`` (provenance,
+# :mod:`.provenance`) and the per-episode (per-run, per-match) rows as a gzip CSV whose
+# name ``results.json`` gives under ``rows_file``. Every CSV cell is one JSON value
+# (floats in their shortest exact form, lists and dicts as JSON); an empty cell means the
+# row has no such field, so the rows load back equal to what was written.
+
+ROWS_FILES = {"episodes_detail": "episodes.csv.gz", "runs_detail": "runs.csv.gz", "matches": "matches.csv.gz"}
+
+
+def encode_rows(rows: list[dict[str, Any]]) -> bytes:
+    """Rows (dicts of JSON values) as gzip CSV bytes; the header is every key in order of
+    first appearance; the bytes do not depend on the date (gzip mtime 0)."""
+    columns: dict[str, None] = {}
+    for r in rows:
+        columns.update(dict.fromkeys(r))
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(columns)
+    for r in rows:
+        w.writerow(["" if c not in r else json.dumps(r[c], default=_json_default, allow_nan=True) for c in columns])
+    return gzip.compress(buf.getvalue().encode(), compresslevel=9, mtime=0)
+
+
+def decode_rows(data: bytes) -> list[dict[str, Any]]:
+    """Inverse of :func:`encode_rows`."""
+    reader = csv.reader(io.StringIO(gzip.decompress(data).decode()))
+    header = next(reader, [])
+    return [{c: json.loads(v) for c, v in zip(header, line) if v != ""} for line in reader]
+
+
+def write_result_folder(out: str | os.PathLike, summary: dict[str, Any], manifest: dict[str, Any]) -> Path:
+    """Write ``out/results.json`` (``summary`` without its row list), the rows file and
+    ``out/manifest.json``, each atomically; returns the folder. The row list is the
+    summary's ``episodes_detail``, ``runs_detail`` or ``matches`` entry (:data:`ROWS_FILES`)."""
+    from ..io import atomic_write_bytes, atomic_write_json
+    from .provenance import MANIFEST_FILE
+
+    out = Path(out)
+    head, key, rows = _split_rows(summary)
+    if key is not None:
+        head["rows_key"], head["rows_file"] = key, ROWS_FILES[key]
+        atomic_write_bytes(out / ROWS_FILES[key], encode_rows(rows))
+    atomic_write_json(out / "results.json", head)
+    atomic_write_json(out / MANIFEST_FILE, manifest)
+    return out
+
+
+def write_series_file(path: str | os.PathLike, summary: dict[str, Any], matches: list[dict[str, Any]],
+                      manifest: dict[str, Any]) -> Path:
+    """A match series as ``path`` (JSON: ``summary``, ``rows_file``, ``manifest_file``)
+    with ``<stem>.matches.csv.gz`` and ``<stem>.manifest.json`` beside it, each atomically."""
+    from ..io import atomic_write_bytes, atomic_write_json
+
+    path = Path(path)
+    stem = path.name[:-5] if path.name.lower().endswith(".json") else path.name
+    rows_file, manifest_file = f"{stem}.matches.csv.gz", f"{stem}.manifest.json"
+    atomic_write_bytes(path.parent / rows_file, encode_rows(matches))
+    atomic_write_json(path.parent / manifest_file, manifest)
+    atomic_write_json(path, {"summary": summary, "rows_key": "matches", "rows_file": rows_file,
+                             "manifest_file": manifest_file})
+    return path
+
+
+def load_result(path: str | os.PathLike) -> dict[str, Any]:
+    """A result folder (or a series file) as one dict with its rows back under their key;
+    records that keep the rows inside ``results.json`` load as they are."""
+    path = Path(path)
+    file = path / "results.json" if path.is_dir() else path
+    data = json.loads(file.read_text())
+    if "rows_file" in data:
+        data[data.pop("rows_key")] = decode_rows((file.parent / data.pop("rows_file")).read_bytes())
+        data.pop("manifest_file", None)
+    return data
+
+
+def load_manifest(path: str | os.PathLike) -> dict[str, Any] | None:
+    """The manifest of a result folder or series file (None when it has none)."""
+    from .provenance import MANIFEST_FILE
+
+    path = Path(path)
+    if path.is_dir():
+        f = path / MANIFEST_FILE
+    else:
+        f = path.parent / json.loads(path.read_text()).get("manifest_file", f"{path.stem}.manifest.json")
+    return json.loads(f.read_text()) if f.exists() else None
+
+
+def _split_rows(summary: dict[str, Any]) -> tuple[dict[str, Any], str | None, list]:
+    for key in ROWS_FILES:
+        if key in summary:
+            return {k: v for k, v in summary.items() if k != key}, key, summary[key]
+    return dict(summary), None, []
+
+
+def _json_default(o: Any) -> Any:
+    if isinstance(o, np.generic):
+        return o.item()
+    if isinstance(o, np.ndarray):
+        return o.tolist()
+    raise TypeError(f"not JSON serialisable: {type(o).__name__}")

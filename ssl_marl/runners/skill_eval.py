@@ -15,9 +15,11 @@ from typing import Any
 
 import numpy as np
 
-from ..io import atomic_write_json, episode_seed, time_summary, wilson_interval
+from ..io import episode_seed, time_summary, wilson_interval
 from .plots import write_time_histogram
 from .pool import chunk_indices, run_pool, validate_backend
+from .provenance import build_manifest
+from .result import write_result_folder
 
 
 def _skill_name(task: str) -> str:
@@ -129,7 +131,9 @@ def evaluate_skill(task: str, policy: str = "baseline", episodes: int = 1000, se
     }
     if out is not None:
         out = Path(out)
-        atomic_write_json(out / "results.json", summary)
+        write_result_folder(out, summary, build_manifest(
+            rules={"runner": "eval-skill", "skill": task, "policy": policy, **env_kwargs},
+            seeds={"seed": seed, "episodes": episodes}, actor_files=[checkpoint]))
         write_time_histogram(times, out / "time_hist.png",
                              title=f"{task}, {policy}: time to success ({n_succ}/{episodes} succeeded)")
     return summary

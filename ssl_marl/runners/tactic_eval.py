@@ -14,13 +14,12 @@ episode count, never on the number of worker processes or the backend (local poo
 or Ray, :mod:`~ssl_marl.runners.pool`). Positions are uniform over
 the playing area shrunk by 0.1 m; the robot starts at least 0.3 m from the ball.
 
-Outputs in ``out``: ``results.json`` (written atomically) and ``time_hist.png``
-(histogram of the successful episodes' times, like the paper's Figs. 4-5).
+Outputs in ``out``: ``results.json``, ``episodes.csv.gz`` and ``manifest.json``
+(:func:`~ssl_marl.runners.result.write_result_folder`) and ``time_hist.png`` (histogram of the successful episodes' times, like the paper's Figs. 4-5).
 """
 
 from __future__ import annotations
 
-import json
 import math
 import os
 import time
@@ -30,9 +29,11 @@ from typing import Any
 import numpy as np
 
 from ..envs.deadline import ControlDeadline
-from ..io import atomic_write_bytes, episode_seed, time_summary, wilson_interval
+from ..io import episode_seed, time_summary, wilson_interval
 from .plots import write_time_histogram
 from .pool import chunk_indices, run_pool, validate_backend
+from .provenance import build_manifest
+from .result import write_result_folder
 
 PAPER_RESULT = {"success_rate": 0.755, "time_mean_s": 7.49, "time_std_s": 3.87, "episodes": 500}
 SCENE_MARGIN_M = 0.1
@@ -195,7 +196,9 @@ def evaluate_tactic(skills: Any = "learned", episodes: int = 500, seed: int = 0,
     if out is not None:
         d = Path(out)
         d.mkdir(parents=True, exist_ok=True)
-        atomic_write_bytes(d / "results.json", (json.dumps(results, indent=2) + "\n").encode())
+        write_result_folder(d, results, build_manifest(
+            rules={"runner": "eval-tactic", "tactic": tactic, "skills": results["skills"], **results["config"]},
+            seeds={"seed": seed, "episodes": episodes}))
         ts = results["time_s"]
         title = (f"{tactic} ({results['skills']}), {field_name}: success {k}/{episodes} "
                  f"= {100 * k / episodes:.1f} %" + (f", {ts['mean']:.2f} \u00b1 {ts['std']:.2f} s" if k else ""))

@@ -15,7 +15,8 @@ duration, decisions, option counts). Throughput (``decisions_per_s``,
 ``sim_s_per_s``: simulated seconds per wall second, summed over workers' wall time) is
 reported but not part of the deterministic results.
 
-Outputs in ``out``: ``results.json`` (atomic) and ``duration_hist.png`` (histogram of the
+Outputs in ``out``: ``results.json``, ``episodes.csv.gz`` and ``manifest.json``
+(:func:`~ssl_marl.runners.result.write_result_folder`) and ``duration_hist.png`` (histogram of the
 episode durations, :func:`ssl_marl.runners.plots.write_time_histogram`).
 """
 
@@ -30,9 +31,11 @@ from typing import Any
 
 import numpy as np
 
-from ..io import atomic_write_json, time_summary, wilson_interval
+from ..io import time_summary, wilson_interval
 from .plots import write_time_histogram
 from .pool import chunk_indices, run_pool, validate_backend
+from .provenance import build_manifest
+from .result import write_result_folder
 
 TASK_SCORES = {"keepaway": "duration", "attack-3v2": "goal"}
 DEFAULT_SEEDS = {"keepaway": 40_000, "attack-3v2": 41_000}
@@ -132,10 +135,13 @@ def task_results(task: str, policy: str, eps: list[dict], *, seed: int, actor: s
 
 
 def write_task_results(results: dict, out: str | os.PathLike) -> None:
-    """``out/results.json`` (atomic) and ``out/duration_hist.png`` for :func:`task_results`."""
+    """The result folder (:func:`~ssl_marl.runners.result.write_result_folder`) and
+    ``out/duration_hist.png`` for :func:`task_results`."""
     d = Path(out)
     d.mkdir(parents=True, exist_ok=True)
-    atomic_write_json(d / "results.json", results)
+    write_result_folder(d, results, build_manifest(
+        rules={"runner": "eval-task", "task": results["task"], "policy": results["policy"], **results["config"]},
+        seeds={"seed": results["seed"], "episodes": results["episodes"]}, actor_files=[results["actor"]]))
     task, policy, n = results["task"], results["policy"], results["episodes"]
     realism = results["config"].get("realism", "none")
     if TASK_SCORES[task] == "duration":
