@@ -1,113 +1,143 @@
-"""Results tables from evaluation JSON files (never hand-typed numbers).
+"""Every table of docs/RESULTS.md, generated from the result records under ``results/``.
 
-    python -m train.report [--results results] [--out docs/results_tables.md]
+    python -m train.report [--results results] [--doc docs/RESULTS.md] [--check] [--print NAME]
 
-Reads every ``results/*/results.json`` written by ``ssl-marl eval-skill`` and
-``ssl-marl eval-tactic`` (and ``results/match_*.json`` series from ``ssl-marl match --json``,
-``results/training/*/selection.json`` from ``python -m train.select``)
-and writes markdown tables, printing them too.
+Each table sits in the doc between ``<!-- table:NAME -->`` and ``<!-- /table:NAME -->``;
+this rewrites what lies between every pair of markers from :data:`TABLES` (the row
+builders are in :mod:`train.report_tables`). ``--check`` changes nothing and exits 1
+naming the tables whose text differs from what the records give (and any marker
+without a table, or table without a marker). A result goes into the doc by adding its
+record under ``results/`` and its name to the table's entry here.
 """
 
 from __future__ import annotations
 
 import argparse
-import json
+import re
+import sys
 from pathlib import Path
+from typing import Callable
 
 from ssl_marl.io import atomic_write_bytes
+from train import report_tables as t
+
+SKILLS_PAPER = ["go_to_ball_baseline", "go_to_ball_baseline_realistic", "go_to_ball_learned",
+                "go_to_ball_learned_realistic", "aim_to_shoot_baseline", "aim_to_shoot_baseline_realistic",
+                "aim_to_shoot_learned", "aim_to_shoot_learned_realistic"]
+SKILLS_TRACKER = ["go_to_ball_baseline_div_a", "go_to_ball_learned_div_a", "go_to_ball_learned_realistic_tracker",
+                  "go_to_ball_learned_realistic_tracker_div_a", "aim_to_shoot_learned_realistic_tracker"]
+SKILLS_RANDOMIZED = ["go_to_ball_baseline_randomized_tracker", "go_to_ball_learned_randomized_tracker",
+                     "go_to_ball_learned_randomized_tracker_div_a", "aim_to_shoot_baseline_randomized_tracker",
+                     "aim_to_shoot_learned_randomized_tracker"]
+PASSING_SKILLS = ["pass_baseline", "pass_baseline_realistic", "pass_learned", "pass_learned_realistic",
+                  "receive_baseline", "receive_baseline_realistic", "receive_baseline_realistic_tracker",
+                  "receive_learned", "receive_learned_realistic", "receive_baseline_div_a", "receive_learned_div_a"]
+PASS_ENDURANCE = ["pass_endurance_baseline", "pass_endurance_baseline_realistic", "pass_endurance_learned_pass",
+                  "pass_endurance_learned_pass_realistic"]
+TACTIC = ["tactic_baseline", "tactic_baseline_realistic", "tactic_learned", "tactic_learned_realistic"]
+DRIBBLE = [f"tactic_dribble_{s}_{r}_{f}" for s in ("baseline", "learned") for r in ("none", "realistic")
+           for f in ("div_b", "div_a")]
+TRACKER_PAIRS = [("go-to-ball, baseline", "go_to_ball_baseline", "go_to_ball_baseline"),
+                 ("aim-to-shoot, baseline", "aim_to_shoot_baseline", "aim_to_shoot_baseline"),
+                 ("aim-to-shoot, learned", "aim_to_shoot_learned", "aim_to_shoot_learned"),
+                 ("go-to-ball-and-shoot, baseline skills", "tactic_baseline", "tactic_baseline")]
+PASSING_SERIES = ["match_passing_learned_vs_baseline_snap", "match_passing_learned_vs_passing_learned_snap",
+                  "match_passing_learned_vs_passing_baseline_snap"]
+KEEPAWAY = [("random", "keepaway_random"), ("always-hold", "keepaway_always-hold"),
+            ("hand-coded", "keepaway_handcoded"), ("learned (shipped `keepaway.pt`, MAPPO seed 1)", "keepaway_learned")]
+ATTACK = [("hand-coded (cost decision, shot threshold 0.25)", "attack_3v2_handcoded_snap"),
+          ("learned (shipped `attack_3v2.pt`)", "attack_3v2_learned_snap")]
+
+TABLES: dict[str, Callable[[Path], list[str]]] = {
+    "skills_paper": lambda r: t.skills(r, SKILLS_PAPER),
+    "skills_tracker_div_a": lambda r: t.skills(r, SKILLS_TRACKER),
+    "skills_randomized": lambda r: t.skills(r, SKILLS_RANDOMIZED),
+    "selection": lambda r: t.selection(r, ["aim_to_shoot_full_s0", "go_to_ball_fast_s1", "go_to_ball_s0",
+                                           "gtb_both_s0"]),
+    "td3_vs_ddpg": lambda r: t.training_compare(r, ["go_to_ball_fast_s1", "go_to_ball_td3_s1"], 10_000, 80_000),
+    "go_to_ball_fast": lambda r: t.training_compare(r, ["go_to_ball_s0", "gtb_fast_s0", "gtb_fast_u025_s0",
+                                                       "gtb_fast_u025_t2_s0"], 40_000, 200_010),
+    "go_to_ball_both_fields": lambda r: t.selection_by_field(r, "gtb_both_s0"),
+    "tactic": lambda r: t.tactics(r, TACTIC),
+    "dribble": lambda r: t.tactics(r, DRIBBLE),
+    "tracker_errors": t.tracker_errors,
+    "tracker_pairs": lambda r: t.tracker_pairs(r, TRACKER_PAIRS),
+    "passing_skills": lambda r: t.skills(r, PASSING_SKILLS),
+    "pass_endurance": lambda r: t.drills(r, PASS_ENDURANCE),
+    "passing_series": lambda r: t.series(r, PASSING_SERIES),
+    "passing_contested_kick": lambda r: t.tuning(r, [("`contested_kick` on", "passing_contested_kick.json",
+                                                      "contested_kick_on"),
+                                                     ("`contested_kick` off (the default)",
+                                                      "passing_contested_kick.json", "contested_kick_off")]),
+    "passing_skill_swaps": lambda r: t.tuning(r, [
+        ("all learned (`passing-learned`)", "ablation_all_learned.json", None),
+        ("go-to-ball hand-coded, others learned", "ablation_gtb_baseline.json", None),
+        ("pass and receive hand-coded, others learned", "ablation_pass_receive_baseline.json", None),
+        ("all learned, 40 more matches", "learned_vs_passing_baseline_45320.json", None),
+        ("all learned, self-play with the coordinator's counters", "selfplay_pass_counters.json", None)]),
+    "keepaway": lambda r: t.keepaway(r, KEEPAWAY),
+    "attack": lambda r: t.attack(r, ATTACK),
+    "decision_tasks_realistic": lambda r: t.decision_tasks(r, "*_realistic*"),
+    "mappo_keepaway": lambda r: t.mappo_runs(r, [("mappo_keepaway_s0", "keepaway_learned_s0"),
+                                                 ("mappo_keepaway_s1", "keepaway_learned"),
+                                                 ("mappo_keepaway_s2", "keepaway_learned_s2")],
+                                             "keepaway_handcoded", "duration"),
+    "mappo_attack": lambda r: t.mappo_runs(r, [(f"mappo_attack{k}_s{s}", "") for k in ("-3v2", "_bc")
+                                               for s in (0, 1, 2)], None, "goal"),
+    "pass_and_score": t.pass_and_score,
+}
+
+MARKER = re.compile(r"(<!-- table:([\w-]+) -->\n)(.*?)(<!-- /table:\2 -->)", re.S)
 
 
-def _fmt_time(t: dict) -> str:
-    if not t or t.get("mean") is None:
-        return "n/a"
-    return f"{t['mean']:.2f} +/- {t['std']:.2f}"
+def render(name: str, results: Path) -> str:
+    return "\n".join(TABLES[name](results)) + "\n"
 
 
-def skill_rows(results: Path) -> list[str]:
-    rows = ["| run | skill | policy | realism | episodes | success [95% CI] | time to success (s) | failures | paper |",
-            "|---|---|---|---|---|---|---|---|---|"]
-    for f in sorted(results.glob("*/results.json")):
-        r = json.loads(f.read_text())
-        if "skill" not in r:
-            continue
-        lo, hi = r["success_ci95"]
-        rows.append(f"| `{f.parent.name}` | {r['skill']} | {r['policy']} | {r['config'].get('realism', 'none')} | "
-                    f"{r['episodes']} | {r['success_rate']:.3f} [{lo:.3f}, {hi:.3f}] | {_fmt_time(r['time_to_success_s'])} | "
-                    f"{r['failure_reasons'] or '-'} | {r.get('paper_success_rate', '')} |")
-    return rows
+def regenerate(doc_text: str, results: Path) -> tuple[str, list[str]]:
+    """The doc with every marked table regenerated, and the problems found: names of
+    tables whose text changed, markers without a table, tables without a marker."""
+    changed: list[str] = []
+    seen: set[str] = set()
+
+    def fill(m: re.Match) -> str:
+        name = m.group(2)
+        seen.add(name)
+        if name not in TABLES:
+            changed.append(f"{name} (no such table)")
+            return m.group(0)
+        body = render(name, results)
+        if body != m.group(3):
+            changed.append(name)
+        return m.group(1) + body + m.group(4)
+
+    text = MARKER.sub(fill, doc_text)
+    changed += [f"{n} (no marker in the doc)" for n in TABLES if n not in seen]
+    return text, changed
 
 
-def tactic_rows(results: Path) -> list[str]:
-    rows = ["| run | skills | realism | episodes | success [95% CI] | time to goal (s) | failures | paper |",
-            "|---|---|---|---|---|---|---|---|"]
-    for f in sorted(results.glob("*/results.json")):
-        r = json.loads(f.read_text())
-        if "protocol" not in r or "skills" not in r or r.get("tactic", "go-to-ball-and-shoot") != "go-to-ball-and-shoot":
-            continue  # other tactics have their own table
-        lo, hi = r["success_ci95"]
-        rows.append(f"| `{f.parent.name}` | {r['skills']} | {r['config'].get('realism', 'none')} | {r['episodes']} | "
-                    f"{r['success_rate']:.3f} [{lo:.3f}, {hi:.3f}] | {_fmt_time(r['time_s'])} | "
-                    f"{r['failures']} | 0.755, 7.49 +/- 3.87 |")
-    return rows
-
-
-def dribble_rows(results: Path) -> list[str]:
-    """Rows for the dribble-and-shoot runs (``results/tactic_dribble_*/results.json``, issue 13)."""
-    rows = ["| run | skills | realism | tracker | field | episodes | success [95% CI] | time to goal (s) | failures | "
-            "go-to-ball stalls (episodes) | missed deadlines |", "|---|---|---|---|---|---|---|---|---|---|---|"]
-    for f in sorted(results.glob("tactic_dribble_*/results.json")):
-        r = json.loads(f.read_text())
-        c = r["config"]
-        lo, hi = r["success_ci95"]
-        missed = r["missed_deadlines"] if c.get("realtime") else "-"
-        rows.append(f"| `{f.parent.name}` | {r['skills']} | {c.get('realism', 'none')} | "
-                    f"{'on' if c.get('tracker') else 'off'} | {c.get('field')} | {r['episodes']} | "
-                    f"{r['success_rate']:.3f} [{lo:.3f}, {hi:.3f}] | {_fmt_time(r['time_s'])} | {r['failures']} | "
-                    f"{r.get('go_to_ball_stalls', '-')} ({r.get('episodes_with_stall', '-')}) | {missed} |")
-    return rows
-
-
-def match_rows(results: Path) -> list[str]:
-    rows = ["| series | blue | yellow | matches | W-D-L (blue) | goals for-against | shots/match (blue, yellow) | "
-            "possession (blue, yellow) |", "|---|---|---|---|---|---|---|---|"]
-    for f in sorted(results.glob("match_*.json")):
-        s = json.loads(f.read_text())["summary"]
-        rows.append(f"| `{f.stem}` | {s['blue']} | {s['yellow']} | {s['matches']} | {s['wins']}-{s['draws']}-{s['losses']} | "
-                    f"{s['goals_for']}-{s['goals_against']} | {s['shots_blue_mean']:.1f}, {s['shots_yellow_mean']:.1f} | "
-                    f"{100 * s['possession_blue_mean']:.0f}%, {100 * s['possession_yellow_mean']:.0f}% |")
-    return rows
-
-
-def selection_rows(results: Path) -> list[str]:
-    """One row per ``results/training/<run>/selection.json`` written by ``python -m train.select``."""
-    rows = ["| run | validation seed x episodes | success per checkpoint (samples: rate) | chosen |",
-            "|---|---|---|---|"]
-    for f in sorted(results.glob("training/*/selection.json")):
-        s = json.loads(f.read_text())
-        cands = ", ".join(f"{c['samples'] // 1000}k: {c['success_rate']:.3f}" for c in s["candidates"])
-        rows.append(f"| `{f.parent.name}` | {s['validation_seed']} x {s['episodes']} | {cands} | "
-                    f"{s['best']['samples'] // 1000}k |")
-    return rows
-
-
-def main(argv: list[str] | None = None) -> str:
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--results", default="results", help="folder of evaluation outputs (default results)")
-    p.add_argument("--out", default=None, help="also write the markdown to this file")
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(prog="python -m train.report", description=__doc__,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--results", default="results", type=Path, help="folder of result records (default results)")
+    p.add_argument("--doc", default="docs/RESULTS.md", type=Path, help="document to fill (default docs/RESULTS.md)")
+    p.add_argument("--check", action="store_true", help="change nothing; exit 1 if a table would change")
+    p.add_argument("--print", dest="show", metavar="NAME", choices=sorted(TABLES), help="print one table and exit")
     a = p.parse_args(argv)
-    res = Path(a.results)
-    text = "\n".join(["### Skills (ssl-marl eval-skill)", "", *skill_rows(res), "",
-                      "### Tactic (ssl-marl eval-tactic)", "", *tactic_rows(res), "",
-                      "### Dribble-and-shoot (ssl-marl eval-tactic --tactic dribble-and-shoot)", "",
-                      *dribble_rows(res), "",
-                      "### Match series (ssl-marl match --matches K --json results/match_NAME.json)", "",
-                      *match_rows(res), "",
-                      "### Checkpoint selection (python -m train.select RUN)", "", *selection_rows(res), ""])
-    print(text)
-    if a.out:
-        atomic_write_bytes(a.out, text.encode())
-    return text
+    if a.show:
+        print(render(a.show, a.results), end="")
+        return 0
+    old = a.doc.read_text()
+    new, changed = regenerate(old, a.results)
+    if a.check:
+        for c in changed:
+            print(f"{a.doc}: table {c} differs from the records")
+        return 1 if changed else 0
+    if new != old:
+        atomic_write_bytes(a.doc, new.encode())
+    print(f"{a.doc}: {len(TABLES)} tables" + (f", rewritten: {', '.join(changed)}" if changed else ", unchanged"))
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())
