@@ -65,7 +65,8 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def table_row(name: str, s: dict) -> str:
-    """The docs/RESULTS.md "Passing game" table row of a series summary."""
+    """A markdown row of a series summary (docs/RESULTS.md's series tables come from
+    ``python -m train.report``)."""
     n = max(s["matches"], 1)
     st = s["stats"]
 
