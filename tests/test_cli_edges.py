@@ -28,7 +28,7 @@ def test_bench_help_reaches_the_benchmark(argv, capsys):
 
 
 def test_bench_options_reach_the_benchmark(capsys, monkeypatch):
-    import ssl_marl.bench as bench
+    import ssl_marl.cli.bench as bench
 
     calls = []
     monkeypatch.setattr(bench, "bench_env", lambda cfg, steps, resets: calls.append((cfg, steps, resets)) or {})
