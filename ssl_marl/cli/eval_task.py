@@ -13,7 +13,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                               description="Episodes of a decision-level multi-agent task (ssl_marl/decisions) with "
                                           "one policy for all learning agents; episode i uses seed SEED+i, so "
                                           "results do not depend on --workers. Writes OUT/results.json (keepaway: "
-                                          "mean_duration_s, attack-3v2: goal_rate, with 95%% intervals, outcomes, "
+                                          "mean_duration_s, attack-3v2: goal_rate, with 95% intervals, outcomes, "
                                           "every episode) and OUT/duration_hist.png.")
     k.add_argument("task", choices=("keepaway", "attack-3v2"), help="the decision task")
     k.add_argument("--policy", choices=("learned", "handcoded", "random", "always-hold"), default="handcoded",
