@@ -29,8 +29,8 @@ from .options import OUTPUT_RULE
 COMMANDS = (demo, match, eval_skill, eval_drill, eval_tactic, eval_task, bench, train, export_onnx)
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The ``ssl-marl`` parser: ``--version`` and one subcommand per module of :data:`COMMANDS`."""
+def _parser_and_commands() -> tuple[argparse.ArgumentParser, dict[str, argparse.ArgumentParser]]:
+    """The ``ssl-marl`` parser and its subparsers by command name."""
     from .. import __version__
 
     p = argparse.ArgumentParser(prog="ssl-marl", description="RoboCup SSL simulator, learned skills and STP matches.",
@@ -39,20 +39,19 @@ def build_parser() -> argparse.ArgumentParser:
     sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for command in COMMANDS:
         command.register(sub)
-    return p
+    return p, sub.choices
 
 
-def _subparsers(parser: argparse.ArgumentParser) -> dict[str, argparse.ArgumentParser]:
-    """Command name -> its subparser."""
-    action = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
-    return action.choices
+def build_parser() -> argparse.ArgumentParser:
+    """The ``ssl-marl`` parser: ``--version`` and one subcommand per module of :data:`COMMANDS`."""
+    return _parser_and_commands()[0]
 
 
 def main(argv: list[str] | None = None) -> int:
     """Run ``ssl-marl`` with ``argv`` (default ``sys.argv[1:]``); return the exit status."""
     argv = list(sys.argv[1:] if argv is None else argv)
-    parser = build_parser()
-    command = _subparsers(parser).get(argv[0]) if argv else None
+    parser, commands = _parser_and_commands()
+    command = commands.get(argv[0]) if argv else None
     if command is not None and not command.add_help:  # the command owns its options (and --help): forward them
         rest = argv[1:][1:] if argv[1:2] == ["--"] else argv[1:]
         args = argparse.Namespace(command=argv[0], rest=rest, handler=command.get_default("handler"))
