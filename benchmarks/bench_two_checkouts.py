@@ -2,7 +2,7 @@
 
     python benchmarks/bench_two_checkouts.py OLD_ROOT NEW_ROOT [--steps 3000] [--rounds 3]
 
-Runs ``ssl_marl.bench.bench_env`` (random actions, 60 Hz) for 1v0 Division B and 6v6
+Runs ``ssl_marl.cli.bench.bench_env`` (random actions, 60 Hz) for 1v0 Division B and 6v6
 Division B, and the go-to-ball task env (baseline skill acting) in a fresh process per
 measurement, alternating OLD and NEW for ``rounds`` rounds so both see the same machine
 load; prints JSON with the median steps/s of each and the ratio NEW / OLD.
@@ -18,7 +18,10 @@ import sys
 
 PROBE = r"""
 import json, sys, time
-from ssl_marl.bench import CONFIGS, bench_env
+try:
+    from ssl_marl.cli.bench import CONFIGS, bench_env
+except ImportError:  # a checkout whose benchmark module is ssl_marl.bench
+    from ssl_marl.bench import CONFIGS, bench_env
 steps = int(sys.argv[1])
 out = {name: bench_env(CONFIGS[name], steps, 5)["steps_per_s"] for name in ("1v0_div_b", "6v6_div_b")}
 from ssl_marl.skills import make_skill

@@ -4,7 +4,7 @@
 
 Renders a 10 s 6v6 Division B episode with random (non-kicking) actions, seed 0, 480 px,
 every 6th control step (10 frames per simulated second), then writes the same frames
-with ``ssl_marl.envs.render.write_animation`` (all frames in memory, Pillow
+with ``ssl_marl.envs.animation.write_animation`` (all frames in memory, Pillow
 ``save_all``) and with ``ssl_marl.runners.video.VideoSink`` (one frame at a time), and
 prints file sizes, write times and the mean absolute error of the decoded frames
 against the rendered ones (0-255 scale). Peak memory is measured separately with
@@ -29,7 +29,7 @@ def main() -> None:
     import imageio.v3 as iio
 
     from ssl_marl.envs import parallel_env
-    from ssl_marl.envs.render import write_animation
+    from ssl_marl.envs.animation import write_animation
     from ssl_marl.runners.video import VideoSink
 
     env = parallel_env(n_blue=6, n_yellow=6, render_mode="rgb_array", render_width_px=480, max_time_s=10)

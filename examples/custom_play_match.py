@@ -56,7 +56,7 @@ def main(argv: list[str] | None = None) -> dict:
             frames.append(env.render())
     env.close()
     if args.render:
-        from ssl_marl.envs.render import write_animation
+        from ssl_marl.envs.animation import write_animation
 
         write_animation(frames, args.render, fps=10)
     ball = np.asarray(env.world_state().ball_pos)

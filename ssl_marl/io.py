@@ -1,4 +1,11 @@
-"""Small shared helpers: atomic file writes and summary statistics."""
+"""Shared helpers of the runners, the CLI and the trainer.
+
+* Files: atomic writes (bytes, JSON, matplotlib figures: a temporary file in the
+  same folder, then a rename) and the one rule for output paths
+  (:func:`prepare_output_file`, :func:`prepare_output_dir`), checked before long work.
+* Statistics of evaluations: the Wilson interval of a rate, summaries of times, and
+  per-episode seeds that do not depend on the number of workers.
+"""
 
 from __future__ import annotations
 
@@ -75,6 +82,7 @@ def _make_folder(folder: Path, what: str, target: Path) -> None:
 
 
 def atomic_write_json(path: str | os.PathLike, obj: Any) -> None:
+    """Write ``obj`` as indented JSON to ``path`` atomically (numpy values and paths become JSON values)."""
     atomic_write_bytes(path, (json.dumps(obj, indent=2, sort_keys=False, default=_json_default) + "\n").encode())
 
 

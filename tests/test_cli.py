@@ -60,3 +60,35 @@ def test_match_no_progress_option_reaches_the_referee(flag, expected, tmp_path):
     assert res["config"]["no_progress_s"] == expected
     # idle robots, ball resting at the centre mark: called after 4 s only when the call is on
     assert any(e["type"] == "no_progress" for e in res["stats"]["events"]) is (expected is not None)
+
+
+def test_every_command_module_registers_one_documented_command_with_its_handler():
+    """The interface of a command module: ``register(subparsers)`` adds one subparser whose
+    every option has help text and whose ``handler`` default is the module's ``run``."""
+    import argparse
+
+    from ssl_marl.cli import COMMANDS
+
+    names = []
+    for module in COMMANDS:
+        sub = argparse.ArgumentParser().add_subparsers()
+        module.register(sub)
+        assert len(sub.choices) == 1, module.__name__
+        (name, parser), = sub.choices.items()
+        names.append(name)
+        assert parser.get_default("handler") is module.run, name
+        assert sub._choices_actions[0].help, name  # the line in ssl-marl --help
+        undocumented = [a.dest for a in parser._actions if not a.help and not isinstance(a, argparse._HelpAction)]
+        assert not undocumented, (name, undocumented)
+    assert len(set(names)) == len(names)
+
+
+def test_python_dash_m_runs_the_command_line():
+    import subprocess
+    import sys
+
+    from ssl_marl import __version__
+
+    out = subprocess.run([sys.executable, "-m", "ssl_marl.cli", "--version"], capture_output=True, text=True,
+                         check=True).stdout
+    assert out.strip() == f"ssl-marl {__version__}"

@@ -1,4 +1,4 @@
-"""Edges of the ``ssl-marl`` command line a new user hits (issue 10): forwarded
+"""Edges of the ``ssl-marl`` command line a new user hits: forwarded
 subcommands, one rule for output paths checked before any simulation, clear errors
 for bad files, and help texts that say what they mean."""
 
@@ -28,7 +28,7 @@ def test_bench_help_reaches_the_benchmark(argv, capsys):
 
 
 def test_bench_options_reach_the_benchmark(capsys, monkeypatch):
-    import ssl_marl.bench as bench
+    import ssl_marl.cli.bench as bench
 
     calls = []
     monkeypatch.setattr(bench, "bench_env", lambda cfg, steps, resets: calls.append((cfg, steps, resets)) or {})
@@ -160,6 +160,10 @@ def test_help_texts_have_no_stray_percent_and_show_defaults(capsys):
         build_parser().parse_args(["eval-skill", "--help"])
     out = capsys.readouterr().out
     assert "95% CI" in out and "%%" not in out
+    with pytest.raises(SystemExit):
+        build_parser().parse_args(["eval-task", "--help"])
+    out = capsys.readouterr().out
+    assert "95% intervals" in out and "%%" not in out
     with pytest.raises(SystemExit):
         build_parser().parse_args(["eval-tactic", "--help"])
     out = " ".join(capsys.readouterr().out.split())

@@ -1,4 +1,4 @@
-"""Tests for ssl_marl.envs.render (headless: SDL dummy video driver)."""
+"""Tests for ssl_marl.envs.render and its drawing modules (headless: SDL dummy video driver)."""
 
 from __future__ import annotations
 
@@ -13,13 +13,15 @@ import warnings  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
-from ssl_marl.envs import render as render_mod  # noqa: E402
-from ssl_marl.envs.render import BALL_ORANGE, BLUE, YELLOW, FieldRenderer, write_animation  # noqa: E402
+from ssl_marl.envs import render_style as style  # noqa: E402
+from ssl_marl.envs.animation import write_animation  # noqa: E402
+from ssl_marl.envs.render import FieldRenderer  # noqa: E402
+from ssl_marl.envs.render_style import BALL_ORANGE, BLUE, YELLOW  # noqa: E402
 from ssl_marl.physics.field import FieldGeometry  # noqa: E402
 from ssl_marl.physics.params import BallParams, RobotParams  # noqa: E402
 from ssl_marl.physics.state import TeamState, WorldState, make_team_state, to_team_frame  # noqa: E402
 
-CARPET = render_mod.CARPET
+CARPET = style.CARPET
 
 
 def team(pos, heading):
@@ -52,14 +54,14 @@ def test_frame_shape_dtype(field):
                 info_text="t=12.3 s  blue 1 - 0 yellow")
     assert fr.dtype == np.uint8 and fr.ndim == 3 and fr.shape[2] == 3
     assert fr.shape[1] == 960 and fr.shape == r.frame_shape
-    aspect = (f.wall_half_width + render_mod.OUTER_WALL_M) / (f.wall_half_length + render_mod.OUTER_WALL_M)
+    aspect = (f.wall_half_width + style.OUTER_WALL_M) / (f.wall_half_length + style.OUTER_WALL_M)
     assert abs(fr.shape[0] / fr.shape[1] - aspect) < 0.01
     assert fr.flags.writeable
     # carpet covers the run-off area; the outer wall is dark; centre is on the half-way line
     hl, hw, bw = f.half_length, f.half_width, f.boundary_width
     assert px(fr, r, -hl - bw / 2, -hw - bw / 2) == CARPET  # (top-left holds the info text)
     assert px(fr, r, hl - 0.5, -hw + 0.5) == CARPET
-    assert fr[0, 0].tolist() == list(render_mod.WALL_DARK)
+    assert fr[0, 0].tolist() == list(style.WALL_DARK)
     assert px(fr, r, 0.0, 1.5) == (255, 255, 255)  # half-way line
     assert px(fr, r, 1.0, hw) == (255, 255, 255)  # touch line
     assert px(fr, r, hl, 1.0) == (255, 255, 255)  # goal line
@@ -67,10 +69,10 @@ def test_frame_shape_dtype(field):
     assert px(fr, r, f.center_circle_radius, 0.0) == (255, 255, 255)  # centre circle
     # goal back wall behind the +x goal line
     gx = hl + f.goal_depth + f.goal_wall_thickness / 2
-    assert px(fr, r, gx, 0.0) == render_mod.GOAL_COLOURS[+1]
-    assert px(fr, r, -gx, 0.0) == render_mod.GOAL_COLOURS[-1]
+    assert px(fr, r, gx, 0.0) == style.GOAL_COLOURS[+1]
+    assert px(fr, r, -gx, 0.0) == style.GOAL_COLOURS[-1]
     # info text at the top-left changes pixels there
-    assert (fr[2:20, 2:60] != np.array(render_mod.WALL_DARK, np.uint8)).any()
+    assert (fr[2:20, 2:60] != np.array(style.WALL_DARK, np.uint8)).any()
 
 
 def test_custom_field_and_pixels_per_metre():
@@ -78,8 +80,8 @@ def test_custom_field_and_pixels_per_metre():
                       defense_depth=0.5, center_circle_radius=0.3, boundary_width=0.25)
     r = FieldRenderer(f, RobotParams(), BallParams(), pixels_per_metre=100.0)
     fr = r.draw(world(team([[0.5, 0.5]], [0.0])))
-    assert fr.shape == (int(round(2 * (1.75 + render_mod.OUTER_WALL_M) * 100)),
-                        int(round(2 * (2.25 + render_mod.OUTER_WALL_M) * 100)), 3)
+    assert fr.shape == (int(round(2 * (1.75 + style.OUTER_WALL_M) * 100)),
+                        int(round(2 * (2.25 + style.OUTER_WALL_M) * 100)), 3)
     assert px(fr, r, f.half_length, -1.0) == (255, 255, 255)
 
 

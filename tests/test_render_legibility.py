@@ -7,13 +7,14 @@ import numpy as np
 import pytest
 
 from ssl_marl.envs import parallel_env
-from ssl_marl.envs import render as render_mod
+from ssl_marl.envs import render_style as style
+from ssl_marl.envs.render import FieldRenderer
 from ssl_marl.physics.field import FieldGeometry
 from ssl_marl.physics.params import BallParams, RobotParams
 
 
 def _renderer(**kw):
-    return render_mod.FieldRenderer(FieldGeometry.div_b(), RobotParams(), BallParams(), width_px=480, **kw)
+    return FieldRenderer(FieldGeometry.div_b(), RobotParams(), BallParams(), width_px=480, **kw)
 
 
 def test_caption_strip_names_each_team_below_the_field():
@@ -24,7 +25,7 @@ def test_caption_strip_names_each_team_below_the_field():
     env.reset(seed=0)
     frame = cap.draw(env.world_state())
     strip = frame[cap.field_height:].reshape(-1, 3)
-    for colour in (render_mod.BLUE, render_mod.YELLOW, render_mod.LINE_WHITE):  # swatches and text
+    for colour in (style.BLUE, style.YELLOW, style.LINE_WHITE):  # swatches and text
         assert (strip == colour).all(axis=1).any(), colour
     with pytest.raises(ValueError, match="team_labels"):
         _renderer(team_labels={"red": "x"})
@@ -36,9 +37,9 @@ def test_goals_are_visible():
     frame = r.draw(_empty_world())
     for side in (+1, -1):
         u, v = r.world_to_px(side * (f.half_length + f.goal_depth / 2), 0.0)
-        assert tuple(frame[v, u]) == render_mod.GOAL_NET
-    wall_px = max(f.goal_wall_thickness, render_mod.MIN_GOAL_WALL_PX / r.ppm) * r.ppm
-    assert wall_px >= render_mod.MIN_GOAL_WALL_PX - 1e-9
+        assert tuple(frame[v, u]) == style.GOAL_NET
+    wall_px = max(f.goal_wall_thickness, style.MIN_GOAL_WALL_PX / r.ppm) * r.ppm
+    assert wall_px >= style.MIN_GOAL_WALL_PX - 1e-9
 
 
 def _empty_world():
@@ -49,7 +50,7 @@ def _empty_world():
 
 def test_robot_numbers_fit_at_the_default_match_size():
     r = _renderer()
-    assert r._robot_r_px >= render_mod.MIN_ID_ROBOT_RADIUS_PX
+    assert r._robot_r_px >= style.MIN_ID_ROBOT_RADIUS_PX
     assert r._id_font.size("9")[1] <= 2 * r._robot_r_px + 4  # the digit fits on the body
 
 

@@ -109,7 +109,7 @@ def main(argv: list[str] | None = None) -> int:
         if found is None:
             continue
         frames, t_pass, t_goal = found
-        from ssl_marl.envs.render import write_animation
+        from ssl_marl.envs.animation import write_animation
 
         write_animation(frames, args.out, fps=int(round(args.fps)))
         print(f"seed {match['seed']}: pass at {t_pass:.2f} s, goal at {t_goal:.2f} s, {len(frames)} frames "

@@ -1,14 +1,14 @@
 """Write rendered frames to an animated GIF or an MP4, atomically: the one video sink.
 
-Split from :mod:`ssl_marl.envs.render` (drawing) because writing files is a separate
-job with its own dependencies (Pillow, imageio-ffmpeg), imported lazily.
+Drawing is :mod:`ssl_marl.envs.render`'s job; writing files is this module's, with its
+own dependencies (Pillow, imageio-ffmpeg), imported lazily.
 
 One video sink for every runner: frames go to disk as they come (constant memory).
 
 :class:`VideoSink` takes RGB frames (H, W, 3) one at a time and writes them to a
 ``.gif`` or ``.mp4`` file while the run goes on, so memory does not grow with the
 length of the video (a 60 s match at 10 frames/s is 600 frames of ~0.5 MB each;
-collecting them first cost ~1.3 GB of RSS, see docs/BENCHMARKS.md).
+holding them all costs ~1.3 GB of RSS, see docs/BENCHMARKS.md).
 
 * GIF: written with Pillow's GIF encoder one frame at a time
   (``PIL.GifImagePlugin.getheader`` / ``getdata``, Pillow's documented helpers for

@@ -1,5 +1,5 @@
-"""The on-screen window of "human" render mode, split from :mod:`ssl_marl.envs.render`
-(drawing stays there; this module only presents finished surfaces).
+"""The on-screen window of "human" render mode: it presents finished surfaces
+(drawing is :mod:`ssl_marl.envs.render`'s job).
 
 Opening a window needs a display; when that fails (headless machine, no video
 device) :class:`Window` warns once and from then on does nothing, so callers keep
@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import warnings
 
-import pygame
+from .render_canvas import pygame
 
 
 class Window:

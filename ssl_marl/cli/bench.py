@@ -1,4 +1,4 @@
-"""Throughput benchmark: ``python -m ssl_marl.bench`` (or ``ssl-marl bench``) prints JSON.
+"""Throughput benchmark: ``ssl-marl bench`` (or ``python -m ssl_marl.cli bench``) prints JSON.
 
 Env steps/s with uniformly random actions for every robot, single process, 60 Hz
 control, for 1v0 (Division B), 6v6 Division B and 11v11 Division A; mean reset
@@ -16,13 +16,17 @@ from datetime import date
 
 import numpy as np
 
+from .options import add_forwarded_parser
+
 CONFIGS = {"1v0_div_b": dict(n_blue=1, n_yellow=0, field="div_b"),
            "6v6_div_b": dict(n_blue=6, n_yellow=6, field="div_b"),
            "11v11_div_a": dict(n_blue=11, n_yellow=11, field="div_a")}
 
 
 def bench_env(config: dict, steps: int, resets: int, seed: int = 0) -> dict:
-    from .envs import parallel_env
+    """Steps per second, time per step (us) and per reset (ms) of one env configuration
+    (``parallel_env`` keyword arguments) with uniformly random actions."""
+    from ..envs import parallel_env
 
     env = parallel_env(**config, randomize_reset=True, max_time_s=1e9)
     env.reset(seed=seed)
@@ -45,9 +49,9 @@ def bench_env(config: dict, steps: int, resets: int, seed: int = 0) -> dict:
 
 def bench_skill_inference(calls: int = 2000) -> dict:
     """Per-call time of the learned skills' act() (features + numpy actor)."""
-    from .envs import parallel_env
-    from .skills import make_skill
-    from .skills.registry import get_skill
+    from ..envs import parallel_env
+    from ..skills import make_skill
+    from ..skills.registry import get_skill
 
     out = {}
     env = parallel_env(n_blue=1, n_yellow=0)
@@ -69,7 +73,21 @@ def bench_skill_inference(calls: int = 2000) -> dict:
     return out
 
 
+def register(subparsers: argparse._SubParsersAction) -> None:
+    """Add the ``bench`` subparser (its options are this module's :func:`main`'s)."""
+    b = add_forwarded_parser(subparsers, "bench", "env throughput benchmark (JSON); options: ssl-marl bench --help",
+                             "the benchmark (this module's main)")
+    b.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Forward everything after ``bench`` (a leading ``--`` is dropped) to :func:`main`."""
+    main(args.rest)
+    return 0
+
+
 def main(argv: list[str] | None = None) -> dict:
+    """Parse the benchmark's options (``argv``), run it and print the result as JSON."""
     p = argparse.ArgumentParser(prog="ssl-marl bench", description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--steps", type=int, default=5000, help="env steps timed per configuration (default 5000)")
@@ -87,6 +105,3 @@ def main(argv: list[str] | None = None) -> dict:
     print(json.dumps(result, indent=2))
     return result
 
-
-if __name__ == "__main__":
-    main()

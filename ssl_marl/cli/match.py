@@ -1,0 +1,140 @@
+"""``ssl-marl match``: a full-team STP match (or a series) between two team controllers."""
+
+from __future__ import annotations
+
+import argparse
+
+from ..envs.animation import VIDEO_SUFFIXES
+from .options import (FIELDS, SKILL_SOURCE_HELP, add_backend, add_tracker_option, int_at_least, non_negative_float,
+                      positive_float, positive_int, robots, skill_source, team, workers)
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    """Add the ``match`` subparser."""
+    m = subparsers.add_parser("match", help="full-team match (or series) between two team controllers",
+                              description="Play a full-team STP match in the parallel env: kickoffs, restarts after "
+                                          "goals and out-of-play. Prints the score and stats; writes a GIF/MP4 with "
+                                          "--render.")
+    m.add_argument("--blue", type=team, default="learned", metavar="TEAM",
+                   help="blue team: learned (STP with the shipped DDPG actors), baseline (STP with hand-coded "
+                        "skills), passing-learned / passing-baseline (the passing plays: shoot, pass or keep by "
+                        "cost, set plays with passes, with those skills), passing-learned-decision (passing-learned "
+                        "whose ball carrier uses the learned Attack 3v2 decision), random, idle, or a JSON team file "
+                        "{\"kind\": ..., \"skills\": {SKILL: SOURCE}} (default learned)")
+    m.add_argument("--yellow", type=team, default="baseline", metavar="TEAM",
+                   help="yellow team, as --blue (default baseline)")
+    m.add_argument("--skill", type=skill_source, action="append", default=[], metavar="SKILL=SOURCE",
+                   help="for both STP teams: " + SKILL_SOURCE_HELP)
+    m.add_argument("--blue-skill", type=skill_source, action="append", default=[], metavar="SKILL=SOURCE",
+                   help="as --skill, for the blue team only (wins over --skill)")
+    m.add_argument("--yellow-skill", type=skill_source, action="append", default=[], metavar="SKILL=SOURCE",
+                   help="as --skill, for the yellow team only (wins over --skill)")
+    for side in ("blue", "yellow"):
+        m.add_argument(f"--{side}-decision", default=None, metavar="DECISION",
+                       help=f"{side} passing team's ball-carrier decision (shoot / pass / dribble): handcoded (the "
+                            "cost decision), learned (the shipped Attack 3v2 actor) or PATH to a decision actor "
+                            "checkpoint; needs a passing team (default: the team kind's own, learned for "
+                            "passing-learned-decision, else handcoded)")
+    m.add_argument("--robots", type=robots, default=6, help="robots per team, 1-11 (default 6)")
+    m.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")
+    m.add_argument("--seconds", type=positive_float("--seconds"), default=30.0,
+                   help="simulated match length in seconds (default 30)")
+    m.add_argument("--seed", type=int, default=0, help="random seed; match i of a series uses seed + i (default 0)")
+    m.add_argument("--realism", choices=("none", "realistic"), default="none",
+                   help="vision noise / latency preset (default none)")
+    m.add_argument("--realtime", action="store_true",
+                   help="paper's evaluation mode: a team whose controller misses the 16.7 ms deadline loses "
+                        "that command")
+    m.add_argument("--render", default="match.gif", metavar="PATH",
+                   help="write a single match to PATH (.gif or .mp4; missing folders are created); 'none' "
+                        "to skip (default match.gif)")
+    m.add_argument("--render-fps", type=positive_float("--render-fps"), default=10.0,
+                   help="video frames per simulated second (default 10)")
+    m.add_argument("--render-width", type=int_at_least("--render-width", 64), default=480,
+                   help="video width in pixels, >= 64 (default 480)")
+    m.add_argument("--matches", type=positive_int("--matches"), default=1, help="number of matches (default 1)")
+    m.add_argument("--workers", type=positive_int("--workers"), default=None,
+                   help="parallel worker processes for a series (default 1; with --backend ray: matches in flight, "
+                        "default the cluster's CPUs)")
+    add_backend(m, "the matches of a series")
+    m.add_argument("--json", default=None, metavar="PATH",
+                   help="also write the result as JSON to PATH (missing folders are created)")
+    m.add_argument("--quiet", action="store_true", help="no progress bar")
+    m.add_argument("--no-progress-s", type=non_negative_float("--no-progress-s"), default=10.0,
+                   help="the referee restarts play when the ball stays within 0.25 m of one spot this long "
+                        "(SSL force start after a lack of progress; seconds, default 10; 0 switches the call off)")
+    add_tracker_option(m)
+    m.set_defaults(handler=run)
+
+
+def resolve_team(side: str, value: str, sources: list[tuple[str, str]]):
+    """(kind, skills spec or None) for a team option (``--blue`` / ``--yellow``) and its skill sources."""
+    from ..runners.controllers import load_team_file, team_skills
+
+    kind, own = (load_team_file(value) if value.lower().endswith(".json") else (value, {}))
+    merged = {**{k.replace("-", "_"): v for k, v in own.items()}, **dict(sources)}  # later wins
+    if not merged:
+        return kind, None
+    return kind, team_skills(kind, merged, where=f"--{side}")
+
+
+def match_line(res) -> str:
+    """One line of a single match's result: score, shots, possession, times."""
+    s, sh, po = res.score, res.shots, res.possession
+    return (f"blue ({res.config.get('blue')}) {s['blue']} - {s['yellow']} yellow ({res.config.get('yellow')})"
+            f"  | shots {sh.get('blue', 0)}-{sh.get('yellow', 0)}"
+            f"  | possession {100 * po.get('blue', 0):.0f}%-{100 * po.get('yellow', 0):.0f}%"
+            f"  | {res.sim_time_s:.0f} s simulated in {res.wall_time_s:.1f} s wall"
+            + (f"  | missed deadlines {res.missed_deadlines}" if res.config.get("realtime") else ""))
+
+
+def run(args: argparse.Namespace) -> int:
+    """Play one match (or a series) between two team controllers."""
+    from ..io import atomic_write_json, prepare_output_file
+    from ..runners.match import play_match
+    from ..runners.provenance import build_manifest
+    from ..runners.result import write_series_file
+    from ..runners.series import play_series
+
+    if args.address is not None and args.backend != "ray":
+        raise ValueError("--address needs --backend ray")
+    blue, blue_skills = resolve_team("blue", args.blue, args.skill + args.blue_skill)
+    yellow, yellow_skills = resolve_team("yellow", args.yellow, args.skill + args.yellow_skill)
+    common = dict(robots=args.robots, field=args.field, seconds=args.seconds, realism=args.realism,
+                  realtime=args.realtime, blue_skills=blue_skills, yellow_skills=yellow_skills,
+                  tracker=args.tracker, blue_decision=args.blue_decision, yellow_decision=args.yellow_decision,
+                  env_kwargs={"no_progress_s": args.no_progress_s or None})
+    render = None if str(args.render).lower() == "none" else args.render
+    if render is not None and args.matches == 1:
+        prepare_output_file(render, VIDEO_SUFFIXES, "--render")
+    if args.json:
+        prepare_output_file(args.json, None, "--json")
+    if args.matches == 1:
+        res = play_match(blue=blue, yellow=yellow, seed=args.seed, render=render,
+                         render_fps=args.render_fps, render_width_px=args.render_width, progress=not args.quiet,
+                         **common)
+        print(match_line(res) + (f"  | video -> {render}" if render else ""))
+        if args.json:
+            atomic_write_json(args.json, res.to_dict())
+        return 0
+    results, summary = play_series(blue=blue, yellow=yellow, matches=args.matches, workers=workers(args),
+                                   seed=args.seed, progress=not args.quiet, backend=args.backend,
+                                   address=args.address, **common)
+    print(f"{'match':>5} {'seed':>6}  {'score':>7}  {'shots':>7}  possession")
+    for i, r in enumerate(results):
+        print(f"{i:>5} {r.seed:>6}  {r.score['blue']:>3}-{r.score['yellow']:<3}  {r.shots['blue']:>3}-{r.shots['yellow']:<3}"
+              f"  {100 * r.possession['blue']:.0f}%-{100 * r.possession['yellow']:.0f}%")
+    print(f"blue ({args.blue}) vs yellow ({args.yellow}), {summary['matches']} matches: "
+          f"W {summary['wins']} D {summary['draws']} L {summary['losses']}, "
+          f"goals {summary['goals_for']}-{summary['goals_against']}")
+    for team_name, st in summary.get("stats", {}).items():
+        pc = "-" if st["pass_completion"] is None else f"{100 * st['pass_completion']:.0f}%"
+        print(f"  {team_name}: shots {st['shots']}, passes {st['passes_completed']}/{st['passes_attempted']} completed "
+              f"({pc}), intercepted {st['passes_intercepted']}, interceptions {st['interceptions']}, "
+              f"goals {st['goals']}")
+    if args.json:
+        write_series_file(args.json, summary, [r.to_dict() for r in results], build_manifest(
+            rules={"runner": "match", "blue": args.blue, "yellow": args.yellow, **common,
+                   "no_progress_s": common["env_kwargs"]["no_progress_s"]},
+            seeds={"seed": args.seed, "matches": args.matches}))
+    return 0
