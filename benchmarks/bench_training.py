@@ -9,7 +9,7 @@ over rounds of each figure is reported, with every round's samples/s):
 
 * ``env_only``: the bare env (``gym.make``) stepped with uniform-random actions,
   no learning -- the ceiling that collection alone allows;
-* ``ours``: :class:`train.loop.Trainer` (subclassed only to time it and to skip
+* ``ours``: :class:`train.offpolicy.loop.Trainer` (subclassed only to time it and to skip
   the end-of-run export/evaluation/plot) with the paper's go-to-ball config,
   demo_steps 0, no evaluations, no intermediate checkpoints, output in a temp dir;
 * ``sb3``: ``stable_baselines3.DDPG("MlpPolicy", ...)`` with ``learn()`` (when
@@ -52,8 +52,8 @@ import torch
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import ssl_marl  # noqa: E402,F401  (registers ssl_marl/GoToBall-v0)
-from train.config import DDPGConfig, default_config  # noqa: E402
-from train.loop import Trainer  # noqa: E402
+from train.offpolicy.config import DDPGConfig, default_config  # noqa: E402
+from train.offpolicy.loop import Trainer  # noqa: E402
 
 ENV_ID = "ssl_marl/GoToBall-v0"
 BUFFER = 100_000
@@ -216,7 +216,7 @@ def main(argv: list[str] | None = None) -> int:
             ("samples_per_s: env steps in the timed window per wall second, updates included; "
              "samples_per_s, updates_per_s, seconds: medians over rounds"),
             "env_only: bare gym.make env with uniform-random actions, no learning (reference ceiling)",
-            ("ours: train.loop.Trainer (progress.csv logging included; demos, evaluations, checkpoints off), "
+            ("ours: train.offpolicy.loop.Trainer (progress.csv logging included; demos, evaluations, checkpoints off), "
              "layer norm after each hidden layer (paper)"),
             "ours_fast (--fast): ours with autocast_bf16 and compile (bf16 matrix products, compiled losses)",
             ("sb3: stable_baselines3 DDPG learn(), MlpPolicy WITHOUT layer norm (a little less work per update), "

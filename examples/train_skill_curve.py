@@ -22,9 +22,9 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from train.config import apply_overrides, default_config
-from train.loop import train
-from train.plots import plot_run
+from train.offpolicy.config import apply_overrides, default_config
+from train.offpolicy.loop import train
+from train.tools.plots import plot_run
 
 
 def main(argv: list[str] | None = None) -> dict:

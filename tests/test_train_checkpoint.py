@@ -116,7 +116,7 @@ def test_select_picks_among_exported_actors(tmp_path) -> None:
     from ssl_marl.skills.checkpoint import save_actor
     from ssl_marl.skills.features import AIM_TO_SHOOT_SPECS
     from ssl_marl.skills.networks import Actor
-    from train.select import select
+    from train.tools.select import select
 
     for samples in (1000, 2000):
         torch.manual_seed(samples)

@@ -3,7 +3,7 @@
 Each entry builds a decision env (the interface of ``ssl_marl/decisions``: PettingZoo
 ``ParallelEnv`` with ``decision`` / ``action_mask`` / ``elapsed_s`` infos and ``state()``)
 and names the final-info key that scores an episode. ``defaults`` are the run-config
-overrides the task starts from (see :class:`train.mappo_loop.MAPPORunConfig`).
+overrides the task starts from (see :class:`train.mappo.loop.MAPPORunConfig`).
 Factories are module-level functions so worker processes can build them.
 """
 
@@ -25,13 +25,13 @@ class MARLTask:
 
 
 def _toy_signal(**kw: Any) -> Any:
-    from .toy_marl import ToySignal
+    from train.mappo.toy_marl import ToySignal
 
     return ToySignal(**kw)
 
 
 def _toy_tempo(**kw: Any) -> Any:
-    from .toy_marl import ToyTempo
+    from train.mappo.toy_marl import ToyTempo
 
     return ToyTempo(**kw)
 
