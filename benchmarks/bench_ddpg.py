@@ -41,8 +41,8 @@ import torch.nn.functional as F
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from ssl_marl.skills.networks import Actor, Critic  # noqa: E402
-from train.offpolicy.config import DDPGConfig  # noqa: E402
 from train.offpolicy.agent import adam  # noqa: E402
+from train.offpolicy.config import DDPGConfig, TrainConfig  # noqa: E402
 from train.offpolicy.ddpg import DDPG  # noqa: E402
 from train.offpolicy.replay import ReplayBuffer  # noqa: E402
 
@@ -59,15 +59,16 @@ def filled_buffer(batch: int) -> ReplayBuffer:
 
 def ours(batch: int, bf16: bool = False, compiled: bool = False, torch_adam: bool = False) -> Callable[[], None]:
     torch.manual_seed(0)
-    cfg = DDPGConfig(actor_hidden=HIDDEN, critic_hidden=HIDDEN, batch_size=batch, autocast_bf16=bf16, compile=compiled)
-    agent, buf = DDPG(OBS_DIM, ACT_DIM, cfg), filled_buffer(batch)
-    if torch_adam:  # the optimiser step as before the lean Adam: torch.optim.Adam(fused=True).step()
+    cfg = DDPGConfig(actor_hidden=HIDDEN, critic_hidden=HIDDEN)
+    agent, buf = DDPG(OBS_DIM, ACT_DIM, cfg, autocast_bf16=bf16, compile=compiled), filled_buffer(batch)
+    log_interval = TrainConfig().log_interval
+    if torch_adam:  # the optimiser step of torch.optim.Adam(fused=True).step() instead of the lean Adam
         agent.actor_opt = adam(agent.actor.parameters(), cfg.actor_lr)
         agent.critic_opt = adam(agent.critic.parameters(), cfg.critic_lr, cfg.critic_weight_decay)
 
     def step() -> None:
         agent.update(buf.sample())
-        if agent.updates % cfg.log_interval == 0:
+        if agent.updates % log_interval == 0:
             agent.read_losses()
     return step
 

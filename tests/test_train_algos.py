@@ -14,8 +14,8 @@ import pytest
 import torch
 
 from ssl_marl.skills.checkpoint import load_actor
-from train.offpolicy.algos import ALGOS, TD3, Agent, make_agent
 from train.offpolicy.agent import td_target
+from train.offpolicy.algos import ALGOS, TD3, Agent, make_agent
 from train.offpolicy.checkpoints import CHECKPOINT, read_train_state
 from train.offpolicy.config import (DDPGConfig, TD3Config, TrainConfig, apply_overrides, config_from_dict,
                                     cpu_has_fast_bf16, default_config)

@@ -25,7 +25,6 @@ from __future__ import annotations
 import argparse
 import functools
 import json
-import sys
 from pathlib import Path
 from typing import Any
 
@@ -164,7 +163,3 @@ def main(argv: list[str] | None = None) -> int:
     save_bc_actor(agent, args.task, args.out, seed=args.seed, bc={"policy": args.policy, **stats})
     print(json.dumps({"out": str(args.out), "policy": args.policy, **stats}))
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 from pathlib import Path
 from typing import Any
 
@@ -107,7 +106,3 @@ def main(argv: list[str] | None = None) -> int:
         atomic_write_json(args.out, res)
     print(json.dumps(res))
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 from pathlib import Path
 from typing import Any
 
@@ -58,7 +57,3 @@ def main(argv: list[str] | None = None) -> int:
     args = p.parse_args(argv)
     print(json.dumps(export(list(args.runs), args.out, args.note)))
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

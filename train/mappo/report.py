@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 from pathlib import Path
 from typing import Any
 
@@ -102,7 +101,3 @@ def main(argv: list[str] | None = None) -> int:
     for r in args.runs:
         print(json.dumps(run_summary(r)))
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

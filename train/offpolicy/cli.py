@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 from pathlib import Path
 
 from train.offpolicy.config import ALGO_NAMES, SKILL_CONFIGS, apply_overrides, default_config, load_config

@@ -33,9 +33,9 @@ import torch.nn.functional as F
 
 from ssl_marl.skills.networks import Actor, Critic
 
+from train.offpolicy.agent import LossMeter, actor_act, bf16_autocast, lean_adam, soft_update, step_with_frozen, td_target
 from train.offpolicy.config import DDPGConfig
 from train.offpolicy.replay import Batch
-from train.offpolicy.agent import LossMeter, actor_act, bf16_autocast, lean_adam, soft_update, step_with_frozen, td_target
 
 __all__ = ["DDPG", "soft_update", "td_target"]
 

@@ -50,7 +50,3 @@ def main(argv: list[str] | None = None) -> None:
     p.add_argument("--out", default=None, help="actor file (default RUN/actor-<samples>.pt)")
     a = p.parse_args(argv)
     print(export_checkpoint_actor(a.run, a.out))
-
-
-if __name__ == "__main__":
-    main()

@@ -51,13 +51,13 @@ import ssl_marl  # noqa: F401  (registers the ssl_marl/* Gymnasium ids)
 from ssl_marl.io import atomic_write_json
 from ssl_marl.skills.checkpoint import save_actor
 
+from train.logs import EVAL_FIELDS, TensorBoardLog, progress_fields
 from train.offpolicy.algos import make_agent
 from train.offpolicy.checkpoints import FORMAT, VERSION, actor_metadata, load_run_config, read_train_state
 from train.offpolicy.config import TrainConfig
 from train.offpolicy.demos import fill_replay
 from train.offpolicy.evaluate import ActionScaler, evaluate_actor, make_env, run_episodes
 from train.offpolicy.exploration import make_exploration
-from train.logs import EVAL_FIELDS, TensorBoardLog, progress_fields
 from train.offpolicy.nstep import NStepBuffer
 from train.offpolicy.replay import ReplayBuffer
 from train.run_folder import CHECKPOINT, RunFolder

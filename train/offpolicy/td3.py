@@ -35,9 +35,9 @@ import torch.nn.functional as F
 
 from ssl_marl.skills.networks import Actor, Critic
 
+from train.offpolicy.agent import LossMeter, actor_act, bf16_autocast, lean_adam, soft_update, step_with_frozen, td_target
 from train.offpolicy.config import DDPGConfig, TD3Config
 from train.offpolicy.replay import Batch
-from train.offpolicy.agent import LossMeter, actor_act, bf16_autocast, lean_adam, soft_update, step_with_frozen, td_target
 
 
 class TD3:

@@ -104,7 +104,3 @@ def main(argv: list[str] | None = None) -> None:
     p.add_argument("--target", type=float, default=0.99, help="validation success that counts as reached")
     a = p.parse_args(argv)
     print(markdown([summarize(r, a.window, a.upto, a.target) for r in a.runs], a.target))
-
-
-if __name__ == "__main__":
-    main()

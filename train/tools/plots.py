@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import argparse
 import csv
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -98,7 +97,3 @@ def main(argv: list[str] | None = None) -> int:
     for run in args.runs:
         print(plot_run(run, window=args.window))
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -91,7 +91,7 @@ def selection_rows(results: Path) -> list[str]:
 
 
 def main(argv: list[str] | None = None) -> str:
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = argparse.ArgumentParser(prog="python -m train.report", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--results", default="results", help="folder of evaluation outputs (default results)")
     p.add_argument("--out", default=None, help="also write the markdown to this file")
     a = p.parse_args(argv)
@@ -107,7 +107,3 @@ def main(argv: list[str] | None = None) -> str:
     if a.out:
         atomic_write_bytes(a.out, text.encode())
     return text
-
-
-if __name__ == "__main__":
-    main()

@@ -116,7 +116,3 @@ def main(argv: list[str] | None = None) -> None:
     fields = None if a.fields is None else [f.strip() for f in a.fields.split(",") if f.strip()]
     best = select(a.run, a.episodes, a.seed, a.workers, a.min_samples, not a.no_progress, a.reuse, fields)["best"]
     print(f"best: {best['actor']} ({best['success_rate']:.3f})")
-
-
-if __name__ == "__main__":
-    main()

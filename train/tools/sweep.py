@@ -97,7 +97,3 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     print(json.dumps({k: v for k, v in s.items() if k not in ("config", "runs")} | {"out": str(args.out)}))
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())
