@@ -164,7 +164,7 @@ def test_td3_with_gaussian_exploration_resumes_exactly(tmp_path) -> None:
 
 
 def _as_version_1(path: Path) -> None:
-    """Rewrite a DDPG train state in the layout the trainer wrote before the algorithm interface."""
+    """Rewrite a DDPG train state in the version-1 layout (DDPG only, no algorithm interface)."""
     state = torch.load(path, weights_only=True)
     meter = state["agent"].pop("losses")
     assert meter["counts"][0] == meter["counts"][1]

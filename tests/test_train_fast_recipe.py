@@ -1,4 +1,4 @@
-"""The faster go-to-ball recipe end to end (issue 13), on a CI-sized run.
+"""The faster go-to-ball recipe end to end, on a CI-sized run.
 
 ``train/configs/go_to_ball_fast.json`` (3-step returns, 8 batched worlds, 0.25 updates per
 sample) shortened to 80,000 samples. The stated success, >= 0.6 on 100 validation episodes,

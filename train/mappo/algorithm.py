@@ -1,8 +1,8 @@
-"""MAPPO: PPO with one actor shared by all teammates and a centralised critic on the global state.
+"""MAPPO: PPO with one actor shared by all teammates and a centralised critic on the global state
+(Yu et al. 2022; docs/references.md, "Keepaway and MAPPO").
 
 On-policy, so it does not implement the off-policy :class:`~train.offpolicy.agent.Agent`
-interface (no replay batches); it is registered in :data:`train.offpolicy.algos.ON_POLICY_ALGOS`
-and driven by :mod:`train.mappo.loop`. Everything the update needs is here:
+interface (no replay batches); :mod:`train.mappo.loop` drives it. Everything the update needs is here:
 
 * :class:`ActorNet` -- the shared policy: obs (+ agent one-hot, optional) -> option logits
   (discrete; illegal options get ``-inf`` logits from the action mask) or a Gaussian mean

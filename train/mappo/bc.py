@@ -35,7 +35,7 @@ from tqdm import tqdm
 from ssl_marl.skills.checkpoint import git_commit
 
 from train.mappo.algorithm import MAPPO
-from train.mappo.loop import _scaling, save_decision_actor, task_config
+from train.mappo.loop import space_scaling, save_decision_actor, task_config
 from train.mappo.tasks import get_task
 
 
@@ -83,7 +83,7 @@ def _task_spec(task: str) -> dict[str, Any]:
     cfg = task_config(task)
     env = get_task(task).factory(**cfg.task_kwargs)
     a0 = env.possible_agents[0]
-    obs_c, obs_s = _scaling(env.observation_space(a0))
+    obs_c, obs_s = space_scaling(env.observation_space(a0))
     spec = {"cfg": cfg, "obs_dim": int(env.observation_space(a0).shape[0]), "state_dim": int(env.state_space.shape[0]),
             "agents": list(env.possible_agents), "n_out": int(env.action_space(a0).n), "obs_c": obs_c, "obs_s": obs_s,
             "option_names": getattr(env, "option_names", None)}

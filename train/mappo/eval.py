@@ -95,7 +95,7 @@ def evaluate(task: str, episodes: int, seed: int, actor: str | Path | None = Non
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(prog="python -m train.mappo_eval", description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--task", required=True, help="MAPPO task name (train/mappo_tasks.py)")
+    p.add_argument("--task", required=True, help="MAPPO task name (train/mappo/tasks.py)")
     p.add_argument("--actor", type=Path, default=None, help="MAPPO actor file (default: uniform random policy)")
     p.add_argument("--episodes", type=int, default=100, help="episodes (seed + i)")
     p.add_argument("--seed", type=int, default=48000, help="first episode seed (never a training/validation seed)")

@@ -100,7 +100,10 @@ def task_config(task: str, **overrides: Any) -> MAPPORunConfig:
     return MAPPORunConfig.from_dict(d)
 
 
-def _scaling(space: Any) -> tuple[np.ndarray, np.ndarray]:
+def space_scaling(space: Any) -> tuple[np.ndarray, np.ndarray]:
+    """``(centre, half_width)`` per dimension of a Box ``space``, float32: the bounds' midpoint and
+    half range where both are finite and distinct, else 0 and 1 (``(x - centre) / half_width`` is
+    then about [-1, 1] on bounded dimensions and unchanged on the others)."""
     lo, hi = np.asarray(space.low, np.float64), np.asarray(space.high, np.float64)
     finite = np.isfinite(lo) & np.isfinite(hi) & (hi > lo)
     centre = np.where(finite, (lo + hi) / 2, 0.0)
@@ -138,8 +141,8 @@ class MAPPOTrainer:
         self.agents = self.vec.agents
         self.n_agents = len(self.agents)
         obs_space, act_space = env.observation_space(self.agents[0]), env.action_space(self.agents[0])
-        self.obs_c, self.obs_s = _scaling(obs_space)
-        self.state_c, self.state_s = _scaling(env.state_space)
+        self.obs_c, self.obs_s = space_scaling(obs_space)
+        self.state_c, self.state_s = space_scaling(env.state_space)
         self.continuous = cfg.algo.continuous
         if self.continuous:
             self.act_low, self.act_high = np.asarray(act_space.low, np.float32), np.asarray(act_space.high, np.float32)
@@ -450,4 +453,5 @@ def train_mappo(cfg: MAPPORunConfig, seed: int, out: str | Path, resume: bool = 
     return row
 
 
-__all__ = ["MAPPORunConfig", "MAPPOTrainer", "load_mappo_run", "task_config", "train_mappo", "replace"]
+__all__ = ["MAPPORunConfig", "MAPPOTrainer", "load_mappo_run", "save_decision_actor", "space_scaling", "task_config",
+           "train_mappo"]

@@ -1,4 +1,5 @@
-"""DDPG (Lillicrap et al. 2016), the paper's algorithm: one update in :meth:`DDPG.update`::
+"""DDPG (Lillicrap et al. 2016; docs/references.md, "Simulators and benchmarks"), the paper's algorithm
+(Schwab, Zhu and Veloso 2019, sections 4.1 and 5.1): one update in :meth:`DDPG.update`::
 
     y        = r + gamma * (1 - terminated) * Q'(s', mu'(s'))      # no grad; truncations bootstrap
     L_critic = mean((Q(s, a) - y)^2)                               # Adam step on the critic

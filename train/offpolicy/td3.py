@@ -1,4 +1,5 @@
-"""TD3 (Fujimoto et al. 2018, "Addressing Function Approximation Error in Actor-Critic Methods").
+"""TD3 (Fujimoto et al. 2018, "Addressing Function Approximation Error in Actor-Critic Methods";
+docs/references.md, "Simulators and benchmarks").
 
 DDPG plus three fixes of its value over-estimation; one update in :meth:`TD3.update`::
 

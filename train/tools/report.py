@@ -52,7 +52,7 @@ def tactic_rows(results: Path) -> list[str]:
 
 
 def dribble_rows(results: Path) -> list[str]:
-    """Rows for the dribble-and-shoot runs (``results/tactic_dribble_*/results.json``, issue 13)."""
+    """Rows for the dribble-and-shoot runs (``results/tactic_dribble_*/results.json``)."""
     rows = ["| run | skills | realism | tracker | field | episodes | success [95% CI] | time to goal (s) | failures | "
             "go-to-ball stalls (episodes) | missed deadlines |", "|---|---|---|---|---|---|---|---|---|---|---|"]
     for f in sorted(results.glob("tactic_dribble_*/results.json")):
