@@ -26,7 +26,7 @@ Output folder: ``progress.csv`` (one row per episode, demo episodes flagged
 ``phase=demo``), ``eval.csv``, ``checkpoint.pt`` + ``replay-*.npz``,
 ``actors/actor-<samples>.pt`` (the actor at each checkpoint, for model selection),
 ``config.json``, ``actor.pt`` (export), ``eval.json`` (final evaluation),
-``learning_curve.png``, and ``tb/`` when TensorBoard is installed (:mod:`train.logs`).
+``learning_curve.png``, and ``tb/`` when TensorBoard is installed (:class:`train.run_folder.RunFolder`).
 """
 
 from __future__ import annotations
