@@ -6,7 +6,7 @@ Times the go-to-ball networks' largest product (batch 256: 256x300 @ 300x400) in
 in bfloat16, interleaved, keeping the fastest of ``repeats`` rounds of 20 products each (the
 minimum is the figure least disturbed by other jobs on a shared machine), and reports the
 CPU's bf16-related flags (``/proc/cpuinfo``), torch's CPU capability and the trainer's
-``autocast_bf16`` default (:func:`train.config.cpu_has_fast_bf16`). With AMX or AVX512-BF16
+``autocast_bf16`` default (:func:`train.offpolicy.config.cpu_has_fast_bf16`). With AMX or AVX512-BF16
 the bf16 product is several times (AMX) or about 2x (AVX512-BF16) faster; without either,
 torch emulates bf16 and it is slower than float32.
 """
@@ -25,7 +25,7 @@ import torch
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from train.config import cpu_has_fast_bf16  # noqa: E402
+from train.offpolicy.config import cpu_has_fast_bf16  # noqa: E402
 
 
 def cpu_flags(names: tuple[str, ...] = ("amx_bf16", "amx_tile", "avx512_bf16", "avx512f", "avx2")) -> dict[str, bool]:

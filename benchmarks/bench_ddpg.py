@@ -4,7 +4,7 @@
 
 Measures updates/s (replay sampling included) of:
 
-* ``ours``: :meth:`train.algos.ddpg.DDPG.update` (fused Adam, actor loss back-propagated
+* ``ours``: :meth:`train.offpolicy.ddpg.DDPG.update` (fused Adam, actor loss back-propagated
   into the actor only, foreach soft update, no per-update ``.item()``);
 * ``naive``: the same maths written the common way (default Adam, full
   ``backward()``, per-parameter soft-update loop, ``.item()`` every update),
@@ -41,10 +41,10 @@ import torch.nn.functional as F
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from ssl_marl.skills.networks import Actor, Critic  # noqa: E402
-from train.config import DDPGConfig  # noqa: E402
-from train.algos.base import adam  # noqa: E402
-from train.algos.ddpg import DDPG  # noqa: E402
-from train.replay import ReplayBuffer  # noqa: E402
+from train.offpolicy.agent import adam  # noqa: E402
+from train.offpolicy.config import DDPGConfig, TrainConfig  # noqa: E402
+from train.offpolicy.ddpg import DDPG  # noqa: E402
+from train.offpolicy.replay import ReplayBuffer  # noqa: E402
 
 OBS_DIM, ACT_DIM, HIDDEN, N_FILL = 14, 3, (300, 400), 100_000
 
@@ -59,15 +59,16 @@ def filled_buffer(batch: int) -> ReplayBuffer:
 
 def ours(batch: int, bf16: bool = False, compiled: bool = False, torch_adam: bool = False) -> Callable[[], None]:
     torch.manual_seed(0)
-    cfg = DDPGConfig(actor_hidden=HIDDEN, critic_hidden=HIDDEN, batch_size=batch, autocast_bf16=bf16, compile=compiled)
-    agent, buf = DDPG(OBS_DIM, ACT_DIM, cfg), filled_buffer(batch)
-    if torch_adam:  # the optimiser step as before the lean Adam: torch.optim.Adam(fused=True).step()
+    cfg = DDPGConfig(actor_hidden=HIDDEN, critic_hidden=HIDDEN)
+    agent, buf = DDPG(OBS_DIM, ACT_DIM, cfg, autocast_bf16=bf16, compile=compiled), filled_buffer(batch)
+    log_interval = TrainConfig().log_interval
+    if torch_adam:  # the optimiser step of torch.optim.Adam(fused=True).step() instead of the lean Adam
         agent.actor_opt = adam(agent.actor.parameters(), cfg.actor_lr)
         agent.critic_opt = adam(agent.critic.parameters(), cfg.critic_lr, cfg.critic_weight_decay)
 
     def step() -> None:
         agent.update(buf.sample())
-        if agent.updates % cfg.log_interval == 0:
+        if agent.updates % log_interval == 0:
             agent.read_losses()
     return step
 
@@ -105,7 +106,7 @@ def sb3(batch: int) -> Callable[[], None] | None:
         from stable_baselines3.common.logger import configure
     except Exception:
         return None
-    env = gym.make("train.toy:train_toy/MoveToTarget-v0")  # any env; spaces replaced below
+    env = gym.make("train.offpolicy.toy:train_toy/MoveToTarget-v0")  # any env; spaces replaced below
     env.observation_space = gym.spaces.Box(-np.inf, np.inf, (OBS_DIM,), np.float32)
     env.action_space = gym.spaces.Box(-1.0, 1.0, (ACT_DIM,), np.float32)
     model = SB3DDPG("MlpPolicy", env, buffer_size=N_FILL, learning_starts=0, batch_size=batch, device="cpu", seed=0,

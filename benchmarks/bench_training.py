@@ -9,7 +9,7 @@ over rounds of each figure is reported, with every round's samples/s):
 
 * ``env_only``: the bare env (``gym.make``) stepped with uniform-random actions,
   no learning -- the ceiling that collection alone allows;
-* ``ours``: :class:`train.loop.Trainer` (subclassed only to time it and to skip
+* ``ours``: :class:`train.offpolicy.loop.Trainer` (subclassed only to time it and to skip
   the end-of-run export/evaluation/plot) with the paper's go-to-ball config,
   demo_steps 0, no evaluations, no intermediate checkpoints, output in a temp dir;
 * ``sb3``: ``stable_baselines3.DDPG("MlpPolicy", ...)`` with ``learn()`` (when
@@ -52,20 +52,21 @@ import torch
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import ssl_marl  # noqa: E402,F401  (registers ssl_marl/GoToBall-v0)
-from train.config import DDPGConfig, default_config  # noqa: E402
-from train.loop import Trainer  # noqa: E402
+from train.offpolicy.config import TrainConfig, config_from_dict, default_config  # noqa: E402
+from train.offpolicy.loop import Trainer  # noqa: E402
 
 ENV_ID = "ssl_marl/GoToBall-v0"
 BUFFER = 100_000
 
 
-def bench_config(steps: int, warmup: int, threads: int, fast: bool = False) -> DDPGConfig:
+def bench_config(steps: int, warmup: int, threads: int, fast: bool = False) -> TrainConfig:
     """The shipped go-to-ball config, without demos, evaluations or intermediate checkpoints
     (``fast``: with ``autocast_bf16`` and ``compile``)."""
-    return DDPGConfig(**{**default_config("go-to-ball").to_dict(), "autocast_bf16": fast, "compile": fast,
-                         "demo_steps": 0, "eval_interval": 0, "eval_episodes": 1, "checkpoint_interval": 10**12,
-                         "buffer_size": BUFFER, "warmup_samples": warmup, "total_samples": warmup + steps,
-                         "num_envs": 1, "batch_size": 256, "updates_per_sample": 1.0, "torch_threads": threads})
+    return config_from_dict({"autocast_bf16": fast, "compile": fast, "demo_steps": 0, "eval_interval": 0,
+                             "eval_episodes": 1, "checkpoint_interval": 10**12, "buffer_size": BUFFER,
+                             "warmup_samples": warmup, "total_samples": warmup + steps, "num_envs": 1,
+                             "batch_size": 256, "updates_per_sample": 1.0, "torch_threads": threads},
+                            base=default_config("go-to-ball"))
 
 
 class TimedTrainer(Trainer):
@@ -127,11 +128,12 @@ def run_sb3(steps: int, warmup: int, threads: int, seed: int) -> dict[str, float
             return True
 
     env = gym.make(ENV_ID)
-    noise = OrnsteinUhlenbeckActionNoise(mean=np.full(3, cfg.ou_mu), sigma=np.full(3, cfg.ou_sigma),
-                                         theta=cfg.ou_theta, dt=cfg.ou_dt)
-    model = SB3DDPG("MlpPolicy", env, learning_rate=cfg.critic_lr, buffer_size=BUFFER, learning_starts=warmup,
-                    batch_size=256, tau=cfg.tau, gamma=cfg.gamma, train_freq=1, gradient_steps=1,
-                    policy_kwargs={"net_arch": {"pi": list(cfg.actor_hidden), "qf": list(cfg.critic_hidden)}},
+    ou, hp = cfg.exploration, cfg.ddpg
+    noise = OrnsteinUhlenbeckActionNoise(mean=np.full(3, ou.ou_mu), sigma=np.full(3, ou.ou_sigma),
+                                         theta=ou.ou_theta, dt=ou.ou_dt)
+    model = SB3DDPG("MlpPolicy", env, learning_rate=hp.critic_lr, buffer_size=BUFFER, learning_starts=warmup,
+                    batch_size=256, tau=hp.tau, gamma=hp.gamma, train_freq=1, gradient_steps=1,
+                    policy_kwargs={"net_arch": {"pi": list(hp.actor_hidden), "qf": list(hp.critic_hidden)}},
                     action_noise=noise, device="cpu", seed=seed, verbose=0)
     mark = Mark()
     model.learn(total_timesteps=warmup + steps, callback=mark)
@@ -216,7 +218,7 @@ def main(argv: list[str] | None = None) -> int:
             ("samples_per_s: env steps in the timed window per wall second, updates included; "
              "samples_per_s, updates_per_s, seconds: medians over rounds"),
             "env_only: bare gym.make env with uniform-random actions, no learning (reference ceiling)",
-            ("ours: train.loop.Trainer (progress.csv logging included; demos, evaluations, checkpoints off), "
+            ("ours: train.offpolicy.loop.Trainer (progress.csv logging included; demos, evaluations, checkpoints off), "
              "layer norm after each hidden layer (paper)"),
             "ours_fast (--fast): ours with autocast_bf16 and compile (bf16 matrix products, compiled losses)",
             ("sb3: stable_baselines3 DDPG learn(), MlpPolicy WITHOUT layer norm (a little less work per update), "

@@ -3,7 +3,7 @@
     python benchmarks/bench_vector_training.py [--steps 2000] [--collect-steps 20000] [--rounds 1]
                                                [--out results/bench_vector_training.json]
 
-Runs :class:`train.loop.Trainer` on ``ssl_marl/GoToBall-v0`` (the shipped go-to-ball
+Runs :class:`train.offpolicy.loop.Trainer` on ``ssl_marl/GoToBall-v0`` (the shipped go-to-ball
 config without demos, evaluations or checkpoints; see ``bench_training.py``, whose
 timed trainer this reuses) in these set-ups, one after the other in each round:
 

@@ -8,7 +8,7 @@ one CPU core) to show the workflow; the shipped actor took 500,000 samples
 same run from the command line::
 
     ssl-marl train go-to-ball --seed 0 --out runs/example_gtb --samples 3000 \\
-        --set demo_steps=2000 --set actor_hidden=[64,64] --set critic_hidden=[64,64] \\
+        --set demo_steps=2000 --set ddpg.actor_hidden=[64,64] --set ddpg.critic_hidden=[64,64] \\
         --set 'env_kwargs={"max_time_s": 4.0}' ...
 
 Writes ``OUT/progress.csv`` (one row per episode), ``OUT/eval.csv``,
@@ -22,9 +22,9 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from train.config import apply_overrides, default_config
-from train.loop import train
-from train.plots import plot_run
+from train.offpolicy.config import apply_overrides, default_config
+from train.offpolicy.loop import train
+from train.tools.plots import plot_run
 
 
 def main(argv: list[str] | None = None) -> dict:
@@ -36,7 +36,7 @@ def main(argv: list[str] | None = None) -> dict:
 
     cfg = apply_overrides(default_config("go-to-ball"), [
         f"total_samples={args.samples}", "demo_steps=2000", "warmup_samples=500",
-        "actor_hidden=[64,64]", "critic_hidden=[64,64]", "batch_size=64",
+        "ddpg.actor_hidden=[64,64]", "ddpg.critic_hidden=[64,64]", "batch_size=64",
         'env_kwargs={"max_time_s": 4.0}',  # shorter episodes than the paper's 10 s: more of them
         f"eval_interval={max(args.samples // 2, 1)}", "eval_episodes=2", f"checkpoint_interval={args.samples}",
     ])

@@ -329,14 +329,15 @@ def test_sharded_env_matches_one_batched_env():
 
 def test_trainer_collects_the_same_data_through_the_batched_vector_env(tmp_path):
     """train's vector_mode="batched" (SkillVectorEnv) stores the same transitions as "sync"."""
-    from train.config import DDPGConfig, default_config
-    from train.loop import Trainer
+    from train.offpolicy.config import config_from_dict, default_config
+    from train.offpolicy.loop import Trainer
 
     buffers = []
     for mode in ("sync", "batched"):
-        cfg = DDPGConfig(**{**default_config("go-to-ball").to_dict(), "demo_steps": 0, "eval_interval": 0,
-                            "num_envs": 3, "vector_mode": mode, "warmup_samples": 10**9, "buffer_size": 1000,
-                            "total_samples": 10**6, "env_kwargs": {"max_time_s": 0.5}, "max_episode_steps": None})
+        cfg = config_from_dict({"demo_steps": 0, "eval_interval": 0, "num_envs": 3, "vector_mode": mode,
+                                "warmup_samples": 10**9, "buffer_size": 1000, "total_samples": 10**6,
+                                "env_kwargs": {"max_time_s": 0.5}, "max_episode_steps": None},
+                               base=default_config("go-to-ball"))
         tr = Trainer(cfg, seed=2, out=tmp_path / mode, progress=False)
         tr._reset_envs()
         for _ in range(60):  # 30 steps per episode: autoresets included

@@ -11,9 +11,9 @@ import torch
 
 from ssl_marl.skills.concat_vector import ConcatVectorEnv, _merge_infos
 from ssl_marl.skills.vector import SkillVectorEnv
-from train.config import TrainConfig
-from train.loop import Trainer
-from train.select import select, training_fields
+from train.offpolicy.config import DDPGConfig, TrainConfig
+from train.offpolicy.loop import Trainer
+from train.tools.select import select, training_fields
 
 torch.set_num_threads(1)
 
@@ -72,7 +72,7 @@ def test_env_variants_config_errors_name_the_field() -> None:
 @pytest.mark.parametrize("mode", ["batched", "sync"])
 def test_trainer_splits_worlds_demos_and_checks_across_variants(tmp_path, mode) -> None:
     cfg = TrainConfig(skill="go_to_ball", env_id="ssl_marl/GoToBall-v0", demo_fn="ssl_marl.skills.demos:go_to_ball_demos",
-                      demo_steps=301, actor_hidden=(32,), critic_hidden=(32,), total_samples=400, warmup_samples=100,
+                      demo_steps=301, ddpg=DDPGConfig(actor_hidden=(32,), critic_hidden=(32,)), total_samples=400, warmup_samples=100,
                       batch_size=32, buffer_size=5_000, num_envs=4, vector_mode=mode, eval_interval=0, eval_episodes=3,
                       checkpoint_interval=200 if mode == "batched" else 10_000, torch_threads=1, autocast_bf16=False, n_step=3,
                       updates_per_sample=0.25, env_variants=[{"field": "div_a"}, {"field": "div_b"}])

@@ -112,16 +112,16 @@ def test_bad_action_and_reward_forms_raise():
 
 
 def test_trainer_anneals_the_cloning_weight(tmp_path):
-    from train.config import apply_overrides, default_config
-    from train.loop import Trainer
+    from train.offpolicy.config import apply_overrides, default_config
+    from train.offpolicy.loop import Trainer
 
-    cfg = apply_overrides(default_config("pendulum"), ["bc_weight=4.0", "bc_anneal_samples=100",
-                                                       "warmup_samples=20", "actor_hidden=[8]", "critic_hidden=[8]"])
+    cfg = apply_overrides(default_config("pendulum"), ["ddpg.bc_weight=4.0", "bc_anneal_samples=100", "warmup_samples=20",
+                                                       "ddpg.actor_hidden=[8]", "ddpg.critic_hidden=[8]"])
     tr = Trainer(cfg, 0, tmp_path, progress=False)
     for samples, weight, on in ((20, 4.0, True), (70, 2.0, True), (120, 0.0, False), (500, 0.0, False)):
         tr.samples = samples
         assert tr.anneal_bc() is on and tr.agent.cfg.bc_weight == pytest.approx(weight)
-    assert tr.cfg.bc_weight == 4.0  # the saved config keeps the starting weight
+    assert tr.cfg.ddpg.bc_weight == 4.0  # the saved config keeps the starting weight
     tr.envs.close()
     tr.eval_env.close()
 

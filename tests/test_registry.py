@@ -35,7 +35,7 @@ def test_every_consumer_covers_every_registered_skill():
     from ssl_marl.cli import build_parser
     from ssl_marl.plays.skillset import make_tactic_skill, swappable_skills
     from ssl_marl.runners.skill_eval import _make_env, resolve_policy
-    from train.config import CONFIG_DIR, SKILL_CONFIGS, default_config
+    from train.offpolicy.config import CONFIG_DIR, SKILL_CONFIGS, default_config
 
     sub = next(a for a in build_parser()._subparsers._group_actions)  # noqa: SLF001 (argparse has no API)
     eval_choices = tuple(sub.choices["eval-skill"]._positionals._group_actions[0].choices)  # noqa: SLF001

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from train.report import TABLES, regenerate, render
+from train.tools.report import TABLES, regenerate, render
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -138,7 +138,7 @@ def test_a_training_config_can_name_the_traffic():
     """env_kwargs of a skill config pick teammates, opponents and their drivers (here STP teams)."""
     import gymnasium
 
-    from train.config import apply_overrides, default_config
+    from train.offpolicy.config import apply_overrides, default_config
 
     cfg = apply_overrides(default_config("go-to-ball"), ['env_kwargs={"n_teammates": 1, "n_opponents": 2, '
                                                           '"traffic": "ssl_marl.plays.team:stp_traffic"}'])

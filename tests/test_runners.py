@@ -262,16 +262,17 @@ def test_ray_backend_gives_the_local_results():  # ~15 s on 2 idle-ish cores (Ra
 
 # --------------------------------------------------------------------- sweep
 def test_training_sweep_runs_each_seed_like_a_single_run_and_resumes(tmp_path):
-    """train.sweep over 2 seeds = each seed trained on its own (the pool keeps job order and
+    """train.tools.sweep over 2 seeds = each seed trained on its own (the pool keeps job order and
     seeding, tested above); a second call resumes (finished runs are only re-evaluated)."""
-    from train.config import DDPGConfig
-    from train.sweep import main as sweep_main, sweep
+    from train.offpolicy.config import DDPGConfig, TrainConfig
+    from train.tools.sweep import main as sweep_main, sweep
 
-    from train.toy import ENV_ID
+    from train.offpolicy.toy import ENV_ID
 
-    cfg = DDPGConfig(skill="toy", env_id="train.toy:" + ENV_ID, actor_hidden=(16,), critic_hidden=(16,),
-                     total_samples=300, warmup_samples=100, batch_size=32, eval_interval=0, eval_episodes=3,
-                     checkpoint_interval=10_000, torch_threads=1, log_interval=50)
+    cfg = TrainConfig(skill="toy", env_id="train.offpolicy.toy:" + ENV_ID,
+                      ddpg=DDPGConfig(actor_hidden=(16,), critic_hidden=(16,)), total_samples=300, warmup_samples=100,
+                      batch_size=32, eval_interval=0, eval_episodes=3, checkpoint_interval=10_000, torch_threads=1,
+                      log_interval=50)
     par = sweep(cfg, [3, 4], tmp_path / "par", workers=1, progress=False)
     one = sweep(cfg, [4], tmp_path / "one", workers=1, progress=False)
     assert [r["seed"] for r in par["runs"]] == [3, 4]

@@ -14,26 +14,32 @@ import pytest
 import torch
 
 from ssl_marl.skills.checkpoint import load_actor
-from train.algos import ALGOS, TD3, Agent, make_agent
-from train.algos.base import td_target
-from train.checkpoints import CHECKPOINT, read_train_state
-from train.config import TrainConfig, apply_overrides, cpu_has_fast_bf16, default_config
-from train.exploration import GaussianNoise, OUNoise, make_exploration
-from train.export import export_checkpoint_actor
-from train.loop import Trainer, train
-from train.replay import Batch
+from train.offpolicy.agent import td_target
+from train.offpolicy.algos import ALGOS, TD3, Agent, make_agent
+from train.offpolicy.checkpoints import CHECKPOINT, read_train_state
+from train.offpolicy.config import (DDPGConfig, TD3Config, TrainConfig, apply_overrides, config_from_dict,
+                                    cpu_has_fast_bf16, default_config)
+from train.offpolicy.exploration import GaussianNoise, OUNoise, make_exploration
+from train.offpolicy.export import export_checkpoint_actor
+from train.offpolicy.loop import Trainer, train
+from train.offpolicy.replay import Batch
 
 torch.set_num_threads(1)
-TOY = "train.toy:train_toy/MoveToTarget-v0"
+TOY = "train.offpolicy.toy:train_toy/MoveToTarget-v0"
 
 
 def toy_config(**kw: Any) -> TrainConfig:
-    base = dict(skill="toy", env_id=TOY, actor_hidden=(64, 64), critic_hidden=(64, 64), actor_lr=1e-3, critic_lr=1e-3,
-                gamma=0.95, tau=0.02, ou_sigma=0.5, buffer_size=20_000, batch_size=64, total_samples=2_000,
-                warmup_samples=250, eval_interval=0, eval_episodes=10, checkpoint_interval=10_000, torch_threads=1,
-                log_interval=50, autocast_bf16=False)
-    base.update(kw)
-    return TrainConfig(**base)
+    """The toy run config with ``kw`` on top (a section given as a dict updates only its keys)."""
+    base = config_from_dict(dict(
+        skill="toy", env_id=TOY, buffer_size=20_000, batch_size=64, total_samples=2_000, warmup_samples=250,
+        eval_interval=0, eval_episodes=10, checkpoint_interval=10_000, torch_threads=1, log_interval=50,
+        autocast_bf16=False, exploration={"ou_sigma": 0.5},
+        ddpg={"actor_hidden": (64, 64), "critic_hidden": (64, 64), "actor_lr": 1e-3, "critic_lr": 1e-3, "gamma": 0.95,
+              "tau": 0.02}))
+    return config_from_dict(kw, base=base)
+
+
+SMALL = {"actor_hidden": (32,), "critic_hidden": (32,)}
 
 
 def _batch(n: int = 16, terminated: float = 0.0, seed: int = 1) -> Batch:
@@ -47,24 +53,25 @@ def _rows(path: Path) -> list[dict[str, str]]:
         return [{k: v for k, v in r.items() if k != "wall_time"} for r in csv.DictReader(f)]
 
 
-def _td3(**kw: Any) -> TD3:
+def _td3(gamma: float = 0.99, **td3: Any) -> TD3:
     torch.manual_seed(0)
-    return TD3(4, 2, TrainConfig(actor_hidden=(8,), critic_hidden=(8,), batch_size=16, autocast_bf16=False, **kw))
+    return TD3(4, 2, DDPGConfig(actor_hidden=(8,), critic_hidden=(8,), gamma=gamma), TD3Config(**td3))
 
 
 def test_every_registered_algorithm_implements_the_interface() -> None:
     assert {"ddpg", "td3"} <= set(ALGOS)
     for name in ALGOS:
         torch.manual_seed(0)
-        agent = make_agent(4, 2, TrainConfig(algo=name, actor_hidden=(8,), critic_hidden=(8,), batch_size=16,
-                                             autocast_bf16=False))
+        cfg = TrainConfig(algo=name, ddpg=DDPGConfig(actor_hidden=(8,), critic_hidden=(8,)), batch_size=16,
+                          autocast_bf16=False)
+        agent = make_agent(4, 2, cfg)
         assert isinstance(agent, Agent)
         assert agent.act(np.zeros((3, 4), np.float32)).shape == (3, 2)
         for _ in range(4):
             agent.update(_batch())
         losses = agent.read_losses()
         assert set(losses) == set(agent.loss_names) and all(np.isfinite(v) for v in losses.values())
-        clone = make_agent(4, 2, agent.cfg)
+        clone = make_agent(4, 2, cfg)
         clone.load_state_dict(copy.deepcopy(agent.state_dict()))
         torch.manual_seed(5)
         agent.update(_batch(seed=2))
@@ -93,15 +100,15 @@ def test_td3_target_is_the_smaller_twin_q_of_the_smoothed_target_action() -> Non
 
 
 def test_td3_smoothing_noise_is_clipped() -> None:
-    agent = _td3(td3_policy_noise=10.0, td3_noise_clip=0.3)
+    agent = _td3(policy_noise=10.0, noise_clip=0.3)
     eps = agent.smoothing_noise(_batch(n=256))
     assert eps.abs().max() <= 0.3 and (eps.abs() == 0.3).float().mean() > 0.9
-    agent = _td3(td3_policy_noise=0.2, td3_noise_clip=0.5)
+    agent = _td3(policy_noise=0.2, noise_clip=0.5)
     assert agent.smoothing_noise(_batch(n=4096)).std() == pytest.approx(0.2, rel=0.1)
 
 
 def test_td3_updates_actor_and_targets_every_delay_th_step_only() -> None:
-    agent = _td3(td3_policy_delay=3)
+    agent = _td3(policy_delay=3)
     snap = lambda m: [p.detach().clone() for p in m.parameters()]  # noqa: E731
     changed = lambda a, b: any(not torch.equal(x, y) for x, y in zip(a, b))  # noqa: E731
     moved = []
@@ -119,7 +126,7 @@ def test_td3_bf16_autocast_update_tracks_float32() -> None:
     losses = {}
     for bf16 in (False, True):
         torch.manual_seed(0)
-        agent = TD3(4, 2, TrainConfig(actor_hidden=(32, 32), critic_hidden=(32, 32), batch_size=16, autocast_bf16=bf16))
+        agent = TD3(4, 2, DDPGConfig(actor_hidden=(32, 32), critic_hidden=(32, 32)), TD3Config(), autocast_bf16=bf16)
         for _ in range(20):
             agent.update(_batch())
         losses[bf16] = list(agent.read_losses().values())
@@ -140,9 +147,9 @@ def test_td3_learns_the_toy_task_and_ships_like_ddpg(tmp_path) -> None:
 def test_td3_with_gaussian_exploration_resumes_exactly(tmp_path) -> None:
     """TD3's twin critics, delayed steps and smoothing noise (torch RNG) and the Gaussian
     exploration state survive a checkpoint: a resumed run equals the uninterrupted one."""
-    cfg = toy_config(algo="td3", exploration="gaussian", gaussian_sigma=0.3, total_samples=400, checkpoint_interval=200,
-                     eval_interval=150, eval_episodes=2, warmup_samples=100, log_interval=7, actor_hidden=(32,),
-                     critic_hidden=(32,))
+    cfg = toy_config(algo="td3", exploration={"kind": "gaussian", "gaussian_sigma": 0.3}, total_samples=400,
+                     checkpoint_interval=200, eval_interval=150, eval_episodes=2, warmup_samples=100, log_interval=7,
+                     ddpg=SMALL)
     train(cfg, 2, tmp_path / "full", progress=False)
     train(dataclasses.replace(cfg, total_samples=200), 2, tmp_path / "part", progress=False)
     train(cfg, 2, tmp_path / "part", resume=True, progress=False)
@@ -157,7 +164,7 @@ def test_td3_with_gaussian_exploration_resumes_exactly(tmp_path) -> None:
 
 
 def _as_version_1(path: Path) -> None:
-    """Rewrite a DDPG train state in the layout the trainer wrote before the algorithm interface."""
+    """Rewrite a DDPG train state in the version-1 layout (DDPG only, no algorithm interface)."""
     state = torch.load(path, weights_only=True)
     meter = state["agent"].pop("losses")
     assert meter["counts"][0] == meter["counts"][1]
@@ -165,15 +172,17 @@ def _as_version_1(path: Path) -> None:
     state["noise"] = state.pop("exploration")
     state["losses"] = None if state["losses"] is None else [state["losses"]["critic"], state["losses"]["actor"]]
     del state["algo"]
-    for k in ("algo", "exploration", "gaussian_sigma", "td3_policy_noise", "td3_noise_clip", "td3_policy_delay"):
-        state["config"].pop(k)
+    config = state["config"]  # version 1: flat, without the keys of exploration kinds and algorithms
+    state["config"] = {**{k: v for k, v in config.items() if k not in ("algo", "ddpg", "td3", "exploration")},
+                       **config["ddpg"], **{k: v for k, v in config["exploration"].items()
+                                            if k not in ("kind", "gaussian_sigma")}}
     state["version"] = 1
     torch.save(state, path)
 
 
 def test_a_version_1_checkpoint_resumes_exactly(tmp_path) -> None:
     cfg = toy_config(total_samples=400, checkpoint_interval=200, warmup_samples=100, log_interval=7,
-                     demo_fn="train.toy:toy_demos", demo_steps=100, actor_hidden=(32,), critic_hidden=(32,))
+                     demo_fn="train.offpolicy.toy:toy_demos", demo_steps=100, ddpg=SMALL)
     train(cfg, 3, tmp_path / "full", progress=False)
     train(dataclasses.replace(cfg, total_samples=200), 3, tmp_path / "old", progress=False)
     _as_version_1(tmp_path / "old" / CHECKPOINT)
@@ -192,8 +201,8 @@ def test_a_version_1_checkpoint_resumes_exactly(tmp_path) -> None:
 
 
 def test_exploration_kinds() -> None:
-    cfg = toy_config(exploration="gaussian", gaussian_sigma=0.2)
-    noise = make_exploration(cfg, 4, 3, np.random.default_rng(0))
+    cfg = toy_config(exploration={"kind": "gaussian", "gaussian_sigma": 0.2})
+    noise = make_exploration(cfg.exploration, 4, 3, np.random.default_rng(0))
     assert isinstance(noise, GaussianNoise)
     x = np.stack([noise() for _ in range(3000)])
     assert x.shape == (3000, 4, 3) and x.std() == pytest.approx(0.2, rel=0.03)
@@ -202,17 +211,18 @@ def test_exploration_kinds() -> None:
     a = noise()
     noise.load_state_dict(state)
     np.testing.assert_array_equal(noise(), a)
-    assert isinstance(make_exploration(toy_config(), 4, 3, np.random.default_rng(0)), OUNoise)
-    with pytest.raises(ValueError, match="exploration must be one of"):
-        toy_config(exploration="eps-greedy")
+    assert isinstance(make_exploration(toy_config().exploration, 4, 3, np.random.default_rng(0)), OUNoise)
+    with pytest.raises(ValueError, match="exploration.kind must be one of"):
+        toy_config(exploration={"kind": "eps-greedy"})
     with pytest.raises(ValueError, match="ou_sigma_per_dim has 2 values"):
-        make_exploration(toy_config(ou_sigma_per_dim=(0.1, 0.2)), 1, 3, np.random.default_rng(0))
+        make_exploration(toy_config(exploration={"ou_sigma_per_dim": (0.1, 0.2)}).exploration, 1, 3,
+                         np.random.default_rng(0))
 
 
 def test_algo_by_config_and_cli_override() -> None:
     assert default_config("go-to-ball").algo == "ddpg"
     assert apply_overrides(default_config("go-to-ball"), ["algo=td3"]).algo == "td3"
-    from train.__main__ import build_parser
+    from train.offpolicy.cli import build_parser
 
     assert build_parser().parse_args(["pendulum", "--out", "x", "--algo", "td3"]).algo == "td3"
     with pytest.raises(SystemExit):
@@ -236,8 +246,7 @@ def test_tensorboard_logs_the_progress_scalars_and_eval_success(tmp_path) -> Non
     from tensorboard.backend.event_processing.event_accumulator import EventAccumulator
 
     cfg = toy_config(total_samples=300, warmup_samples=100, eval_interval=150, eval_episodes=2,
-                     demo_fn="train.toy:toy_demos", demo_steps=60, log_interval=20, actor_hidden=(32,),
-                     critic_hidden=(32,))
+                     demo_fn="train.offpolicy.toy:toy_demos", demo_steps=60, log_interval=20, ddpg=SMALL)
     train(cfg, 0, tmp_path, progress=False)
     events = list((tmp_path / "tb").glob("events.out.tfevents.*"))
     assert events
@@ -264,7 +273,7 @@ def test_td3_solves_pendulum_within_20k_samples(tmp_path) -> None:
 
 
 def test_select_reuse_evaluates_only_new_checkpoints(tmp_path, monkeypatch) -> None:
-    import train.select as sel
+    import train.tools.select as sel
     from ssl_marl.skills.checkpoint import save_actor
     from ssl_marl.skills.features import AIM_TO_SHOOT_SPECS
     from ssl_marl.skills.networks import Actor
@@ -291,7 +300,7 @@ def test_select_reuse_evaluates_only_new_checkpoints(tmp_path, monkeypatch) -> N
 def test_compare_reports_windows_evaluations_and_samples_to_target(tmp_path, capsys) -> None:
     import json
 
-    from train.compare import main as compare_main
+    from train.tools.compare import main as compare_main
 
     run = tmp_path / "r"
     run.mkdir()

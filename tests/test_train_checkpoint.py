@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import importlib.util
 import os
 import pickle
+from pathlib import Path
 
 import pytest
 import torch
@@ -12,6 +14,7 @@ from ssl_marl.skills.checkpoint import load_actor, save_actor
 from ssl_marl.skills.networks import Actor, Critic
 
 torch.set_num_threads(1)
+ROOT = Path(__file__).resolve().parents[1]
 
 
 def _actor() -> Actor:
@@ -116,7 +119,7 @@ def test_select_picks_among_exported_actors(tmp_path) -> None:
     from ssl_marl.skills.checkpoint import save_actor
     from ssl_marl.skills.features import AIM_TO_SHOOT_SPECS
     from ssl_marl.skills.networks import Actor
-    from train.select import select
+    from train.tools.select import select
 
     for samples in (1000, 2000):
         torch.manual_seed(samples)
@@ -133,7 +136,11 @@ def test_diagnose_kicks_reports_failures_and_kick_strengths(tmp_path) -> None:
     from ssl_marl.skills.checkpoint import save_actor
     from ssl_marl.skills.features import AIM_TO_SHOOT_SPECS
     from ssl_marl.skills.networks import Actor
-    from train.diagnose_kicks import diagnose
+
+    spec = importlib.util.spec_from_file_location("diagnose_kicks", ROOT / "benchmarks" / "diagnose_kicks.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    diagnose = module.diagnose
 
     torch.manual_seed(0)
     save_actor(tmp_path / "a.pt", Actor(10, 3, (8,)), {"skill": "aim_to_shoot", "obs_spec": AIM_TO_SHOOT_SPECS["full"]})

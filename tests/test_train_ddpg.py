@@ -8,16 +8,13 @@ import numpy as np
 import pytest
 import torch
 
-from train.config import DDPGConfig, apply_overrides, default_config, load_config
-from train.algos.ddpg import DDPG, soft_update, td_target
-from train.replay import Batch
+from train.offpolicy.config import DDPGConfig, TrainConfig, apply_overrides, default_config, load_config
+from train.offpolicy.ddpg import DDPG, soft_update, td_target
+from train.offpolicy.replay import Batch
 
 torch.set_num_threads(1)
 
 
-def fp32_config(**kw) -> DDPGConfig:
-    """A config in float32 whatever the CPU (autocast_bf16's default follows the CPU's features)."""
-    return DDPGConfig(**{"autocast_bf16": False, **kw})
 
 
 def test_td_target_terminal_does_not_bootstrap_truncated_does() -> None:
@@ -49,7 +46,7 @@ def _batch(n: int = 16, terminated: float = 0.0) -> Batch:
 
 def test_update_moves_networks_and_targets_by_tau() -> None:
     torch.manual_seed(0)
-    cfg = fp32_config(actor_hidden=(8, 8), critic_hidden=(8, 8), tau=0.1, batch_size=16, buffer_size=100)
+    cfg = DDPGConfig(actor_hidden=(8, 8), critic_hidden=(8, 8), tau=0.1)
     agent = DDPG(4, 2, cfg)
     before = {k: v.clone() for k, v in agent.state_dict()["actor_target"].items()}
     agent.update(_batch())
@@ -68,7 +65,7 @@ def test_update_moves_networks_and_targets_by_tau() -> None:
 def test_critic_fits_terminal_rewards_exactly() -> None:
     """With terminated = 1 the target is r alone, so the critic regresses Q(s, a) onto r."""
     torch.manual_seed(0)
-    cfg = fp32_config(actor_hidden=(16,), critic_hidden=(64, 64), critic_lr=3e-3, batch_size=16, buffer_size=100)
+    cfg = DDPGConfig(actor_hidden=(16,), critic_hidden=(64, 64), critic_lr=3e-3)
     agent = DDPG(4, 2, cfg)
     b = _batch(terminated=1.0)
     for _ in range(300):
@@ -79,44 +76,50 @@ def test_critic_fits_terminal_rewards_exactly() -> None:
 
 def test_shipped_configs_follow_the_paper() -> None:
     g = default_config("go-to-ball")
-    assert (g.critic_lr, g.actor_lr, g.critic_hidden, g.actor_hidden) == (1e-3, 1e-4, (300, 400), (300, 400))
+    assert (g.ddpg.critic_lr, g.ddpg.actor_lr, g.ddpg.critic_hidden, g.ddpg.actor_hidden) == \
+        (1e-3, 1e-4, (300, 400), (300, 400))
     assert (g.buffer_size, g.demo_steps, g.total_samples) == (1_000_000, 50_000, 500_000)
     a = default_config("aim-to-shoot")
-    assert (a.critic_lr, a.actor_lr, a.buffer_size) == (1e-4, 1e-4, 600_000)
-    assert a.critic_hidden == a.actor_hidden == (200, 300, 300, 300)
+    assert (a.ddpg.critic_lr, a.ddpg.actor_lr, a.buffer_size) == (1e-4, 1e-4, 600_000)
+    assert a.ddpg.critic_hidden == a.ddpg.actor_hidden == (200, 300, 300, 300)
     # documented departures for aim-to-shoot (train/configs/aim_to_shoot.json, docs/RESULTS.md)
-    assert a.demo_steps == 20_000 and a.bc_weight == 100.0 and a.ou_sigma_per_dim == (0.3, 0.05, 0.05)
+    assert a.demo_steps == 20_000 and a.ddpg.bc_weight == 100.0 and a.exploration.ou_sigma_per_dim == (0.3, 0.05, 0.05)
     for c in (g, a):
-        assert (c.ou_theta, c.ou_mu, c.ou_sigma) == (0.15, 0.0, 0.3)
-        assert c.layer_norm
+        assert (c.exploration.kind, c.exploration.ou_theta, c.exploration.ou_mu, c.exploration.ou_sigma) == \
+            ("ou", 0.15, 0.0, 0.3)
+        assert c.ddpg.layer_norm
     p = default_config("pendulum")
     assert p.env_id == "Pendulum-v1" and p.total_samples == 20_000
 
 
 def test_config_errors_and_overrides(tmp_path) -> None:
     path = tmp_path / "c.json"
-    path.write_text(json.dumps({"_note": "comments allowed", "gamma": 0.9, "actor_hidden": [4, 4]}))
+    path.write_text(json.dumps({"_note": "comments allowed", "ddpg": {"gamma": 0.9, "actor_hidden": [4, 4]}}))
     cfg = load_config(path)
-    assert cfg.gamma == 0.9 and cfg.actor_hidden == (4, 4)
-    cfg = apply_overrides(cfg, ["total_samples=2e4", "demo_fn=null", "critic_hidden=[8, 8]", "env_id=Foo-v0"])
+    assert cfg.ddpg.gamma == 0.9 and cfg.ddpg.actor_hidden == (4, 4) and cfg.ddpg.critic_lr == 1e-3
+    cfg = apply_overrides(cfg, ["total_samples=2e4", "demo_fn=null", "ddpg.critic_hidden=[8, 8]", "env_id=Foo-v0",
+                                "exploration.kind=gaussian", "td3.policy_delay=3.0"])
     assert cfg.total_samples == 20000 and isinstance(cfg.total_samples, int)
-    assert cfg.demo_fn is None and cfg.critic_hidden == (8, 8) and cfg.env_id == "Foo-v0"
+    assert cfg.demo_fn is None and cfg.ddpg.critic_hidden == (8, 8) and cfg.env_id == "Foo-v0"
+    assert cfg.ddpg.gamma == 0.9 and cfg.exploration.kind == "gaussian" and cfg.td3.policy_delay == 3
     path.write_text(json.dumps({"gamam": 0.9}))
     with pytest.raises(ValueError, match="unknown training config key"):
         load_config(path)
-    with pytest.raises(ValueError, match="tau"):
-        apply_overrides(cfg, ["tau=0"])
+    with pytest.raises(ValueError, match="ddpg.tau"):
+        apply_overrides(cfg, ["ddpg.tau=0"])
     with pytest.raises(ValueError, match="key=value"):
         apply_overrides(cfg, ["tau"])
+    with pytest.raises(ValueError, match=r"unknown training config key\(s\) \['ddpg.gamam'\]"):
+        apply_overrides(cfg, ["ddpg.gamam=0.9"])
     with pytest.raises(ValueError, match="demo_fn"):
-        DDPGConfig(demo_steps=10, demo_fn=None)
+        TrainConfig(demo_steps=10, demo_fn=None)
     with pytest.raises(FileNotFoundError):
         load_config(tmp_path / "missing.json")
 
 
 def test_behaviour_cloning_term_pulls_the_actor_to_the_demonstrations() -> None:
     torch.manual_seed(0)
-    cfg = fp32_config(actor_hidden=(32,), critic_hidden=(32,), batch_size=16, bc_weight=10.0, actor_lr=1e-3)
+    cfg = DDPGConfig(actor_hidden=(32,), critic_hidden=(32,), bc_weight=10.0, actor_lr=1e-3)
     agent = DDPG(4, 2, cfg)
     demo = Batch(torch.randn(16, 4), torch.full((16, 2), 0.8), torch.zeros(16), torch.randn(16, 4), torch.zeros(16))
     before = float(((agent.actor(demo.obs) - demo.act) ** 2).mean().detach())
@@ -129,13 +132,13 @@ def test_behaviour_cloning_term_pulls_the_actor_to_the_demonstrations() -> None:
 def test_actor_step_does_not_touch_the_critic() -> None:
     """The actor step freezes the critic (no weight gradients) and unfreezes it afterwards."""
     torch.manual_seed(0)
-    agent = DDPG(4, 2, fp32_config(actor_hidden=(8,), critic_hidden=(8,), batch_size=16))
+    agent = DDPG(4, 2, DDPGConfig(actor_hidden=(8,), critic_hidden=(8,)))
     b = _batch()
     crit = agent.critic_loss(b)
     crit.backward()
     expected = [p.grad.clone() for p in agent.critic.parameters()]
     torch.manual_seed(0)
-    agent2 = DDPG(4, 2, fp32_config(actor_hidden=(8,), critic_hidden=(8,), batch_size=16))
+    agent2 = DDPG(4, 2, DDPGConfig(actor_hidden=(8,), critic_hidden=(8,)))
     agent2.update(b)  # critic grads left by update() must be the critic loss's alone
     for p, g in zip(agent2.critic.parameters(), expected):
         assert p.requires_grad
@@ -146,7 +149,7 @@ def test_bf16_autocast_update_tracks_float32() -> None:
     losses = {}
     for bf16 in (False, True):
         torch.manual_seed(0)
-        agent = DDPG(4, 2, DDPGConfig(actor_hidden=(32, 32), critic_hidden=(32, 32), batch_size=16, autocast_bf16=bf16))
+        agent = DDPG(4, 2, DDPGConfig(actor_hidden=(32, 32), critic_hidden=(32, 32)), autocast_bf16=bf16)
         for _ in range(20):
             agent.update(_batch())
         losses[bf16] = list(agent.read_losses().values())
@@ -159,7 +162,7 @@ def test_compiled_update_matches_eager() -> None:
     states = []
     for compiled in (False, True):
         torch.manual_seed(0)
-        agent = DDPG(4, 2, fp32_config(actor_hidden=(16,), critic_hidden=(16,), batch_size=16, compile=compiled))
+        agent = DDPG(4, 2, DDPGConfig(actor_hidden=(16,), critic_hidden=(16,)), compile=compiled)
         for _ in range(5):
             agent.update(_batch())
         states.append(agent.actor.state_dict())
@@ -171,7 +174,7 @@ def test_lean_adam_is_bit_identical_to_fused_adam_and_resumes() -> None:
     import copy as _copy
     import io
 
-    from train.algos.base import LeanAdam, adam
+    from train.offpolicy.agent import LeanAdam, adam
 
     torch.manual_seed(0)
     net = torch.nn.Sequential(torch.nn.Linear(5, 7), torch.nn.LayerNorm(7), torch.nn.ReLU(), torch.nn.Linear(7, 1))

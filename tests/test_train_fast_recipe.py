@@ -1,4 +1,4 @@
-"""The faster go-to-ball recipe end to end (issue 13), on a CI-sized run.
+"""The faster go-to-ball recipe end to end, on a CI-sized run.
 
 ``train/configs/go_to_ball_fast.json`` (3-step returns, 8 batched worlds, 0.25 updates per
 sample) shortened to 80,000 samples. The stated success, >= 0.6 on 100 validation episodes,
@@ -11,14 +11,15 @@ tests/test_train_fast_recipe.py``.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from pathlib import Path
 
 import pytest
 
-from train.config import load_config
-from train.evaluate import evaluate_actor
-from train.loop import Trainer
+from train.offpolicy.config import load_config
+from train.offpolicy.evaluate import evaluate_actor
+from train.offpolicy.loop import Trainer
 
 CONFIG = Path(__file__).resolve().parents[1] / "train" / "configs" / "go_to_ball_fast.json"
 
@@ -26,7 +27,7 @@ CONFIG = Path(__file__).resolve().parents[1] / "train" / "configs" / "go_to_ball
 @pytest.mark.slow
 def test_fast_go_to_ball_recipe_learns_in_80k_samples(tmp_path) -> None:
     cfg = load_config(CONFIG)
-    cfg.total_samples, cfg.eval_interval, cfg.checkpoint_interval, cfg.torch_threads = 80_000, 0, 80_000, 2
+    cfg = dataclasses.replace(cfg, total_samples=80_000, eval_interval=0, checkpoint_interval=80_000, torch_threads=2)
     result = Trainer(cfg, seed=0, out=tmp_path, progress=False).run()
     assert 80_000 <= json.loads((tmp_path / "eval.json").read_text())["samples"] < 80_000 + cfg.num_envs
     # 100 validation episodes of seed 5000 (never used for training): the stated success

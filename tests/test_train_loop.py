@@ -13,14 +13,14 @@ import numpy as np
 import pytest
 import torch
 
-from train.__main__ import main as cli_main
-from train.config import DDPGConfig
-from train.evaluate import main as evaluate_main, run_episodes
-from train.loop import Trainer, train
-from train.toy import ENV_ID as TOY_ID, toy_demos
+from train.offpolicy.cli import main as cli_main
+from train.offpolicy.config import TrainConfig, config_from_dict
+from train.offpolicy.evaluate import main as evaluate_main, run_episodes
+from train.offpolicy.loop import Trainer, train
+from train.offpolicy.toy import ENV_ID as TOY_ID, toy_demos
 
 torch.set_num_threads(1)
-TOY = "train.toy:" + TOY_ID
+TOY = "train.offpolicy.toy:" + TOY_ID
 COUNTER_ID = "test_train/Counter-v0"
 
 
@@ -52,14 +52,16 @@ if COUNTER_ID not in gym.registry:
     gym.register(id=COUNTER_ID, entry_point=CounterEnv)
 
 
-def toy_config(**kw: Any) -> DDPGConfig:
-    base = dict(skill="toy", env_id=TOY, actor_hidden=(64, 64), critic_hidden=(64, 64), actor_lr=1e-3, critic_lr=1e-3,
-                gamma=0.95, tau=0.02, ou_sigma=0.5, buffer_size=20_000, batch_size=64, total_samples=2_000,
-                warmup_samples=250,
-                eval_interval=0, eval_episodes=10, checkpoint_interval=10_000, torch_threads=1, log_interval=50,
-                autocast_bf16=False)  # float32 whatever the CPU (tiny networks: bf16 casts would only cost)
-    base.update(kw)
-    return DDPGConfig(**base)
+def toy_config(**kw: Any) -> TrainConfig:
+    """The toy run config with ``kw`` on top (a section given as a dict updates only its keys)."""
+    base = config_from_dict(dict(
+        skill="toy", env_id=TOY, buffer_size=20_000, batch_size=64, total_samples=2_000, warmup_samples=250,
+        eval_interval=0, eval_episodes=10, checkpoint_interval=10_000, torch_threads=1, log_interval=50,
+        autocast_bf16=False,  # float32 whatever the CPU (tiny networks: bf16 casts would only cost)
+        exploration={"ou_sigma": 0.5},
+        ddpg={"actor_hidden": (64, 64), "critic_hidden": (64, 64), "actor_lr": 1e-3, "critic_lr": 1e-3, "gamma": 0.95,
+              "tau": 0.02}))
+    return config_from_dict(kw, base=base)
 
 
 def read_rows(path: Path, drop: tuple[str, ...] = ("wall_time",)) -> list[dict[str, str]]:
@@ -105,7 +107,7 @@ def test_async_vector_env_collects_the_same_data(tmp_path) -> None:
 
 
 def test_demo_burn_in_fills_buffer_with_demos_in_spaces(tmp_path) -> None:
-    cfg = toy_config(demo_fn="train.toy:toy_demos", demo_steps=300)
+    cfg = toy_config(demo_fn="train.offpolicy.toy:toy_demos", demo_steps=300)
     tr = Trainer(cfg, seed=4, out=tmp_path, progress=False)
     tr._reset_envs()
     tr.burn_in()
@@ -156,7 +158,7 @@ def test_short_training_improves_on_untrained_policy(tmp_path) -> None:
 
 def test_resume_continues_exactly(tmp_path) -> None:
     cfg = toy_config(total_samples=1_200, checkpoint_interval=600, eval_interval=400, eval_episodes=3,
-                     demo_fn="train.toy:toy_demos", demo_steps=100, warmup_samples=100)
+                     demo_fn="train.offpolicy.toy:toy_demos", demo_steps=100, warmup_samples=100)
     train(cfg, 1, tmp_path / "full", progress=False)
     train(dataclasses.replace(cfg, total_samples=600), 1, tmp_path / "part", progress=False)
     with pytest.raises(FileExistsError):
@@ -190,7 +192,7 @@ def test_cli_runs_and_resumes(tmp_path, capsys) -> None:
     cfg_path.write_text(json.dumps(toy_config(total_samples=300, warmup_samples=100).to_dict()))
     out = tmp_path / "run"
     args = ["pendulum", "--config", str(cfg_path), "--seed", "2", "--out", str(out), "--no-progress"]
-    assert cli_main(args + ["--set", "eval_episodes=2", "--set", "actor_hidden=[16]"]) == 0
+    assert cli_main(args + ["--set", "eval_episodes=2", "--set", "ddpg.actor_hidden=[16]"]) == 0
     assert '"mean_return"' in capsys.readouterr().out
     assert cli_main(args + ["--resume", "--samples", "500"]) == 0
     rows = read_rows(out / "progress.csv")

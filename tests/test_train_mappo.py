@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 import torch
 
-from train.algos.mappo import MAPPO, MAPPOConfig, ValueNorm, gae, smdp_discount
-from train.mappo_loop import MAPPOTrainer, task_config
-from train.toy_marl import ToySignal, ToyTempo
+from train.mappo.algorithm import MAPPO, MAPPOConfig, ValueNorm, gae, smdp_discount
+from train.mappo.loop import MAPPOTrainer, task_config
+from train.mappo.toy_marl import ToySignal, ToyTempo
 
 
 def test_smdp_discount_is_gamma_per_tau_seconds() -> None:
@@ -215,7 +215,7 @@ def test_unknown_task_and_bad_override_are_clear_errors() -> None:
 
 def test_exported_actor_plays_greedy_over_legal_options_and_checks_the_env(tmp_path: Path) -> None:
     from ssl_marl.decisions.learned import DecisionActor, LearnedDecisionPolicy, load_decision_actor
-    from train.mappo_export import export
+    from train.mappo.export import export
 
     cfg = task_config("toy-signal", num_envs=2, rollout_steps=4, total_decisions=16, val_episodes=3)
     tr = MAPPOTrainer(cfg, 0, tmp_path / "run", progress=False)
@@ -291,11 +291,11 @@ def test_warm_start_loads_the_actor_and_warmup_trains_only_the_critic(tmp_path: 
 
 
 def test_behaviour_cloning_imitates_a_benchmark_policy(tmp_path: Path) -> None:
-    """train.mappo_bc: demonstrations of keepaway's always-hold keepers are fitted exactly, and
+    """train.mappo.bc: demonstrations of keepaway's always-hold keepers are fitted exactly, and
     the written actor plays them back greedily."""
     from ssl_marl.decisions.keepaway import HOLD, KeepawayEnv
     from ssl_marl.decisions.learned import LearnedDecisionPolicy
-    from train.mappo_bc import collect_demonstrations, fit_actor, save_bc_actor
+    from train.mappo.bc import collect_demonstrations, fit_actor, save_bc_actor
 
     demos = collect_demonstrations("keepaway", "always-hold", 3, 100000, progress=False)
     assert len(demos["option"]) >= 3 and set(demos["option"].tolist()) == {HOLD}

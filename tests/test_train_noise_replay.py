@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 import torch
 
-from train.exploration import OUNoise
-from train.replay import ReplayBuffer
+from train.offpolicy.exploration import OUNoise
+from train.offpolicy.replay import ReplayBuffer
 
 torch.set_num_threads(1)
 
@@ -109,7 +109,7 @@ def test_replay_save_load_roundtrip(tmp_path) -> None:
 def test_ou_noise_per_dimension_sigma():
     import numpy as np
 
-    from train.exploration import OUNoise
+    from train.offpolicy.exploration import OUNoise
 
     noise = OUNoise(1, 3, theta=0.15, sigma=[0.3, 0.0, 0.05], rng=np.random.default_rng(0))
     xs = np.array([noise()[0] for _ in range(20000)])

@@ -1,4 +1,4 @@
-"""n-step returns (train.nstep): hand-computed windows, terminal vs truncated, n = 1, the loop and resume."""
+"""n-step returns (train.offpolicy.nstep): hand-computed windows, terminal vs truncated, n = 1, the loop and resume."""
 
 from __future__ import annotations
 
@@ -8,11 +8,12 @@ import numpy as np
 import pytest
 import torch
 
-from train.algos.base import td_target
-from train.algos.ddpg import DDPG
-from train.loop import Trainer, train
-from train.nstep import NStepBuffer
-from train.replay import Batch, ReplayBuffer
+from train.offpolicy.agent import td_target
+from train.offpolicy.config import DDPGConfig
+from train.offpolicy.ddpg import DDPG
+from train.offpolicy.loop import Trainer, train
+from train.offpolicy.nstep import NStepBuffer
+from train.offpolicy.replay import Batch, ReplayBuffer
 
 from tests.test_train_loop import COUNTER_ID, read_rows, toy_config
 
@@ -112,8 +113,7 @@ def test_default_n_step_keeps_the_one_step_replay() -> None:
 
 
 def test_ddpg_critic_target_uses_the_row_discount() -> None:
-    cfg = toy_config(actor_hidden=(8,), critic_hidden=(8,), gamma=0.9)
-    agent = DDPG(3, 1, cfg)
+    agent = DDPG(3, 1, DDPGConfig(actor_hidden=(8,), critic_hidden=(8,), gamma=0.9))
     g = torch.Generator().manual_seed(2)
     b = Batch(torch.randn(8, 3, generator=g), torch.rand(8, 1, generator=g), torch.randn(8, generator=g),
               torch.randn(8, 3, generator=g), torch.zeros(8))
@@ -124,7 +124,7 @@ def test_ddpg_critic_target_uses_the_row_discount() -> None:
 
 def test_loop_stores_n_step_rows_over_real_episodes(tmp_path) -> None:
     """CounterEnv (reward 1 per step, obs = [episode, t, L, terminates]) through 3 sub-envs."""
-    cfg = toy_config(env_id=COUNTER_ID, num_envs=3, n_step=3, gamma=G, warmup_samples=10**9, buffer_size=1000,
+    cfg = toy_config(env_id=COUNTER_ID, num_envs=3, n_step=3, ddpg={"gamma": G}, warmup_samples=10**9, buffer_size=1000,
                      total_samples=10**6)
     tr = Trainer(cfg, seed=0, out=tmp_path, progress=False)
     tr._reset_envs()
@@ -148,7 +148,7 @@ def test_loop_stores_n_step_rows_over_real_episodes(tmp_path) -> None:
 
 def test_n_step_resume_continues_exactly(tmp_path) -> None:
     cfg = toy_config(total_samples=900, checkpoint_interval=450, n_step=3, warmup_samples=100,
-                     demo_fn="train.toy:toy_demos", demo_steps=100)
+                     demo_fn="train.offpolicy.toy:toy_demos", demo_steps=100)
     train(cfg, 1, tmp_path / "full", progress=False)
     train(dataclasses.replace(cfg, total_samples=450), 1, tmp_path / "part", progress=False)
     train(cfg, 1, tmp_path / "part", resume=True, progress=False)

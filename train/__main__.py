@@ -1,70 +1,28 @@
-"""CLI: ``python -m train SKILL --seed 0 --out runs/NAME [--algo td3] [--config X.json] [--resume] [--samples N] [--set k=v ...]``
-(the same as ``ssl-marl train SKILL ...``).
+"""``python -m train`` (and ``ssl-marl train``): the two training command lines.
 
-``python -m train mappo --task TASK --seed S --out DIR [--resume] [--decisions N]`` trains the
-multi-agent MAPPO instead (:mod:`train.mappo_cli`; ``python -m train mappo --help``).
+``python -m train SKILL --seed 0 --out runs/NAME [--algo td3] [--config X.json] [--resume] [--samples N] [--set k=v ...]``
+trains a skill with DDPG or TD3 (:mod:`train.offpolicy.cli`; ``python -m train SKILL --help``).
 
-SKILL is go-to-ball, aim-to-shoot or pendulum and picks the default config in
-``train/configs/``; ``--config`` replaces it, ``--set`` overrides single keys
-(values parsed as JSON: ``--set actor_hidden=[64,64] --set demo_fn=null``).
-``--algo`` picks the learning algorithm (same as ``--set algo=NAME``; default: the
-config's, ``ddpg``). With ``--resume`` the config stored in OUT's checkpoint is used
-(``--samples`` and ``--set`` still apply on top, e.g. to extend a finished run).
+``python -m train mappo --task TASK --seed S --out DIR [--resume] [--decisions N] [--set k=v ...]``
+trains the multi-agent MAPPO (:mod:`train.mappo.cli`; ``python -m train mappo --help``).
 """
 
 from __future__ import annotations
 
-import argparse
-import json
 import sys
-from pathlib import Path
-
-from .algos import ALGOS
-from .config import SKILL_CONFIGS, apply_overrides, default_config, load_config
-
-
-def build_parser(prog: str = "python -m train") -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog=prog, description=__doc__,
-                                formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("skill", choices=sorted(SKILL_CONFIGS), help="which default config to start from")
-    p.add_argument("--config", type=Path, default=None, help="JSON config (default: train/configs/<skill>.json)")
-    p.add_argument("--algo", choices=sorted(ALGOS), default=None,
-                   help="learning algorithm (default: the config's 'algo', ddpg); same as --set algo=NAME")
-    p.add_argument("--seed", type=int, default=0, help="training seed (evaluation during training uses seed + 1000)")
-    p.add_argument("--out", type=Path, required=True, help="run folder (logs, checkpoints, actor.pt)")
-    p.add_argument("--resume", action="store_true", help="continue from OUT/checkpoint.pt")
-    p.add_argument("--samples", type=int, default=None, help="override total_samples (env samples)")
-    p.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
-                   help="override one config key (repeatable)")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar (e.g. in CI logs)")
-    return p
 
 
 def main(argv: list[str] | None = None, prog: str = "python -m train") -> int:
-    """Entry point of ``python -m train`` and ``ssl-marl train`` (``prog`` names it in messages)."""
+    """Run the MAPPO command line when the first argument is ``mappo``, else the skill one
+    (``prog`` names the command in messages)."""
     argv = sys.argv[1:] if argv is None else argv
     if argv and argv[0] == "mappo":
-        from .mappo_cli import main as mappo_main
+        from train.mappo.cli import main as mappo_main
 
         return mappo_main(argv[1:], prog=f"{prog} mappo")
-    args = build_parser(prog).parse_args(argv)
-    from .loop import load_run_config, train  # heavy imports after argument errors
+    from train.offpolicy.cli import main as skill_main
 
-    if args.resume:
-        cfg, saved_seed = load_run_config(args.out)
-        if saved_seed != args.seed:
-            print(f"note: resuming with the checkpoint's seed {saved_seed} (not --seed {args.seed})")
-        seed = saved_seed
-    else:
-        cfg = load_config(args.config) if args.config else default_config(args.skill)
-        seed = args.seed
-    overrides = list(args.overrides) + ([f"total_samples={args.samples}"] if args.samples is not None else []) \
-        + ([f"algo={args.algo}"] if args.algo is not None else [])
-    cfg = apply_overrides(cfg, overrides)
-    result = train(cfg, seed, args.out, resume=args.resume, progress=not args.no_progress)
-    summary = {k: result[k] for k in ("mean_return", "std_return", "mean_length", "success_rate", "wall_time_s")}
-    print(json.dumps({"out": str(args.out), **summary}))
-    return 0
+    return skill_main(argv, prog=prog)
 
 
 if __name__ == "__main__":

@@ -1,14 +1,12 @@
 """Learned decision policies: the MAPPO-trained shared actor as a :class:`~ssl_marl.decisions.policies.DecisionPolicy`.
 
-A decision actor file (``torch.save`` of plain containers and tensors, read with
-``torch.load(weights_only=True)``) holds::
+A decision actor file is an actor file of kind ``"decision"`` (:mod:`ssl_marl.skills.checkpoint`,
+read with ``torch.load(weights_only=True)``): its state dict holds the network's ``net.*`` weights
+and ``obs_mean`` / ``obs_std`` (obs_dim,); its metadata ``task``, ``obs_dim``, ``n_options``,
+``hidden``, ``agent_ids`` ([str, ...] | None), ``option_names`` ([str, ...] | None) and provenance
+(seed, decisions, val_score, val_seed, commit).
 
-    {"format": "ssl_marl.decision_actor/1", "task": str, "obs_dim": int, "n_options": int,
-     "hidden": [int, ...], "state_dict": {...}, "obs_mean": tensor (obs_dim,), "obs_std": tensor (obs_dim,),
-     "agent_ids": [str, ...] | None, "option_names": [str, ...] | None, ...metadata (seed, decisions,
-     val_score, val_seed, commit)}
-
-The network (:class:`DecisionActor`) is the trainer's actor (``train/algos/mappo.py``): an MLP
+The network (:class:`DecisionActor`) is the trainer's actor (``train/mappo/algorithm.py``): an MLP
 ``Linear -> tanh`` per hidden layer, then a linear layer to one logit per option, on the
 observation scaled as ``(obs - obs_mean) / obs_std`` (with the agent's one-hot appended when
 ``agent_ids`` is set). :class:`LearnedDecisionPolicy` plays it greedily: the legal option
@@ -28,9 +26,8 @@ import numpy as np
 import torch
 from torch import nn
 
-from ..skills.checkpoint import safe_torch_load
+from ..skills.checkpoint import read_actor_file
 
-FORMAT = "ssl_marl.decision_actor/1"
 PRETRAINED_DIR = Path(__file__).resolve().parent / "pretrained"
 _TRAIN_CMD = {
     "keepaway": "python -m train mappo --task keepaway --seed 0 --out runs/mappo_keepaway_s0 && "
@@ -86,25 +83,21 @@ class DecisionActor(nn.Module):
 
 
 def load_decision_actor(path: str | Path) -> tuple[DecisionActor, dict[str, Any]]:
-    """Load a decision actor file (``weights_only=True``): the network and the file's other entries."""
-    what = "ssl_marl decision actor"
-    data = safe_torch_load(path, what)
-    if not isinstance(data, dict) or data.get("format") != FORMAT:
-        raise ValueError(f"{path} is not a valid {what} (no {FORMAT!r} format tag)")
-    for key in ("obs_dim", "n_options", "hidden", "state_dict"):
-        if key not in data:
-            raise ValueError(f"{path} is not a valid {what}: missing {key!r}")
-    if data.get("continuous"):
-        raise ValueError(f"{path} holds a continuous-action actor (task {data.get('task')!r}), not a decision actor")
-    agent_ids = data.get("agent_ids") or None
-    actor = DecisionActor(int(data["obs_dim"]), int(data["n_options"]), [int(h) for h in data["hidden"]],
+    """Load a decision actor file (``weights_only=True``): the network and the file's metadata."""
+    state, meta = read_actor_file(path, "decision")
+    for key in ("obs_dim", "n_options", "hidden"):
+        if key not in meta:
+            raise ValueError(f"{path} is not a valid ssl_marl decision actor: missing {key!r}")
+    if meta.get("continuous"):
+        raise ValueError(f"{path} holds a continuous-action actor (task {meta.get('task')!r}), not a decision actor")
+    agent_ids = meta.get("agent_ids") or None
+    actor = DecisionActor(int(meta["obs_dim"]), int(meta["n_options"]), [int(h) for h in meta["hidden"]],
                           len(agent_ids) if agent_ids else 0)
-    actor.net.load_state_dict({k[len("net."):]: v for k, v in data["state_dict"].items() if k.startswith("net.")})
-    if data.get("obs_mean") is not None:
-        actor.obs_mean.copy_(torch.as_tensor(data["obs_mean"], dtype=torch.float32))
-        actor.obs_std.copy_(torch.as_tensor(data["obs_std"], dtype=torch.float32))
+    actor.net.load_state_dict({k[len("net."):]: v for k, v in state.items() if k.startswith("net.")})
+    if state.get("obs_mean") is not None:
+        actor.obs_mean.copy_(torch.as_tensor(state["obs_mean"], dtype=torch.float32))
+        actor.obs_std.copy_(torch.as_tensor(state["obs_std"], dtype=torch.float32))
     actor.eval()
-    meta = {k: v for k, v in data.items() if k != "state_dict"}
     return actor, meta
 
 
@@ -153,4 +146,4 @@ class LearnedDecisionPolicy:
         return int(np.argmax(np.where(mask, logits, -np.inf)))
 
 
-__all__ = ["DecisionActor", "FORMAT", "LearnedDecisionPolicy", "load_decision_actor", "pretrained_path"]
+__all__ = ["DecisionActor", "LearnedDecisionPolicy", "load_decision_actor", "pretrained_path"]

@@ -1,18 +1,28 @@
-"""Save and load learned-skill actors without ever executing code from the file.
+"""Actor files: the one format of skill actors and decision actors, loaded without ever executing code.
 
-A checkpoint is a ``torch.save``-d plain dict::
+An actor file is a ``torch.save``-d plain dict::
 
-    {"format": "ssl_marl.actor", "version": 1,
-     "state_dict": {...tensors...}, "metadata": {...str/int/float/bool/list/dict...}}
+    {"format": "ssl_marl.actor", "version": 2, "kind": "skill" | "decision",
+     "state_dict": {...tensors...}, "metadata": {...str/int/float/bool/None/list/dict...}}
 
-and is read back with ``torch.load(..., weights_only=True)``, which refuses
-anything but tensors and plain containers. Metadata records what is needed to
-rebuild and trust the network: ``skill``, ``obs_spec`` (the env's observation
-version string, e.g. ``"go_to_ball/v1"``), ``obs_dim``, ``act_dim``, ``hidden``,
-``layer_norm``, plus provenance (``hyperparameters``, ``seed``, ``samples``,
-``git_commit``, ``created``) filled in by :func:`save_actor` when absent.
-Files are written atomically (temp file in the same directory, then
-``os.replace``), so a crash never leaves a half-written checkpoint.
+read back with ``torch.load(..., weights_only=True)``, which refuses anything but tensors
+and plain containers (:func:`read_actor_file`). ``kind`` says which network it holds:
+
+* ``"skill"`` -- a learned skill's :class:`~ssl_marl.skills.networks.Actor` (:func:`save_actor`,
+  :func:`load_actor`). Metadata: ``skill``, ``obs_spec`` (the env's observation version
+  string, e.g. ``"go_to_ball/v1"``), ``obs_dim``, ``act_dim``, ``hidden``, ``layer_norm``, plus
+  provenance (``hyperparameters``, ``seed``, ``samples``, ``git_commit``, ``created``).
+* ``"decision"`` -- a MAPPO decision actor (:func:`ssl_marl.decisions.learned.load_decision_actor`):
+  the state dict holds the policy network's ``net.*`` weights and the observation scaling
+  ``obs_mean`` / ``obs_std``; metadata: ``task``, ``obs_dim``, ``n_options``, ``hidden``,
+  ``continuous``, ``agent_ids``, ``option_names`` and provenance (``seed``, ``decisions``,
+  ``val_score``, ``commit``, ``selection``, ...).
+
+:func:`read_actor_file` also reads the two earlier layouts, so every stored actor loads:
+version 1 of ``ssl_marl.actor`` (skill actors, no ``kind``) and ``ssl_marl.decision_actor/1``
+(one flat dict: the metadata entries beside ``state_dict``, ``obs_mean`` and ``obs_std``).
+Files are written atomically (temp file in the same directory, then ``os.replace``), so a
+crash never leaves a half-written file.
 """
 
 from __future__ import annotations
@@ -31,7 +41,11 @@ import torch
 from .networks import Actor
 
 FORMAT = "ssl_marl.actor"
-VERSION = 1
+VERSION = 2
+#: actor kinds (the ``kind`` entry)
+KINDS = ("skill", "decision")
+_DECISION_V1 = "ssl_marl.decision_actor/1"
+_DECISION_TENSORS = ("obs_mean", "obs_std")
 _PLAIN = (str, int, float, bool, type(None))
 
 
@@ -87,7 +101,11 @@ VALID_FILES = {
                            "ssl_marl/skills/pretrained/go_to_ball.pt",
     "ssl_marl training checkpoint": "a valid one is RUN/checkpoint.pt written by `ssl-marl train` / "
                                     "`python -m train`",
+    "ssl_marl decision actor": "a valid one is a decision actor written by `python -m train mappo` "
+                               "(RUN/actors/actor-N.pt) or `python -m train.mappo_export`, like the shipped "
+                               "ssl_marl/decisions/pretrained/keepaway.pt",
 }
+_WHAT = {"skill": "ssl_marl checkpoint", "decision": "ssl_marl decision actor"}
 _ZIP_MAGIC = b"PK\x03\x04"
 
 
@@ -121,8 +139,52 @@ def safe_torch_load(path: str | os.PathLike[str], what: str = "ssl_marl checkpoi
                          f"({type(exc).__name__}); {valid}") from exc
 
 
+def save_actor_file(path: str | os.PathLike[str], kind: str, state_dict: Mapping[str, torch.Tensor],
+                    metadata: Mapping[str, Any]) -> Path:
+    """Write an actor file of ``kind`` ("skill" or "decision") atomically; return the path.
+    Tensors are copied to the CPU; ``metadata`` must be plain (:func:`to_plain`)."""
+    if kind not in KINDS:
+        raise ValueError(f"actor kind must be one of {KINDS} (got {kind!r})")
+    state = {k: v.detach().cpu().clone() for k, v in state_dict.items()}
+    return atomic_torch_save({"format": FORMAT, "version": VERSION, "kind": kind, "state_dict": state,
+                              "metadata": to_plain(dict(metadata))}, path)
+
+
+def read_actor_file(path: str | os.PathLike[str], kind: str) -> tuple[dict[str, torch.Tensor], dict[str, Any]]:
+    """``(state_dict, metadata)`` of an actor file of ``kind``, in any stored layout (module docstring).
+
+    Raises FileNotFoundError if ``path`` is missing; ValueError naming the file when it is not
+    a valid actor file of that kind."""
+    what = _WHAT[kind]
+    blob = safe_torch_load(path, what)
+    bad = f"{path} is not a valid {what}"
+    valid = VALID_FILES[what]
+    if not isinstance(blob, dict):
+        raise ValueError(f"{bad}: it is a PyTorch file without the format tag {FORMAT!r}; {valid}")
+    if blob.get("format") == _DECISION_V1:
+        if kind != "decision":
+            raise ValueError(f"{bad}: it holds a decision actor, not a skill actor; {valid}")
+        state = blob.get("state_dict")
+        if not isinstance(state, dict):
+            raise ValueError(f"{bad}: missing 'state_dict'")
+        state = {**state, **{k: blob[k] for k in _DECISION_TENSORS if blob.get(k) is not None}}
+        return state, {k: v for k, v in blob.items() if k not in ("format", "state_dict", *_DECISION_TENSORS)}
+    if blob.get("format") != FORMAT:
+        raise ValueError(f"{bad}: it is a PyTorch file without the format tag {FORMAT!r}; {valid}")
+    version = blob.get("version")
+    if version not in (1, VERSION):
+        raise ValueError(f"{bad} (unsupported version {version!r}, expected {VERSION})")
+    stored_kind = blob.get("kind", "skill")  # version 1 holds skill actors only
+    if stored_kind != kind:
+        raise ValueError(f"{bad}: it holds a {stored_kind} actor, not a {kind} actor; {valid}")
+    meta, state = blob.get("metadata"), blob.get("state_dict")
+    if not isinstance(meta, dict) or not isinstance(state, dict):
+        raise ValueError(f"{bad} (metadata or state_dict missing)")
+    return state, meta
+
+
 def save_actor(path: str | os.PathLike[str], actor: Actor, metadata: Mapping[str, Any]) -> Path:
-    """Write ``actor`` and ``metadata`` to ``path`` atomically; return the path.
+    """Write skill actor ``actor`` and ``metadata`` to ``path`` atomically; return the path.
 
     ``metadata`` should hold at least ``skill`` and ``obs_spec``; network shape
     (``obs_dim``, ``act_dim``, ``hidden``, ``layer_norm``) is taken from the actor,
@@ -135,29 +197,19 @@ def save_actor(path: str | os.PathLike[str], actor: Actor, metadata: Mapping[str
                 layer_norm=actor.layer_norm)
     meta.setdefault("git_commit", git_commit())
     meta.setdefault("created", _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"))
-    state = {k: v.detach().cpu().clone() for k, v in actor.state_dict().items()}
-    return atomic_torch_save({"format": FORMAT, "version": VERSION, "state_dict": state,
-                              "metadata": meta}, path)
+    return save_actor_file(path, "skill", actor.state_dict(), meta)
 
 
 def load_actor(path: str | os.PathLike[str], expected_skill: str | None = None,
                expected_spec: str | tuple[str, ...] | None = None) -> tuple[Actor, dict[str, Any]]:
-    """Load an actor saved by :func:`save_actor`; return ``(actor in eval mode, metadata)``.
+    """Load a skill actor file; return ``(actor in eval mode, metadata)``.
 
     Raises FileNotFoundError if ``path`` is missing; ValueError if the file is not
-    a valid ssl_marl checkpoint, or its ``skill`` / ``obs_spec`` differ from the
+    a valid skill actor file, or its ``skill`` / ``obs_spec`` differ from the
     expected ones (when given; ``expected_spec`` may be a tuple of accepted specs).
     """
-    blob = safe_torch_load(path)
+    state, meta = read_actor_file(path, "skill")
     bad = f"{path} is not a valid ssl_marl checkpoint"
-    valid = VALID_FILES["ssl_marl checkpoint"]
-    if not isinstance(blob, dict) or blob.get("format") != FORMAT:
-        raise ValueError(f"{bad}: it is a PyTorch file without the format tag {FORMAT!r}; {valid}")
-    if blob.get("version") != VERSION:
-        raise ValueError(f"{bad} (unsupported version {blob.get('version')!r}, expected {VERSION})")
-    meta, state = blob.get("metadata"), blob.get("state_dict")
-    if not isinstance(meta, dict) or not isinstance(state, dict):
-        raise ValueError(f"{bad} (metadata or state_dict missing)")
     if expected_skill is not None and meta.get("skill") != expected_skill:
         raise ValueError(f"{path}: skill mismatch: expected {expected_skill!r}, found {meta.get('skill')!r}")
     accepted = (expected_spec,) if isinstance(expected_spec, str) else expected_spec

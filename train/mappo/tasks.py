@@ -3,7 +3,7 @@
 Each entry builds a decision env (the interface of ``ssl_marl/decisions``: PettingZoo
 ``ParallelEnv`` with ``decision`` / ``action_mask`` / ``elapsed_s`` infos and ``state()``)
 and names the final-info key that scores an episode. ``defaults`` are the run-config
-overrides the task starts from (see :class:`train.mappo_loop.MAPPORunConfig`).
+overrides the task starts from (see :class:`train.mappo.loop.MAPPORunConfig`).
 Factories are module-level functions so worker processes can build them.
 """
 
@@ -25,13 +25,13 @@ class MARLTask:
 
 
 def _toy_signal(**kw: Any) -> Any:
-    from .toy_marl import ToySignal
+    from train.mappo.toy_marl import ToySignal
 
     return ToySignal(**kw)
 
 
 def _toy_tempo(**kw: Any) -> Any:
-    from .toy_marl import ToyTempo
+    from train.mappo.toy_marl import ToyTempo
 
     return ToyTempo(**kw)
 
@@ -65,11 +65,11 @@ MARL_TASKS: dict[str, MARLTask] = {
                            {"num_envs": 16, "rollout_steps": 16, "total_decisions": 6_000, "val_episodes": 30,
                             "algo": {"hidden": [64, 64], "lr": 3e-3, "ent_coef": 0.03, "minibatches": 2,
                                      "gamma": 0.99, "tau_s": 1.0}},
-                           "two-agent signalling game (train/toy_marl.py)"),
+                           "two-agent signalling game (train/mappo/toy_marl.py)"),
     "toy-tempo": MARLTask(_toy_tempo, "success",
                           {"num_envs": 16, "rollout_steps": 16, "total_decisions": 6_000, "val_episodes": 10,
                            "algo": {"hidden": [64, 64], "lr": 3e-3, "minibatches": 2, "gamma": 0.9, "tau_s": 1.0}},
-                          "asynchronous variable-duration jobs (train/toy_marl.py)"),
+                          "asynchronous variable-duration jobs (train/mappo/toy_marl.py)"),
     "keepaway": MARLTask(_keepaway, "duration_s",
                          {"val_seed": 45000, "num_envs": 4, "rollout_steps": 16, "total_decisions": 4_000,
                           "checkpoint_every": 2, "val_every": 8, "val_episodes": 30,

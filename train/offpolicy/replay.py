@@ -1,6 +1,6 @@
 """Replay memory: a numpy ring buffer of (obs, act, rew, next_obs, terminated[, discount]).
 
-With ``discount=True`` (n-step returns, :mod:`train.nstep`) every row also stores its own
+With ``discount=True`` (n-step returns, :mod:`train.offpolicy.nstep`) every row also stores its own
 bootstrap discount (``gamma ** k`` for a k-step window); rows added without one get
 ``default_discount`` (e.g. the one-step demonstrations). Without it the buffer and its
 files are exactly the one-step ones (``Batch.discount`` is None).

@@ -1,19 +1,20 @@
-"""DDPG (Lillicrap et al. 2016), the paper's algorithm: one update in :meth:`DDPG.update`::
+"""DDPG (Lillicrap et al. 2016; docs/references.md, "Simulators and benchmarks"), the paper's algorithm
+(Schwab, Zhu and Veloso 2019, sections 4.1 and 5.1): one update in :meth:`DDPG.update`::
 
     y        = r + gamma * (1 - terminated) * Q'(s', mu'(s'))      # no grad; truncations bootstrap
     L_critic = mean((Q(s, a) - y)^2)                               # Adam step on the critic
     L_actor  = -mean(Q(s, mu(s))) [+ w_bc * mean((mu(s_d) - a_d)^2)]  # Adam step on the actor only
     theta'   <- theta' + tau * (theta - theta')                    # Polyak, both targets
 
-With n-step returns (``n_step`` > 1, :mod:`train.nstep`) ``r`` is the window's discounted
+With n-step returns (``n_step`` > 1, :mod:`train.offpolicy.nstep`) ``r`` is the window's discounted
 reward sum and ``gamma`` the row's own ``gamma ** k`` (``Batch.discount``).
 
-Hyperparameters: :class:`train.config.TrainConfig` (``gamma``, ``tau``, learning rates,
-layer sizes, ``bc_weight``, ``autocast_bf16``, ``compile``).
+Hyperparameters: :class:`train.offpolicy.config.DDPGConfig` (``gamma``, ``tau``, learning rates,
+layer sizes, ``bc_weight``); speed options ``autocast_bf16`` and ``compile`` from the run config.
 
 Speed (measured, see benchmarks/bench_ddpg.py and docs/BENCHMARKS.md): fused
-Adam stepped through :class:`~train.algos.base.LeanAdam` (no per-step Python); the critic's parameters frozen during the actor step (no critic weight
-gradients); one ``torch._foreach_lerp_`` for the soft update; losses accumulated
+Adam stepped through :class:`~train.offpolicy.agent.LeanAdam` (no per-step Python); the critic's parameters frozen during the actor step
+(no critic weight gradients); one ``torch._foreach_lerp_`` for the soft update; losses accumulated
 as tensors and read out every ``log_interval`` updates (no ``.item()`` sync per
 update). Options: ``autocast_bf16`` runs the matrix products in bfloat16 (on CPUs
 with AMX, e.g. Sapphire Rapids, a 256x300 @ 300x400 product is ~5x faster than in
@@ -33,9 +34,9 @@ import torch.nn.functional as F
 
 from ssl_marl.skills.networks import Actor, Critic
 
-from ..config import TrainConfig
-from ..replay import Batch
-from .base import LossMeter, actor_act, bf16_autocast, lean_adam, soft_update, step_with_frozen, td_target
+from train.offpolicy.agent import LossMeter, actor_act, bf16_autocast, lean_adam, soft_update, step_with_frozen, td_target
+from train.offpolicy.config import DDPGConfig
+from train.offpolicy.replay import Batch
 
 __all__ = ["DDPG", "soft_update", "td_target"]
 
@@ -45,7 +46,10 @@ class DDPG:
 
     loss_names = ("critic", "actor")
 
-    def __init__(self, obs_dim: int, act_dim: int, cfg: TrainConfig) -> None:
+    def __init__(self, obs_dim: int, act_dim: int, cfg: DDPGConfig, autocast_bf16: bool = False,
+                 compile: bool = False) -> None:
+        """``autocast_bf16``: bfloat16 autocast of the forward passes; ``compile``: torch.compile the
+        two loss functions (the run config's speed options)."""
         self.cfg = cfg
         self.actor = Actor(obs_dim, act_dim, cfg.actor_hidden, cfg.layer_norm)
         self.critic = Critic(obs_dim, act_dim, cfg.critic_hidden, cfg.layer_norm)
@@ -56,9 +60,9 @@ class DDPG:
         self._critic_params = list(self.critic.parameters())
         self._online = list(self.actor.parameters()) + self._critic_params
         self._target = list(self.actor_target.parameters()) + list(self.critic_target.parameters())
-        self._autocast = bf16_autocast(cfg.autocast_bf16)
+        self._autocast = bf16_autocast(autocast_bf16)
         self._critic_loss, self._actor_loss = self.critic_loss, self.actor_loss
-        if cfg.compile:  # shapes are fixed (batch sizes), so no dynamic-shape graphs
+        if compile:  # shapes are fixed (batch sizes), so no dynamic-shape graphs
             self._critic_loss = torch.compile(self.critic_loss, dynamic=False)
             self._actor_loss = torch.compile(self.actor_loss, dynamic=False)
         self.updates = 0
@@ -83,7 +87,7 @@ class DDPG:
 
     def update(self, b: Batch, demo: Batch | None = None) -> None:
         """One DDPG update from batch ``b`` (see the module docstring); with ``demo`` and
-        ``cfg.bc_weight`` > 0 the actor also regresses onto the demonstrated actions
+        ``bc_weight`` > 0 the actor also regresses onto the demonstrated actions
         (behaviour cloning as in DDPGfD / TD3+BC)."""
         critic_loss = self._critic_loss(b)
         self.critic_opt.zero_grad(set_to_none=True)

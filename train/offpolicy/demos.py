@@ -15,8 +15,8 @@ from typing import Any
 import numpy as np
 from tqdm import tqdm
 
-from .evaluate import ActionScaler
-from .replay import ReplayBuffer
+from train.offpolicy.evaluate import ActionScaler
+from train.offpolicy.replay import ReplayBuffer
 
 #: on_episode(transitions stored so far, return, length, is_success or None, summed reward terms)
 EpisodeCallback = Callable[[int, float, int, Any, Mapping[str, float]], None]

@@ -1,7 +1,7 @@
 """The training loop: demo burn-in, collection with exploration noise, updates, logs, checkpoints, export.
 
-Algorithm-free: the agent (:mod:`train.algos`, chosen by ``cfg.algo``) does the
-updates, the exploration process (:mod:`train.exploration`, ``cfg.exploration``)
+Algorithm-free: the agent (:mod:`train.offpolicy.algos`, chosen by ``cfg.algo``) does the
+updates, the exploration process (:mod:`train.offpolicy.exploration`, ``cfg.exploration.kind``)
 perturbs its actions; this module collects, logs, evaluates, checkpoints and
 exports.
 
@@ -12,7 +12,7 @@ Data handling (Gymnasium 1.x vector envs, ``AutoresetMode.NEXT_STEP``):
   (time limits) are stored with ``terminated = 0`` and so bootstrap.
 * The following step of that sub-env is a reset step that ignores the action;
   its transition is never stored (tracked by ``self.autoreset``).
-* With ``n_step`` > 1 each sub-env's steps go through :class:`train.nstep.NStepBuffer`
+* With ``n_step`` > 1 each sub-env's steps go through :class:`train.offpolicy.nstep.NStepBuffer`
   first: a row is stored once its n-step window is complete or its episode ended;
   a checkpoint cut ends the open windows as truncations. ``samples`` counts env steps.
 
@@ -26,12 +26,12 @@ Output folder: ``progress.csv`` (one row per episode, demo episodes flagged
 ``phase=demo``), ``eval.csv``, ``checkpoint.pt`` + ``replay-*.npz``,
 ``actors/actor-<samples>.pt`` (the actor at each checkpoint, for model selection),
 ``config.json``, ``actor.pt`` (export), ``eval.json`` (final evaluation),
-``learning_curve.png``, and ``tb/`` when TensorBoard is installed (:mod:`train.logs`).
+``learning_curve.png``, and ``tb/`` when TensorBoard is installed (:class:`train.run_folder.RunFolder`).
 """
 
 from __future__ import annotations
 
-import copy
+import dataclasses
 import importlib
 import itertools
 import random
@@ -49,17 +49,18 @@ from tqdm import tqdm
 
 import ssl_marl  # noqa: F401  (registers the ssl_marl/* Gymnasium ids)
 from ssl_marl.io import atomic_write_json
-from ssl_marl.skills.checkpoint import atomic_torch_save, save_actor
+from ssl_marl.skills.checkpoint import save_actor
 
-from .algos import make_agent
-from .checkpoints import CHECKPOINT, FORMAT, VERSION, actor_metadata, load_run_config, read_train_state
-from .config import TrainConfig
-from .demos import fill_replay
-from .evaluate import ActionScaler, evaluate_actor, make_env, run_episodes
-from .exploration import make_exploration
-from .logs import EVAL_FIELDS, CsvLog, TensorBoardLog, progress_fields
-from .nstep import NStepBuffer
-from .replay import ReplayBuffer
+from train.logs import EVAL_FIELDS, TensorBoardLog, progress_fields
+from train.offpolicy.algos import make_agent
+from train.offpolicy.checkpoints import FORMAT, VERSION, actor_metadata, load_run_config, read_train_state
+from train.offpolicy.config import TrainConfig
+from train.offpolicy.demos import fill_replay
+from train.offpolicy.evaluate import ActionScaler, evaluate_actor, make_env, run_episodes
+from train.offpolicy.exploration import make_exploration
+from train.offpolicy.nstep import NStepBuffer
+from train.offpolicy.replay import ReplayBuffer
+from train.run_folder import CHECKPOINT, RunFolder
 
 __all__ = ["CHECKPOINT", "Trainer", "load_run_config", "train"]
 DemoFn = Callable[..., Iterable[Any]]
@@ -97,7 +98,7 @@ def split_evenly(total: int, parts: int) -> list[int]:
 
 
 def pool_results(parts: list[dict[str, Any]]) -> dict[str, Any]:
-    """Pool :func:`~train.evaluate.run_episodes` results of the env variants (one: unchanged);
+    """Pool :func:`~train.offpolicy.evaluate.run_episodes` results of the env variants (one: unchanged);
     the per-variant figures (without their returns) are kept under ``"variants"``."""
     if len(parts) == 1:
         return parts[0]
@@ -117,8 +118,9 @@ class Trainer:
 
     def __init__(self, cfg: TrainConfig, seed: int, out: str | Path, demo_fn: DemoFn | None = None,
                  progress: bool = True) -> None:
-        self.cfg, self.seed, self.out, self.progress = cfg, int(seed), Path(out), progress
-        self.out.mkdir(parents=True, exist_ok=True)
+        self.cfg, self.seed, self.progress = cfg, int(seed), progress
+        self.folder = RunFolder(out)
+        self.out = self.folder.path
         if cfg.torch_threads > 0:
             torch.set_num_threads(cfg.torch_threads)
         random.seed(seed)
@@ -142,12 +144,12 @@ class Trainer:
         self.demo_fn = demo_fn if demo_fn is not None else (resolve_callable(cfg.demo_fn) if cfg.demo_fn else None)
 
         self.agent = make_agent(self.obs_dim, self.act_dim, cfg)
-        # n_step > 1: windows per sub-env (train.nstep), rows carry their own discount; 1: the one-step path
-        self.nstep = NStepBuffer(cfg.num_envs, cfg.n_step, cfg.gamma, self.obs_dim, self.act_dim) \
+        # n_step > 1: windows per sub-env (train.offpolicy.nstep), rows carry their own discount; 1: the one-step path
+        self.nstep = NStepBuffer(cfg.num_envs, cfg.n_step, cfg.ddpg.gamma, self.obs_dim, self.act_dim) \
             if cfg.n_step > 1 else None
         self.buffer = ReplayBuffer(cfg.buffer_size, self.obs_dim, self.act_dim, cfg.batch_size, replay_rng,
-                                   discount=self.nstep is not None, default_discount=cfg.gamma)
-        self.noise = make_exploration(cfg, cfg.num_envs, self.act_dim, noise_rng)
+                                   discount=self.nstep is not None, default_discount=cfg.ddpg.gamma)
+        self.noise = make_exploration(cfg.exploration, cfg.num_envs, self.act_dim, noise_rng)
         per_block = cfg.num_envs // len(variants)  # sub-envs [j * per_block, (j + 1) * per_block) use variants[j]
         env_fns = [lambda kw=kw: make_env(cfg.env_id, kw, cfg.max_episode_steps) for kw in variants
                    for _ in range(per_block)]
@@ -182,8 +184,8 @@ class Trainer:
         self.recent_returns: deque[float] = deque(maxlen=100)
         self.recent_success: deque[float] = deque(maxlen=100)
 
-        self.log = CsvLog(self.out / "progress.csv")
-        self.eval_log = CsvLog(self.out / "eval.csv", EVAL_FIELDS)
+        self.log = self.folder.csv_log("progress.csv")
+        self.eval_log = self.folder.csv_log("eval.csv", EVAL_FIELDS)
         self.tb: TensorBoardLog | None = None  # opened by run() (it knows whether this is a resume)
         self._t0 = time.perf_counter()
 
@@ -291,7 +293,7 @@ class Trainer:
             return
         self.update_credit += n_new * cfg.updates_per_sample
         n_demo = self.transitions - self.samples  # burn-in wrote the demos to rows [0, n_demo)
-        use_bc = cfg.bc_weight > 0 and n_demo > 0 and self.transitions <= self.buffer.capacity  # not overwritten yet
+        use_bc = cfg.ddpg.bc_weight > 0 and n_demo > 0 and self.transitions <= self.buffer.capacity  # not overwritten yet
         if use_bc and cfg.bc_anneal_samples > 0:
             use_bc = self.anneal_bc()
         while self.update_credit >= 1.0:
@@ -306,15 +308,13 @@ class Trainer:
                         self.tb.scalars("loss", losses, self.transitions)
 
     def anneal_bc(self) -> bool:
-        """Set the agent's behaviour-cloning weight to ``bc_weight`` x max(0, 1 - (samples -
+        """Set the agent's behaviour-cloning weight to ``ddpg.bc_weight`` x max(0, 1 - (samples -
         warmup_samples) / bc_anneal_samples) (a function of the sample count, so a resumed
         run anneals as the uninterrupted one); False once it is 0 (no demo rows needed).
-        The agent gets its own copy of the config, so the saved config keeps ``bc_weight``."""
+        The agent gets a changed copy of its section; the run config keeps ``bc_weight``."""
         cfg = self.cfg
-        w = cfg.bc_weight * max(0.0, 1.0 - (self.samples - cfg.warmup_samples) / cfg.bc_anneal_samples)
-        if self.agent.cfg is cfg:
-            self.agent.cfg = copy.copy(cfg)
-        self.agent.cfg.bc_weight = w
+        w = cfg.ddpg.bc_weight * max(0.0, 1.0 - (self.samples - cfg.warmup_samples) / cfg.bc_anneal_samples)
+        self.agent.cfg = dataclasses.replace(self.agent.cfg, bc_weight=w)
         return w > 0
 
     def evaluate(self) -> dict[str, Any]:
@@ -355,15 +355,15 @@ class Trainer:
             "recent": {"returns": list(self.recent_returns), "success": list(self.recent_success)},
             "csv_rows": {"progress": self.log.rows, "eval": self.eval_log.rows}, "replay_file": replay_name,
         }
-        atomic_torch_save(state, self.out / CHECKPOINT)
-        self.export_actor(self.out / "actors" / f"actor-{self.samples:09d}.pt")
+        self.folder.save_checkpoint(state)
+        self.export_actor(self.folder.actor_snapshot(self.samples, digits=9))
         for old in self.out.glob("replay-*.npz"):
             if old.name != replay_name:
                 old.unlink(missing_ok=True)
-        return self.out / CHECKPOINT
+        return self.folder.checkpoint
 
     def load_checkpoint(self) -> None:
-        state = read_train_state(self.out / CHECKPOINT)
+        state = read_train_state(self.folder.checkpoint)
         if int(state["seed"]) != self.seed:
             raise ValueError(f"checkpoint was made with seed {state['seed']}, not {self.seed}")
         if state["algo"] != self.cfg.algo:
@@ -394,14 +394,14 @@ class Trainer:
     def run(self, resume: bool = False) -> dict[str, Any]:
         """Train (or resume) to ``cfg.total_samples``; export ``actor.pt``; return a summary."""
         cfg = self.cfg
-        atomic_write_json(self.out / "config.json", {**cfg.to_dict(), "seed": self.seed})
+        self.folder.write_config({**cfg.to_dict(), "seed": self.seed})
         if resume:
             self.load_checkpoint()
         else:
             self.log.clear()
             self.eval_log.clear()
             self._reset_envs()
-        self.tb = TensorBoardLog(self.out / "tb", purge_step=self.transitions if resume else None)
+        self.tb = self.folder.tensorboard(purge_step=self.transitions if resume else None)
         if not resume:
             self.burn_in()
         bar = tqdm(total=cfg.total_samples, initial=min(self.samples, cfg.total_samples), desc=cfg.skill,
@@ -457,7 +457,7 @@ class Trainer:
         for e in self.eval_envs:
             e.close()
         try:
-            from .plots import plot_run
+            from train.tools.plots import plot_run
             plot_run(self.out)
         except Exception as exc:  # a plotting problem must not lose a finished run
             print(f"warning: could not draw the learning curve: {exc}")

@@ -1,7 +1,7 @@
 """A trivially learnable 1-D task and its demonstrations, for tests and smoke runs of the trainer.
 
 ``train_toy/MoveToTarget-v0`` (registered on import; use the id
-``"train.toy:train_toy/MoveToTarget-v0"`` to import this module from ``gym.make``):
+``"train.offpolicy.toy:train_toy/MoveToTarget-v0"`` to import this module from ``gym.make``):
 a point at position x in [-1, 1] must reach the target x = 0.
 
 * obs: ``[x]`` (float32, shape (1,))

@@ -1,6 +1,6 @@
 """Deterministic evaluation of an actor (no exploration noise).
 
-``python -m train.evaluate ENV_ID ACTOR.pt --episodes 10 --seed 0 [--out eval.json]``
+``python -m train.offpolicy.evaluate ENV_ID ACTOR.pt --episodes 10 --seed 0 [--out eval.json]``
 """
 
 from __future__ import annotations
@@ -107,7 +107,7 @@ def evaluate_actor(env_id: str, actor_path: str | Path, episodes: int = 10, seed
 
 
 def main(argv: list[str] | None = None) -> int:
-    p = argparse.ArgumentParser(prog="python -m train.evaluate", description=__doc__)
+    p = argparse.ArgumentParser(prog="python -m train.offpolicy.evaluate", description=__doc__)
     p.add_argument("env_id")
     p.add_argument("actor", type=Path)
     p.add_argument("--episodes", type=int, default=10)

@@ -11,7 +11,7 @@ For a start step t of sub-env i the stored transition is::
 with k = n while the episode runs on, and k < n for the last n-1 starts of an episode
 (the window is truncated at the episode's end). The critic's target is then
 ``rew + discount * (1 - terminated) * Q'(next_obs, mu'(next_obs))``
-(:func:`train.algos.base.td_target`), so:
+(:func:`train.offpolicy.agent.td_target`), so:
 
 * a termination inside the window ends the sum there and never bootstraps;
 * a truncation (time limit, or the trainer cutting episodes at a checkpoint) ends the sum

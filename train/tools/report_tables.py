@@ -15,7 +15,7 @@ from typing import Any, Iterable
 
 from ssl_marl.io import wilson_interval
 from ssl_marl.runners.result import load_result
-from train.compare import markdown, summarize
+from train.tools.compare import markdown, summarize
 
 Lines = list[str]
 

@@ -1,15 +1,15 @@
 """What the training loop needs from a learning algorithm: the :class:`Agent` interface.
 
-The loop (:mod:`train.loop`) collects experience, keeps the replay, logs, evaluates and
+The loop (:mod:`train.offpolicy.loop`) collects experience, keeps the replay, logs, evaluates and
 checkpoints; an agent owns its networks and optimisers and does the gradient steps.
-An agent is built as ``AGENT_CLASS(obs_dim, act_dim, cfg)`` from a
-:class:`train.config.TrainConfig` and offers:
+An agent is built by :func:`train.offpolicy.algos.make_agent` from the sections of a
+:class:`train.offpolicy.config.TrainConfig` and offers:
 
 * ``actor`` -- the deterministic policy :class:`ssl_marl.skills.networks.Actor`
   (normalised actions in [-1, 1]); it is what the loop exports and what
   :func:`ssl_marl.skills.checkpoint.load_actor` loads, whatever the algorithm;
 * ``act(obs)`` -- actions for a batch of observations, no exploration (the loop adds
-  the exploration noise of :mod:`train.exploration`);
+  the exploration noise of :mod:`train.offpolicy.exploration`);
 * ``update(batch, demo=None)`` -- one gradient update from a replay batch (``demo``:
   demonstration rows for a behaviour-cloning term, when the config asks for one);
 * ``updates`` -- number of updates done;
@@ -30,12 +30,12 @@ import torch
 
 from ssl_marl.skills.networks import Actor
 
-from ..replay import Batch
+from train.offpolicy.replay import Batch
 
 
 @runtime_checkable
 class Agent(Protocol):
-    """The interface every algorithm in :data:`train.algos.ALGOS` implements (see the module docstring)."""
+    """The interface every algorithm in :data:`train.offpolicy.algos.ALGOS` implements (see the module docstring)."""
 
     actor: Actor
     updates: int
@@ -118,7 +118,7 @@ def td_target(rew: torch.Tensor, terminated: torch.Tensor, next_q: torch.Tensor,
               discount: torch.Tensor | None = None) -> torch.Tensor:
     """Bellman target r + gamma (1 - terminated) Q'(s', a'). Truncated (time-limit) steps have
     terminated = 0 and so bootstrap; shapes (B,). With ``discount`` (B,) (n-step rows,
-    :mod:`train.nstep`: ``gamma ** k`` for the k steps summed into ``rew``) it replaces
+    :mod:`train.offpolicy.nstep`: ``gamma ** k`` for the k steps summed into ``rew``) it replaces
     ``gamma``: r + discount (1 - terminated) Q'(s', a')."""
     if discount is None:
         return rew + gamma * (1.0 - terminated) * next_q

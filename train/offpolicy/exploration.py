@@ -3,8 +3,8 @@
 The :class:`Exploration` interface: ``noise()`` advances every sub-env's process one
 step and returns the ``(num_envs, act_dim)`` noise (float32, in the actor's normalised
 action units); ``reset(mask)`` restarts the processes of sub-envs whose episode ended;
-``state_dict()`` / ``load_state_dict()`` for exact resume. Two kinds, by config
-``exploration`` (:func:`make_exploration`):
+``state_dict()`` / ``load_state_dict()`` for exact resume. Two kinds, by
+``exploration.kind`` (:class:`train.offpolicy.config.ExplorationConfig`, :func:`make_exploration`):
 
 * ``"ou"`` -- :class:`OUNoise`, the Ornstein-Uhlenbeck process of DDPG (Lillicrap et
   al. 2016) and of the paper (Tables 1 and 2: theta 0.15, mu 0, sigma 0.3);
@@ -24,12 +24,11 @@ actor's normalised action units.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
+from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
 
-if TYPE_CHECKING:
-    from .config import TrainConfig
+from train.offpolicy.config import ExplorationConfig
 
 
 @runtime_checkable
@@ -115,18 +114,13 @@ class GaussianNoise:
         self.rng.bit_generator.state = state["rng"]
 
 
-#: config ``exploration`` name -> what it is (the keys :func:`make_exploration` accepts)
-EXPLORATIONS = {"ou": "Ornstein-Uhlenbeck (ou_theta, ou_mu, ou_sigma[_per_dim], ou_dt)",
-                "gaussian": "independent Gaussian (gaussian_sigma)"}
-
-
-def make_exploration(cfg: TrainConfig, num_envs: int, act_dim: int, rng: np.random.Generator) -> Exploration:
-    """The exploration process ``cfg.exploration`` names, for ``num_envs`` sub-envs."""
+def make_exploration(cfg: ExplorationConfig, num_envs: int, act_dim: int, rng: np.random.Generator) -> Exploration:
+    """The exploration process ``cfg.kind`` names, for ``num_envs`` sub-envs."""
     if cfg.ou_sigma_per_dim is not None and len(cfg.ou_sigma_per_dim) != act_dim:
         raise ValueError(f"ou_sigma_per_dim has {len(cfg.ou_sigma_per_dim)} values, the action has {act_dim}")
-    if cfg.exploration == "ou":
+    if cfg.kind == "ou":
         sigma = cfg.ou_sigma if cfg.ou_sigma_per_dim is None else cfg.ou_sigma_per_dim
         return OUNoise(num_envs, act_dim, cfg.ou_theta, cfg.ou_mu, sigma, cfg.ou_dt, rng)
-    if cfg.exploration == "gaussian":
+    if cfg.kind == "gaussian":
         return GaussianNoise(num_envs, act_dim, cfg.gaussian_sigma, rng)
-    raise ValueError(f"unknown exploration {cfg.exploration!r}; expected one of {sorted(EXPLORATIONS)}")
+    raise ValueError(f"unknown exploration.kind {cfg.kind!r}; expected 'ou' or 'gaussian'")

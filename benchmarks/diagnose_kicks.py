@@ -1,6 +1,6 @@
 """Why does a learned aim-to-shoot actor fail? Failures tallied with the strength of its kick.
 
-    python -m train.diagnose_kicks ACTOR.pt [--episodes 300] [--seed 5000] [--kick-action strength|full]
+    python benchmarks/diagnose_kicks.py ACTOR.pt [--episodes 300] [--seed 5000] [--kick-action strength|full]
 
 Runs the actor on the aim-to-shoot task (ideal conditions, episode ``i`` seeded with
 ``episode_seed(seed, i)`` as in ``ssl-marl eval-skill``) and prints JSON: success
@@ -14,12 +14,16 @@ from __future__ import annotations
 
 import argparse
 import json
+import sys
 from collections import Counter
+from pathlib import Path
 
-from ssl_marl.io import episode_seed
-from ssl_marl.skills.features import kick_action_of_spec
-from ssl_marl.skills.learned import load_policy
-from ssl_marl.skills.wrappers import AimToShootEnv
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from ssl_marl.io import episode_seed  # noqa: E402
+from ssl_marl.skills.features import kick_action_of_spec  # noqa: E402
+from ssl_marl.skills.learned import load_policy  # noqa: E402
+from ssl_marl.skills.wrappers import AimToShootEnv  # noqa: E402
 
 
 def diagnose(actor: str, episodes: int = 300, seed: int = 5000, kick_action: str | None = None) -> dict:
@@ -52,7 +56,7 @@ def diagnose(actor: str, episodes: int = 300, seed: int = 5000, kick_action: str
 
 
 def main(argv: list[str] | None = None) -> None:
-    p = argparse.ArgumentParser(prog="python -m train.diagnose_kicks", description=__doc__,
+    p = argparse.ArgumentParser(prog="python benchmarks/diagnose_kicks.py", description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("actor", help="aim-to-shoot actor file")
     p.add_argument("--episodes", type=int, default=300, help="episodes to run")

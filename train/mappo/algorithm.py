@@ -1,8 +1,8 @@
-"""MAPPO: PPO with one actor shared by all teammates and a centralised critic on the global state.
+"""MAPPO: PPO with one actor shared by all teammates and a centralised critic on the global state
+(Yu et al. 2022; docs/references.md, "Keepaway and MAPPO").
 
-On-policy, so it does not implement the off-policy :class:`~train.algos.base.Agent`
-interface (no replay batches); it is registered in :data:`train.algos.ON_POLICY_ALGOS`
-and driven by :mod:`train.mappo_loop`. Everything the update needs is here:
+On-policy, so it does not implement the off-policy :class:`~train.offpolicy.agent.Agent`
+interface (no replay batches); :mod:`train.mappo.loop` drives it. Everything the update needs is here:
 
 * :class:`ActorNet` -- the shared policy: obs (+ agent one-hot, optional) -> option logits
   (discrete; illegal options get ``-inf`` logits from the action mask) or a Gaussian mean
@@ -39,7 +39,7 @@ import numpy as np
 import torch
 from torch import nn
 
-from .base import adam
+from train.offpolicy.agent import adam
 
 __all__ = ["ActorNet", "CriticNet", "MAPPO", "MAPPOConfig", "ValueNorm", "gae", "smdp_discount"]
 

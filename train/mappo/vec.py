@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from .mappo_tasks import get_task
+from train.mappo.tasks import get_task
 
 
 def episode_seed(run_seed: int, env_index: int, counter: int) -> int:

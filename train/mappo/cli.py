@@ -1,9 +1,9 @@
 """CLI: ``python -m train mappo --task TASK --seed S --out DIR [--resume] [--decisions N] [--set k=v ...]``.
 
-TASK: keepaway, attack-3v2, pass-and-score, toy-signal, toy-tempo (:mod:`train.mappo_tasks`),
+TASK: keepaway, attack-3v2, pass-and-score, toy-signal, toy-tempo (:mod:`train.mappo.tasks`),
 each starting from its default run config; ``--set`` overrides one key of
-:class:`train.mappo_loop.MAPPORunConfig` (values parsed as JSON; ``algo.NAME=V`` sets a
-:class:`train.algos.mappo.MAPPOConfig` field, e.g. ``--set algo.lr=3e-4 --set num_envs=16``).
+:class:`train.mappo.loop.MAPPORunConfig` (values parsed as JSON; ``algo.NAME=V`` sets a
+:class:`train.mappo.algorithm.MAPPOConfig` field, e.g. ``--set algo.lr=3e-4 --set num_envs=16``).
 With ``--resume`` the config and seed stored in DIR/checkpoint.pt are used (``--decisions``
 still applies, e.g. to extend a finished run). Interrupt any time: ``--resume`` continues from
 the last checkpoint exactly as the uninterrupted run would.
@@ -13,11 +13,10 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 from pathlib import Path
 from typing import Any
 
-from .mappo_tasks import MARL_TASKS
+from train.mappo.tasks import MARL_TASKS
 
 
 def build_parser(prog: str = "python -m train mappo") -> argparse.ArgumentParser:
@@ -55,7 +54,7 @@ def main(argv: list[str] | None = None, prog: str = "python -m train mappo") -> 
     args = build_parser(prog).parse_args(argv)
     from dataclasses import replace
 
-    from .mappo_loop import load_mappo_run, task_config, train_mappo
+    from train.mappo.loop import load_mappo_run, task_config, train_mappo
 
     if args.resume:
         cfg, seed = load_mappo_run(args.out)
@@ -71,7 +70,3 @@ def main(argv: list[str] | None = None, prog: str = "python -m train mappo") -> 
     print(json.dumps({"out": str(args.out), **{k: row.get(k) for k in
                                                 ("decisions", "agent_steps", "wall_time", "mean_score")}}))
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -2,16 +2,17 @@
 
 A train state is a ``torch.save``-d plain dict read back with ``weights_only=True``::
 
-    {"format": "ssl_marl.train_state", "version": 2, "algo": "ddpg" | "td3", "config": {...},
+    {"format": "ssl_marl.train_state", "version": 3, "algo": "ddpg" | "td3", "config": {...},
      "seed": int, "agent": Agent.state_dict(), "exploration": {...}, "rng": {...},
      "counters": {...}, "losses": {name: float} | None, "recent": {...},
      "csv_rows": {...}, "replay_file": "replay-<transitions>.npz"}
 
-Version 1 (written before the algorithm interface, DDPG only) is read by
-:func:`read_train_state`, which migrates it to version 2 in memory: its ``noise``
-becomes ``exploration``, its ``pending_losses`` move into the agent's ``losses``
-meter and its ``losses`` list becomes a dict. A run started by the old trainer
-therefore resumes with this one.
+``config`` is :meth:`TrainConfig.to_dict` (sections nested). :func:`read_train_state`
+reads the earlier versions too and converts them in memory, so every stored run resumes:
+version 2 stores the config flat (section keys at the top level, TD3's as ``td3_*``,
+the noise kind as ``exploration``); version 1 (DDPG only) also keeps ``noise`` for
+``exploration``, ``pending_losses`` outside the agent's ``losses`` meter and ``losses``
+as a list.
 """
 
 from __future__ import annotations
@@ -19,13 +20,12 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from ssl_marl.skills.checkpoint import safe_torch_load
 
-from .config import TrainConfig, config_from_dict
+from train.offpolicy.config import SECTIONS, TrainConfig, config_from_dict, section_of
+from train.run_folder import CHECKPOINT, read_state
 
-CHECKPOINT = "checkpoint.pt"
 FORMAT = "ssl_marl.train_state"
-VERSION = 2
+VERSION = 3
 _V1_LOSSES = ("critic", "actor")  # DDPG's, the only algorithm of version 1
 
 
@@ -33,15 +33,31 @@ def read_train_state(path: str | Path) -> dict[str, Any]:
     """Load a train state (any known version, migrated to :data:`VERSION`); clear errors otherwise."""
     path = Path(path)
     what = "ssl_marl training checkpoint"
-    state = safe_torch_load(path, what)
-    if not isinstance(state, dict) or state.get("format") != FORMAT:
-        raise ValueError(f"{path} is not a valid {what} (no {FORMAT!r} format tag)")
+    state = read_state(path, FORMAT, what)
     version = state.get("version")
     if version == 1:
         state = _migrate_v1(state)
+    elif version == 2:
+        state = {**state, "config": nest_flat_config(state["config"]), "version": VERSION}
     elif version != VERSION:
-        raise ValueError(f"{path} is a {what} of unsupported version {version!r} (this trainer reads 1 and {VERSION})")
+        raise ValueError(f"{path} is a {what} of unsupported version {version!r} (this trainer reads 1 to {VERSION})")
     return state
+
+
+def nest_flat_config(flat: dict[str, Any]) -> dict[str, Any]:
+    """A version-1/2 stored config (every key at the top level) in the nested layout of
+    :meth:`TrainConfig.to_dict`: section keys move into their section (``actor_lr`` ->
+    ``ddpg.actor_lr``, ``td3_policy_delay`` -> ``td3.policy_delay``, ``exploration`` ->
+    ``exploration.kind``)."""
+    out: dict[str, Any] = {name: {} for name in SECTIONS}
+    for key, value in flat.items():
+        if key == "exploration":
+            out["exploration"]["kind"] = value
+        elif (section := section_of(key)) is not None:
+            out[section][key[4:] if key.startswith("td3_") else key] = value
+        else:
+            out[key] = value
+    return out
 
 
 def _migrate_v1(state: dict[str, Any]) -> dict[str, Any]:
@@ -52,6 +68,7 @@ def _migrate_v1(state: dict[str, Any]) -> dict[str, Any]:
     state["exploration"] = state.pop("noise")
     state["losses"] = dict(zip(_V1_LOSSES, state["losses"])) if state["losses"] is not None else None
     state["algo"] = "ddpg"
+    state["config"] = nest_flat_config(state["config"])
     state["version"] = VERSION
     return state
 

@@ -1,4 +1,5 @@
-"""TD3 (Fujimoto et al. 2018, "Addressing Function Approximation Error in Actor-Critic Methods").
+"""TD3 (Fujimoto et al. 2018, "Addressing Function Approximation Error in Actor-Critic Methods";
+docs/references.md, "Simulators and benchmarks").
 
 DDPG plus three fixes of its value over-estimation; one update in :meth:`TD3.update`::
 
@@ -10,14 +11,15 @@ DDPG plus three fixes of its value over-estimation; one update in :meth:`TD3.upd
         theta'  <- theta' + tau * (theta - theta')                 # Polyak, all three targets
 
 With n-step returns (``n_step`` > 1) ``r`` and ``gamma`` are the row's window sum and
-``gamma ** k`` (:mod:`train.nstep`), as in DDPG.
+``gamma ** k`` (:mod:`train.offpolicy.nstep`), as in DDPG.
 
-Hyperparameters: :class:`train.config.TrainConfig`; the TD3 ones are ``td3_policy_noise``
-(sigma_s, 0.2), ``td3_noise_clip`` (c, 0.5) and ``td3_policy_delay`` (d, 2), the paper's
+Hyperparameters: :class:`train.offpolicy.config.DDPGConfig` (shared with DDPG) and
+:class:`train.offpolicy.config.TD3Config`: ``policy_noise`` (sigma_s, 0.2), ``noise_clip``
+(c, 0.5) and ``policy_delay`` (d, 2), the paper's
 values, in the actor's normalised action units ([-1, 1]). Exploration is the loop's
-(:mod:`train.exploration`; the paper uses Gaussian noise, ``exploration=gaussian``).
+(:mod:`train.offpolicy.exploration`; the paper uses Gaussian noise, ``exploration.kind=gaussian``).
 The actor is the same :class:`~ssl_marl.skills.networks.Actor` as DDPG's, so a TD3
-actor ships and loads exactly like a DDPG one. Same speed options as :mod:`.ddpg`
+actor ships and loads exactly like a DDPG one. Same speed options as :mod:`train.offpolicy.ddpg`
 (bf16 autocast, compiled loss functions); the smoothing noise is drawn outside the
 compiled function, from torch's global generator (saved with the checkpoint).
 The logged "critic" loss is the mean of the two critics' losses.
@@ -34,9 +36,9 @@ import torch.nn.functional as F
 
 from ssl_marl.skills.networks import Actor, Critic
 
-from ..config import TrainConfig
-from ..replay import Batch
-from .base import LossMeter, actor_act, bf16_autocast, lean_adam, soft_update, step_with_frozen, td_target
+from train.offpolicy.agent import LossMeter, actor_act, bf16_autocast, lean_adam, soft_update, step_with_frozen, td_target
+from train.offpolicy.config import DDPGConfig, TD3Config
+from train.offpolicy.replay import Batch
 
 
 class TD3:
@@ -44,8 +46,11 @@ class TD3:
 
     loss_names = ("critic", "actor")
 
-    def __init__(self, obs_dim: int, act_dim: int, cfg: TrainConfig) -> None:
-        self.cfg = cfg
+    def __init__(self, obs_dim: int, act_dim: int, cfg: DDPGConfig, td3: TD3Config, autocast_bf16: bool = False,
+                 compile: bool = False) -> None:
+        """``cfg``: the actor-critic hyperparameters shared with DDPG; ``td3``: the TD3 ones;
+        ``autocast_bf16`` and ``compile``: the run config's speed options (as :class:`~train.offpolicy.ddpg.DDPG`)."""
+        self.cfg, self.td3 = cfg, td3
         self.actor = Actor(obs_dim, act_dim, cfg.actor_hidden, cfg.layer_norm)
         self.critic1 = Critic(obs_dim, act_dim, cfg.critic_hidden, cfg.layer_norm)
         self.critic2 = Critic(obs_dim, act_dim, cfg.critic_hidden, cfg.layer_norm)
@@ -59,18 +64,18 @@ class TD3:
         self._online = [*self.actor.parameters(), *self.critic1.parameters(), *self.critic2.parameters()]
         self._target = [*self.actor_target.parameters(), *self.critic1_target.parameters(),
                         *self.critic2_target.parameters()]
-        self._autocast = bf16_autocast(cfg.autocast_bf16)
+        self._autocast = bf16_autocast(autocast_bf16)
         self._critic_loss, self._actor_loss = self.critic_loss, self.actor_loss
-        if cfg.compile:  # fixed batch shapes: no dynamic-shape graphs
+        if compile:  # fixed batch shapes: no dynamic-shape graphs
             self._critic_loss = torch.compile(self.critic_loss, dynamic=False)
             self._actor_loss = torch.compile(self.actor_loss, dynamic=False)
         self.updates = 0
         self.losses = LossMeter(self.loss_names)
 
     def smoothing_noise(self, b: Batch) -> torch.Tensor:
-        """clip(N(0, td3_policy_noise), -td3_noise_clip, td3_noise_clip), shape of ``b.act``."""
-        eps = torch.randn(b.act.shape) * self.cfg.td3_policy_noise
-        return eps.clamp_(-self.cfg.td3_noise_clip, self.cfg.td3_noise_clip)
+        """clip(N(0, policy_noise), -noise_clip, noise_clip), shape of ``b.act``."""
+        eps = torch.randn(b.act.shape) * self.td3.policy_noise
+        return eps.clamp_(-self.td3.noise_clip, self.td3.noise_clip)
 
     def critic_loss(self, b: Batch, eps: torch.Tensor) -> torch.Tensor:
         """Sum of both critics' MSE to the clipped double-Q target (no gradient through the target)."""
@@ -94,14 +99,14 @@ class TD3:
 
     def update(self, b: Batch, demo: Batch | None = None) -> None:
         """One TD3 update (see the module docstring): a critic step always, an actor step and the
-        target updates every ``td3_policy_delay``-th call."""
+        target updates every ``policy_delay``-th call."""
         critic_loss = self._critic_loss(b, self.smoothing_noise(b))
         self.critic_opt.zero_grad(set_to_none=True)
         critic_loss.backward()
         self.critic_opt.step()
         losses = {"critic": critic_loss.detach() * 0.5}
 
-        if self.updates % self.cfg.td3_policy_delay == 0:
+        if self.updates % self.td3.policy_delay == 0:
             bc_demo = demo if demo is not None and self.cfg.bc_weight > 0 else None  # the actor step needs dQ1/da only
             actor_loss = step_with_frozen(lambda: self._actor_loss(b, bc_demo), self._q1_params, self.actor_opt)
             soft_update(self._target, self._online, self.cfg.tau)

@@ -1,4 +1,4 @@
-"""The MAPPO training loop: collection over a :class:`~train.mappo_vec.DecisionVector`, SMDP GAE, updates,
+"""The MAPPO training loop: collection over a :class:`~train.mappo.vec.DecisionVector`, SMDP GAE, updates,
 logs, validation snapshots and resumable checkpoints.
 
 Collection. A rollout steps every env ``rollout_steps`` times. Where ``infos[agent]["decision"]``
@@ -9,7 +9,7 @@ and the step's ``elapsed_s`` to its open sample; the sample closes at the agent'
 truncation: bootstrap on the final state) or at the rollout's end (bootstrap on the state
 there; rewards the agent gets after that and before its next decision train nothing). Agents
 without a decision are sent a placeholder action (0 / zeros) that the env ignores.
-Advantages and returns: :func:`train.algos.mappo.gae` (the SMDP return is written there).
+Advantages and returns: :func:`train.mappo.algorithm.gae` (the SMDP return is written there).
 
 Observations and states are scaled to about [-1, 1] by their spaces' finite bounds
 (``(x - centre) / half_width``; the exported actor stores the same ``obs_mean``/``obs_std``).
@@ -22,8 +22,9 @@ logged). A resumed run repeats that cut, so it continues exactly as the uninterr
 Output folder: ``progress.csv`` (one row per rollout: decisions, agent-steps, episodes,
 return and score of the episodes ended in the rollout, losses, throughput), ``val.csv`` and
 ``actors/actor-<decisions>.pt`` (greedy validation on ``val_seed + i`` and the actor at
-that point, in the :mod:`ssl_marl.decisions.learned` file format, for model selection),
-``config.json``, ``learning_curve.png`` and ``tb/`` when TensorBoard is installed.
+that point, a decision actor file of :mod:`ssl_marl.skills.checkpoint`, for model selection),
+``config.json``, ``learning_curve.png`` and ``tb/`` when TensorBoard is installed
+(:class:`train.run_folder.RunFolder`).
 """
 
 from __future__ import annotations
@@ -38,17 +39,14 @@ import numpy as np
 import torch
 from tqdm import tqdm
 
-from ssl_marl.io import atomic_write_json
-from ssl_marl.skills.checkpoint import atomic_torch_save, git_commit, safe_torch_load
+from ssl_marl.skills.checkpoint import git_commit, save_actor_file
 
-from .algos.mappo import MAPPO, MAPPOConfig, gae, smdp_discount
-from .logs import CsvLog, TensorBoardLog
-from .mappo_tasks import get_task
-from .mappo_vec import DecisionVector
+from train.mappo.algorithm import MAPPO, MAPPOConfig, gae, smdp_discount
+from train.mappo.tasks import get_task
+from train.mappo.vec import DecisionVector
+from train.run_folder import CHECKPOINT, RunFolder, read_state
 
-CHECKPOINT = "checkpoint.pt"
 STATE_FORMAT = "ssl_marl.mappo_state"
-ACTOR_FORMAT = "ssl_marl.decision_actor/1"
 TICK_HZ = 60.0
 PROGRESS_FIELDS = ["rollout", "decisions", "agent_steps", "env_steps", "episodes", "mean_return", "mean_score",
                    "policy_loss", "value_loss", "entropy", "approx_kl", "clipfrac", "decisions_per_s",
@@ -71,7 +69,7 @@ class MAPPORunConfig:
     val_episodes: int = 50            # greedy validation episodes (seeds val_seed + i)
     val_seed: int = 5000              # validation seed base (never an evaluation seed)
     torch_threads: int = 1
-    init_actor: str | None = None     # decision-actor file whose weights start the actor (train.mappo_bc)
+    init_actor: str | None = None     # decision-actor file whose weights start the actor (train.mappo.bc)
     actor_warmup_rollouts: int = 0    # first rollouts in which only the critic learns
     algo: MAPPOConfig = field(default_factory=MAPPOConfig)
 
@@ -88,7 +86,7 @@ class MAPPORunConfig:
 
 
 def task_config(task: str, **overrides: Any) -> MAPPORunConfig:
-    """The task's default run config (:data:`train.mappo_tasks.MARL_TASKS`) with ``overrides``
+    """The task's default run config (:data:`train.mappo.tasks.MARL_TASKS`) with ``overrides``
     (``algo`` may be a partial dict of :class:`MAPPOConfig` fields)."""
     d = MAPPORunConfig(task=task).to_dict()
     for src in (get_task(task).defaults, overrides):
@@ -102,7 +100,10 @@ def task_config(task: str, **overrides: Any) -> MAPPORunConfig:
     return MAPPORunConfig.from_dict(d)
 
 
-def _scaling(space: Any) -> tuple[np.ndarray, np.ndarray]:
+def space_scaling(space: Any) -> tuple[np.ndarray, np.ndarray]:
+    """``(centre, half_width)`` per dimension of a Box ``space``, float32: the bounds' midpoint and
+    half range where both are finite and distinct, else 0 and 1 (``(x - centre) / half_width`` is
+    then about [-1, 1] on bounded dimensions and unchanged on the others)."""
     lo, hi = np.asarray(space.low, np.float64), np.asarray(space.high, np.float64)
     finite = np.isfinite(lo) & np.isfinite(hi) & (hi > lo)
     centre = np.where(finite, (lo + hi) / 2, 0.0)
@@ -110,15 +111,15 @@ def _scaling(space: Any) -> tuple[np.ndarray, np.ndarray]:
     return centre.astype(np.float32), half.astype(np.float32)
 
 
-def actor_file(agent: MAPPO, *, task: str, obs_mean: np.ndarray, obs_std: np.ndarray, option_names: Any,
-               agents: list[str], **meta: Any) -> dict[str, Any]:
-    """The actor in the :mod:`ssl_marl.decisions.learned` file format (plain containers + tensors)."""
-    return {"format": ACTOR_FORMAT, "task": task, "obs_dim": agent.obs_dim, "n_options": agent.n_out,
-            "hidden": list(agent.cfg.hidden), "continuous": bool(agent.cfg.continuous),
-            "agent_ids": list(agents) if agent.cfg.agent_onehot else None,
-            "option_names": list(option_names) if option_names is not None else None,
-            "state_dict": {k: v.clone() for k, v in agent.actor.state_dict().items()},
-            "obs_mean": torch.as_tensor(obs_mean), "obs_std": torch.as_tensor(obs_std), **meta}
+def save_decision_actor(path: str | Path, agent: MAPPO, *, task: str, obs_mean: np.ndarray, obs_std: np.ndarray,
+                        option_names: Any, agents: list[str], **meta: Any) -> Path:
+    """Write the shared actor as a decision actor file (:mod:`ssl_marl.skills.checkpoint`, kind
+    ``"decision"``): its weights and observation scaling, its shape, task and ``meta``."""
+    state = {**agent.actor.state_dict(), "obs_mean": torch.as_tensor(obs_mean), "obs_std": torch.as_tensor(obs_std)}
+    metadata = {"task": task, "obs_dim": agent.obs_dim, "n_options": agent.n_out, "hidden": list(agent.cfg.hidden),
+                "continuous": bool(agent.cfg.continuous), "agent_ids": list(agents) if agent.cfg.agent_onehot else None,
+                "option_names": list(option_names) if option_names is not None else None, **meta}
+    return save_actor_file(path, "decision", state, metadata)
 
 
 class MAPPOTrainer:
@@ -126,8 +127,9 @@ class MAPPOTrainer:
 
     def __init__(self, cfg: MAPPORunConfig, seed: int, out: str | Path, progress: bool = True,
                  resume: bool = False) -> None:
-        self.cfg, self.seed, self.out, self.progress = cfg, int(seed), Path(out), progress
-        self.out.mkdir(parents=True, exist_ok=True)
+        self.cfg, self.seed, self.progress = cfg, int(seed), progress
+        self.folder = RunFolder(out)
+        self.out = self.folder.path
         torch.set_num_threads(max(1, cfg.torch_threads))
         random.seed(seed)
         np.random.seed(seed % 2**32)
@@ -139,8 +141,8 @@ class MAPPOTrainer:
         self.agents = self.vec.agents
         self.n_agents = len(self.agents)
         obs_space, act_space = env.observation_space(self.agents[0]), env.action_space(self.agents[0])
-        self.obs_c, self.obs_s = _scaling(obs_space)
-        self.state_c, self.state_s = _scaling(env.state_space)
+        self.obs_c, self.obs_s = space_scaling(obs_space)
+        self.state_c, self.state_s = space_scaling(env.state_space)
         self.continuous = cfg.algo.continuous
         if self.continuous:
             self.act_low, self.act_high = np.asarray(act_space.low, np.float32), np.asarray(act_space.high, np.float32)
@@ -154,8 +156,8 @@ class MAPPOTrainer:
         self.agent = MAPPO(int(obs_space.shape[0]), int(env.state_space.shape[0]), self.n_agents, n_out, cfg.algo)
         self.counters = {"rollout": 0, "decisions": 0, "agent_steps": 0, "env_steps": 0, "episodes": 0}
         self.wall = 0.0
-        self.progress_log = CsvLog(self.out / "progress.csv", PROGRESS_FIELDS)
-        self.val_log = CsvLog(self.out / "val.csv", VAL_FIELDS)
+        self.progress_log = self.folder.csv_log("progress.csv", PROGRESS_FIELDS)
+        self.val_log = self.folder.csv_log("val.csv", VAL_FIELDS)
         if resume:
             self._load()
         else:
@@ -163,13 +165,13 @@ class MAPPOTrainer:
                 self.load_init_actor(cfg.init_actor)
             self.progress_log.clear()
             self.val_log.clear()
-            atomic_write_json(self.out / "config.json", {"seed": self.seed, **cfg.to_dict()})
-        self.tb = TensorBoardLog(self.out / "tb", purge_step=self.counters["decisions"] if resume else None)
+            self.folder.write_config({"seed": self.seed, **cfg.to_dict()})
+        self.tb = self.folder.tensorboard(purge_step=self.counters["decisions"] if resume else None)
         self._cut()
 
     def load_init_actor(self, path: str | Path) -> None:
         """Start the shared actor from a decision-actor file (e.g. behaviour cloning of a
-        benchmark policy, :mod:`train.mappo_bc`), read by the one loader of that format
+        benchmark policy, :mod:`train.mappo.bc`), read by the one loader of that format
         (:func:`ssl_marl.decisions.learned.load_decision_actor`, ``weights_only=True``); its
         task, sizes, hidden layers and observation scaling must be this run's."""
         from ssl_marl.decisions.learned import load_decision_actor
@@ -332,14 +334,14 @@ class MAPPOTrainer:
                 "val_return": float(np.mean(returns)), "val_episodes": len(scores)}
 
     def save_actor(self, path: Path, **meta: Any) -> Path:
-        return atomic_torch_save(actor_file(self.agent, task=self.cfg.task, obs_mean=self.obs_c, obs_std=self.obs_s,
-                                            option_names=self.option_names, agents=self.agents, seed=self.seed,
-                                            decisions=self.counters["decisions"], commit=git_commit(), **meta), path)
+        return save_decision_actor(path, self.agent, task=self.cfg.task, obs_mean=self.obs_c, obs_std=self.obs_s,
+                                   option_names=self.option_names, agents=self.agents, seed=self.seed,
+                                   decisions=self.counters["decisions"], commit=git_commit(), **meta)
 
     def _validate_and_snapshot(self) -> dict[str, float]:
         v = self.validate()
         d = self.counters["decisions"]
-        path = self.save_actor(self.out / "actors" / f"actor-{d}.pt", val_score=v["val_score"],
+        path = self.save_actor(self.folder.actor_snapshot(d), val_score=v["val_score"],
                                val_seed=self.cfg.val_seed, val_episodes=v["val_episodes"])
         self.val_log.write({"rollout": self.counters["rollout"], "decisions": d, **v,
                             "actor": str(path.relative_to(self.out))})
@@ -348,15 +350,14 @@ class MAPPOTrainer:
 
     # --- checkpoints -----------------------------------------------------------------------------
     def checkpoint(self) -> None:
-        atomic_torch_save({"format": STATE_FORMAT, "version": 1, "config": self.cfg.to_dict(), "seed": self.seed,
-                           "agent": self.agent.state_dict(), "gen": self.gen.get_state(),
-                           "torch_rng": torch.get_rng_state(), "counters": dict(self.counters),
-                           "env_counters": list(self.vec.counters), "wall": self.wall,
-                           "csv_rows": {"progress": self.progress_log.rows, "val": self.val_log.rows}},
-                          self.out / CHECKPOINT)
+        self.folder.save_checkpoint({"format": STATE_FORMAT, "version": 1, "config": self.cfg.to_dict(),
+                                     "seed": self.seed, "agent": self.agent.state_dict(), "gen": self.gen.get_state(),
+                                     "torch_rng": torch.get_rng_state(), "counters": dict(self.counters),
+                                     "env_counters": list(self.vec.counters), "wall": self.wall,
+                                     "csv_rows": {"progress": self.progress_log.rows, "val": self.val_log.rows}})
 
     def _load(self) -> None:
-        st = read_mappo_state(self.out / CHECKPOINT)
+        st = read_mappo_state(self.folder.checkpoint)
         saved = MAPPORunConfig.from_dict(st["config"])
         if replace(saved, total_decisions=self.cfg.total_decisions) != self.cfg or int(st["seed"]) != self.seed:
             raise ValueError(f"{self.out / CHECKPOINT} was written by another config or seed; "
@@ -425,10 +426,8 @@ class MAPPOTrainer:
 
 
 def read_mappo_state(path: str | Path) -> dict[str, Any]:
-    st = safe_torch_load(path, "ssl_marl MAPPO training checkpoint")
-    if not isinstance(st, dict) or st.get("format") != STATE_FORMAT:
-        raise ValueError(f"{path} is not a MAPPO training checkpoint (no {STATE_FORMAT!r} format tag)")
-    return st
+    """A MAPPO train state (``OUT/checkpoint.pt``), read with ``weights_only=True``."""
+    return read_state(path, STATE_FORMAT, "ssl_marl MAPPO training checkpoint")
 
 
 def load_mappo_run(out: str | Path) -> tuple[MAPPORunConfig, int]:
@@ -446,7 +445,7 @@ def train_mappo(cfg: MAPPORunConfig, seed: int, out: str | Path, resume: bool = 
     finally:
         trainer.close()
     try:
-        from .mappo_report import plot_mappo_run
+        from train.mappo.report import plot_mappo_run
 
         plot_mappo_run(out)
     except Exception as exc:  # the plot is a convenience; the CSVs are the record
@@ -454,4 +453,5 @@ def train_mappo(cfg: MAPPORunConfig, seed: int, out: str | Path, resume: bool = 
     return row
 
 
-__all__ = ["MAPPORunConfig", "MAPPOTrainer", "load_mappo_run", "task_config", "train_mappo", "replace"]
+__all__ = ["MAPPORunConfig", "MAPPOTrainer", "load_mappo_run", "save_decision_actor", "space_scaling", "task_config",
+           "train_mappo"]

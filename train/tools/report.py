@@ -1,0 +1,143 @@
+"""Every table of docs/RESULTS.md, generated from the result records under ``results/``.
+
+    python -m train.report [--results results] [--doc docs/RESULTS.md] [--check] [--print NAME]
+
+Each table sits in the doc between ``<!-- table:NAME -->`` and ``<!-- /table:NAME -->``;
+this rewrites what lies between every pair of markers from :data:`TABLES` (the row
+builders are in :mod:`train.tools.report_tables`). ``--check`` changes nothing and exits 1
+naming the tables whose text differs from what the records give (and any marker
+without a table, or table without a marker). A result goes into the doc by adding its
+record under ``results/`` and its name to the table's entry here.
+"""
+
+from __future__ import annotations
+
+import argparse
+import re
+import sys
+from pathlib import Path
+from typing import Callable
+
+from ssl_marl.io import atomic_write_bytes
+from train.tools import report_tables as t
+
+SKILLS_PAPER = ["go_to_ball_baseline", "go_to_ball_baseline_realistic", "go_to_ball_learned",
+                "go_to_ball_learned_realistic", "aim_to_shoot_baseline", "aim_to_shoot_baseline_realistic",
+                "aim_to_shoot_learned", "aim_to_shoot_learned_realistic"]
+SKILLS_TRACKER = ["go_to_ball_baseline_div_a", "go_to_ball_learned_div_a", "go_to_ball_learned_realistic_tracker",
+                  "go_to_ball_learned_realistic_tracker_div_a", "aim_to_shoot_learned_realistic_tracker"]
+SKILLS_RANDOMIZED = ["go_to_ball_baseline_randomized_tracker", "go_to_ball_learned_randomized_tracker",
+                     "go_to_ball_learned_randomized_tracker_div_a", "aim_to_shoot_baseline_randomized_tracker",
+                     "aim_to_shoot_learned_randomized_tracker"]
+PASSING_SKILLS = ["pass_baseline", "pass_baseline_realistic", "pass_learned", "pass_learned_realistic",
+                  "receive_baseline", "receive_baseline_realistic", "receive_baseline_realistic_tracker",
+                  "receive_learned", "receive_learned_realistic", "receive_baseline_div_a", "receive_learned_div_a"]
+PASS_ENDURANCE = ["pass_endurance_baseline", "pass_endurance_baseline_realistic", "pass_endurance_learned_pass",
+                  "pass_endurance_learned_pass_realistic"]
+TACTIC = ["tactic_baseline", "tactic_baseline_realistic", "tactic_learned", "tactic_learned_realistic"]
+DRIBBLE = [f"tactic_dribble_{s}_{r}_{f}" for s in ("baseline", "learned") for r in ("none", "realistic")
+           for f in ("div_b", "div_a")]
+TRACKER_PAIRS = [("go-to-ball, baseline", "go_to_ball_baseline", "go_to_ball_baseline"),
+                 ("aim-to-shoot, baseline", "aim_to_shoot_baseline", "aim_to_shoot_baseline"),
+                 ("aim-to-shoot, learned", "aim_to_shoot_learned", "aim_to_shoot_learned"),
+                 ("go-to-ball-and-shoot, baseline skills", "tactic_baseline", "tactic_baseline")]
+PASSING_SERIES = ["match_passing_learned_vs_baseline_snap", "match_passing_learned_vs_passing_learned_snap",
+                  "match_passing_learned_vs_passing_baseline_snap"]
+KEEPAWAY = [("random", "keepaway_random"), ("always-hold", "keepaway_always-hold"),
+            ("hand-coded", "keepaway_handcoded"), ("learned (shipped `keepaway.pt`, MAPPO seed 1)", "keepaway_learned")]
+ATTACK = [("hand-coded (cost decision, shot threshold 0.25)", "attack_3v2_handcoded_snap"),
+          ("learned (shipped `attack_3v2.pt`)", "attack_3v2_learned_snap")]
+
+TABLES: dict[str, Callable[[Path], list[str]]] = {
+    "skills_paper": lambda r: t.skills(r, SKILLS_PAPER),
+    "skills_tracker_div_a": lambda r: t.skills(r, SKILLS_TRACKER),
+    "skills_randomized": lambda r: t.skills(r, SKILLS_RANDOMIZED),
+    "selection": lambda r: t.selection(r, ["aim_to_shoot_full_s0", "go_to_ball_fast_s1", "go_to_ball_s0",
+                                           "gtb_both_s0"]),
+    "td3_vs_ddpg": lambda r: t.training_compare(r, ["go_to_ball_fast_s1", "go_to_ball_td3_s1"], 10_000, 80_000),
+    "go_to_ball_fast": lambda r: t.training_compare(r, ["go_to_ball_s0", "gtb_fast_s0", "gtb_fast_u025_s0",
+                                                       "gtb_fast_u025_t2_s0"], 40_000, 200_010),
+    "go_to_ball_both_fields": lambda r: t.selection_by_field(r, "gtb_both_s0"),
+    "tactic": lambda r: t.tactics(r, TACTIC),
+    "dribble": lambda r: t.tactics(r, DRIBBLE),
+    "tracker_errors": t.tracker_errors,
+    "tracker_pairs": lambda r: t.tracker_pairs(r, TRACKER_PAIRS),
+    "passing_skills": lambda r: t.skills(r, PASSING_SKILLS),
+    "pass_endurance": lambda r: t.drills(r, PASS_ENDURANCE),
+    "passing_series": lambda r: t.series(r, PASSING_SERIES),
+    "passing_contested_kick": lambda r: t.tuning(r, [("`contested_kick` on", "passing_contested_kick.json",
+                                                      "contested_kick_on"),
+                                                     ("`contested_kick` off (the default)",
+                                                      "passing_contested_kick.json", "contested_kick_off")]),
+    "passing_skill_swaps": lambda r: t.tuning(r, [
+        ("all learned (`passing-learned`)", "ablation_all_learned.json", None),
+        ("go-to-ball hand-coded, others learned", "ablation_gtb_baseline.json", None),
+        ("pass and receive hand-coded, others learned", "ablation_pass_receive_baseline.json", None),
+        ("all learned, 40 more matches", "learned_vs_passing_baseline_45320.json", None),
+        ("all learned, self-play with the coordinator's counters", "selfplay_pass_counters.json", None)]),
+    "keepaway": lambda r: t.keepaway(r, KEEPAWAY),
+    "attack": lambda r: t.attack(r, ATTACK),
+    "decision_tasks_realistic": lambda r: t.decision_tasks(r, "*_realistic*"),
+    "mappo_keepaway": lambda r: t.mappo_runs(r, [("mappo_keepaway_s0", "keepaway_learned_s0"),
+                                                 ("mappo_keepaway_s1", "keepaway_learned"),
+                                                 ("mappo_keepaway_s2", "keepaway_learned_s2")],
+                                             "keepaway_handcoded", "duration"),
+    "mappo_attack": lambda r: t.mappo_runs(r, [(f"mappo_attack{k}_s{s}", "") for k in ("-3v2", "_bc")
+                                               for s in (0, 1, 2)], None, "goal"),
+    "pass_and_score": t.pass_and_score,
+}
+
+MARKER = re.compile(r"(<!-- table:([\w-]+) -->\n)(.*?)(<!-- /table:\2 -->)", re.S)
+
+
+def render(name: str, results: Path) -> str:
+    return "\n".join(TABLES[name](results)) + "\n"
+
+
+def regenerate(doc_text: str, results: Path) -> tuple[str, list[str]]:
+    """The doc with every marked table regenerated, and the problems found: names of
+    tables whose text changed, markers without a table, tables without a marker."""
+    changed: list[str] = []
+    seen: set[str] = set()
+
+    def fill(m: re.Match) -> str:
+        name = m.group(2)
+        seen.add(name)
+        if name not in TABLES:
+            changed.append(f"{name} (no such table)")
+            return m.group(0)
+        body = render(name, results)
+        if body != m.group(3):
+            changed.append(name)
+        return m.group(1) + body + m.group(4)
+
+    text = MARKER.sub(fill, doc_text)
+    changed += [f"{n} (no marker in the doc)" for n in TABLES if n not in seen]
+    return text, changed
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(prog="python -m train.report", description=__doc__,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--results", default="results", type=Path, help="folder of result records (default results)")
+    p.add_argument("--doc", default="docs/RESULTS.md", type=Path, help="document to fill (default docs/RESULTS.md)")
+    p.add_argument("--check", action="store_true", help="change nothing; exit 1 if a table would change")
+    p.add_argument("--print", dest="show", metavar="NAME", choices=sorted(TABLES), help="print one table and exit")
+    a = p.parse_args(argv)
+    if a.show:
+        print(render(a.show, a.results), end="")
+        return 0
+    old = a.doc.read_text()
+    new, changed = regenerate(old, a.results)
+    if a.check:
+        for c in changed:
+            print(f"{a.doc}: table {c} differs from the records")
+        return 1 if changed else 0
+    if new != old:
+        atomic_write_bytes(a.doc, new.encode())
+    print(f"{a.doc}: {len(TABLES)} tables" + (f", rewritten: {', '.join(changed)}" if changed else ", unchanged"))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
