@@ -39,7 +39,7 @@ from ..envs.ssl_env import SSLParallelEnv
 from ..io import atomic_write_json, episode_seed, wilson_interval
 from ..physics.state import WorldState
 from ..skills.base import SkillStatus, make_action
-from ..skills.baseline import MoveToPoint
+from ..skills.navigation import MoveToPoint
 
 DRILLS = ("pass-endurance",)
 AGENTS = ("blue_0", "blue_1")
