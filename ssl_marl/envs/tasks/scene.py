@@ -1,6 +1,6 @@
-"""The start of an episode: :class:`Scene`, and the scene reset options ask for.
+"""The start of an episode (:class:`Scene`) and the scene that reset options ask for.
 
-Reset options (shared by the tasks, :func:`scene_from_options`) (field frame, metres, radians)::
+Reset options, shared by the tasks (:func:`scene_from_options`; field frame, metres, radians)::
 
     {"ball": {"pos": (x, y), "vel": (vx, vy)},
      "robots": {"blue_0": (x, y, heading), ...},
