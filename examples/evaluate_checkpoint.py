@@ -18,12 +18,12 @@ from pathlib import Path
 
 from ssl_marl.skills.checkpoint import load_actor
 from ssl_marl.runners.skill_eval import evaluate_skill
-from ssl_marl.skills.learned import PRETRAINED
+from ssl_marl.skills.registry import get_skill
 
 
 def main(argv: list[str] | None = None) -> dict:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("checkpoint", nargs="?", default=str(PRETRAINED["go_to_ball"]), help="actor checkpoint (.pt)")
+    p.add_argument("checkpoint", nargs="?", default=str(get_skill("go_to_ball").actor), help="actor checkpoint (.pt)")
     p.add_argument("--episodes", type=int, default=20, help="episodes per policy (default 20; the paper uses 1000)")
     p.add_argument("--out", type=Path, default=None, help="folder for results.json and time_hist.png")
     args = p.parse_args(argv)

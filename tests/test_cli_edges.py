@@ -12,9 +12,9 @@ import pytest
 
 from ssl_marl import __version__
 from ssl_marl.cli import build_parser, main
-from ssl_marl.skills.learned import PRETRAINED as _SHIPPED
+from ssl_marl.skills.registry import get_skill
 
-PRETRAINED = str(_SHIPPED["go_to_ball"])
+SHIPPED_ACTOR = str(get_skill("go_to_ball").actor)
 
 
 # ------------------------------------------------------------------ forwarding
@@ -213,7 +213,7 @@ def test_export_onnx_without_the_extra_says_how_to_install(monkeypatch, tmp_path
 
     real = importlib.util.find_spec
     monkeypatch.setattr(importlib.util, "find_spec", lambda name, *a: None if name == "onnx" else real(name, *a))
-    assert main(["export-onnx", PRETRAINED, str(tmp_path / "x.onnx")]) == 2
+    assert main(["export-onnx", SHIPPED_ACTOR, str(tmp_path / "x.onnx")]) == 2
     assert 'pip install -e ".[onnx]"' in capsys.readouterr().err
 
 

@@ -5,10 +5,10 @@ import pytest
 from pettingzoo.test import parallel_api_test
 
 from ssl_marl.envs import parallel_env
-from ssl_marl.envs.config import RealismConfig
+from ssl_marl.envs.config import MatchRules, RealismConfig
 from ssl_marl.envs.realism import (BallDropout, CommandDelay, CommandEffect, CommandLoss, Radio, Vision,
                                    VisionNoise, command_effects, vision_effects)
-from ssl_marl.envs.tasks import FreePlayTask, MatchTask, Scene, Task, make_task
+from ssl_marl.envs.tasks import Engine, FreePlayTask, MatchTask, Scene, Task, make_task
 
 
 class KeepawayToy(Task):
@@ -78,6 +78,38 @@ def test_match_task_rules_come_from_the_env_config():
     env = parallel_env(n_blue=1, n_yellow=1, after_goal="terminate", max_time_s=5.0, referee=False)
     rules = env.task.rules
     assert (rules.after_goal, rules.max_time_s, rules.referee) == ("terminate", 5.0, False)
+    assert rules is env.config.match
+    assert rules == MatchRules(after_goal="terminate", max_time_s=5.0, referee=False)
+
+
+def test_match_parameters_as_keywords_or_as_one_match_option():
+    by_keywords = parallel_env(n_blue=1, n_yellow=1, max_time_s=5.0, reward_scales={"possession": 1.0})
+    by_dict = parallel_env(n_blue=1, n_yellow=1, match={"max_time_s": 5.0, "reward_scales": {"possession": 1.0}})
+    by_rules = parallel_env(n_blue=1, n_yellow=1, match=MatchRules(max_time_s=5.0, reward_scales={"possession": 1.0}))
+    assert by_keywords.config.match == by_dict.config.match == by_rules.config.match
+    assert by_rules.config.match.reward_scales == {"goal": 1.0, "ball_progress": 0.0, "possession": 1.0}
+    with pytest.raises(ValueError, match="not both"):
+        parallel_env(match=MatchRules(), max_time_s=5.0)
+    with pytest.raises(ValueError, match="match"):
+        parallel_env(match=5)
+
+
+def test_the_env_offers_what_the_engine_protocol_names():
+    env = parallel_env(n_blue=1, n_yellow=1)
+    members = set(Engine.__annotations__) | {n for n in vars(Engine) if not n.startswith("_")}
+    assert members >= {"config", "field", "np_random", "world_state", "place_ball", "award_goal"}
+    assert all(hasattr(env, m) for m in members), sorted(m for m in members if not hasattr(env, m))
+
+
+def test_the_config_module_imports_nothing_else_from_envs():
+    import ast
+    from pathlib import Path
+
+    import ssl_marl.envs.config as config
+
+    tree = ast.parse(Path(config.__file__).read_text())
+    relative = [n.module for n in ast.walk(tree) if isinstance(n, ast.ImportFrom) and n.level]
+    assert relative and all(m.startswith("physics") for m in relative), relative
 
 
 def test_realism_effects_are_a_composable_list():

@@ -9,8 +9,9 @@ from ssl_marl.physics.state import TeamState, WorldState, make_team_state, to_te
 from ssl_marl.skills import SkillStatus, make_skill
 from ssl_marl.skills.checkpoint import save_actor
 from ssl_marl.skills.features import AIM_TO_SHOOT_SPEC, GO_TO_BALL_SPEC
-from ssl_marl.skills.learned import PRETRAINED, LearnedAimToShoot, LearnedGoToBall, NumpyActor, load_policy
+from ssl_marl.skills.learned import LearnedAimToShoot, LearnedGoToBall, NumpyActor, load_policy
 from ssl_marl.skills.networks import Actor
+from ssl_marl.skills.registry import get_skill
 
 F = FieldGeometry.div_b()
 
@@ -69,13 +70,13 @@ def _success(task, policy, episodes=50, seed=777):
 
 
 def test_shipped_go_to_ball_reaches_95_percent():
-    assert PRETRAINED["go_to_ball"].exists(), "shipped actor missing"
+    assert get_skill("go_to_ball").actor.exists(), "shipped actor missing"
     s = _success("go-to-ball", "learned")
     assert s["success_rate"] >= 0.95, s["failure_reasons"]
 
 
 def test_shipped_aim_to_shoot_beats_the_baseline():
-    assert PRETRAINED["aim_to_shoot"].exists(), "shipped actor missing"
+    assert get_skill("aim_to_shoot").actor.exists(), "shipped actor missing"
     learned, base = _success("aim-to-shoot", "learned", 100), _success("aim-to-shoot", "baseline", 100)
     assert learned["success_rate"] > base["success_rate"], (learned["failure_reasons"], base["failure_reasons"])
 

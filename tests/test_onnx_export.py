@@ -15,12 +15,11 @@ import torch
 import ssl_marl  # noqa: F401  (registers the skill envs)
 from ssl_marl.cli import main
 from ssl_marl.skills.checkpoint import load_actor
-from ssl_marl.skills.learned import PRETRAINED
 
 onnx = pytest.importorskip("onnx")
 ort = pytest.importorskip("onnxruntime")
 
-from ssl_marl.skills.registry import task_skills  # noqa: E402
+from ssl_marl.skills.registry import get_skill, learned_skills, task_skills  # noqa: E402
 
 ENV_IDS = {s.name: s.task.env_id for s in task_skills()}  # every skill task, from the registry
 
@@ -40,13 +39,13 @@ def _observations(env_id: str, n: int, seed: int = 10_000) -> np.ndarray:
     return np.asarray(out, dtype=np.float32)
 
 
-@pytest.mark.parametrize("skill", sorted(PRETRAINED))
+@pytest.mark.parametrize("skill", sorted(s.name for s in learned_skills() if s.actor is not None))
 def test_exported_actor_matches_pytorch(skill, tmp_path, capsys):
     out = tmp_path / "models" / f"{skill}.onnx"
-    assert main(["export-onnx", str(PRETRAINED[skill]), str(out)]) == 0
+    assert main(["export-onnx", str(get_skill(skill).actor), str(out)]) == 0
     assert "->" in capsys.readouterr().out
 
-    actor, meta = load_actor(PRETRAINED[skill])
+    actor, meta = load_actor(get_skill(skill).actor)
     obs = _observations(ENV_IDS[skill], 1000)
     with torch.no_grad():
         expected = actor(torch.from_numpy(obs)).numpy()
@@ -66,7 +65,7 @@ def test_exported_actor_matches_pytorch(skill, tmp_path, capsys):
 
 
 def test_export_refuses_a_wrong_suffix_before_loading(tmp_path, capsys):
-    assert main(["export-onnx", str(PRETRAINED["go_to_ball"]), str(tmp_path / "x.pt")]) == 2
+    assert main(["export-onnx", str(get_skill("go_to_ball").actor), str(tmp_path / "x.pt")]) == 2
     assert "use .onnx" in capsys.readouterr().err
 
 

@@ -9,7 +9,7 @@ from ssl_marl.physics import FieldGeometry
 from ssl_marl.physics.params import BallParams, RobotParams
 from ssl_marl.plays.defense import (Defender, DefenderInputs, DefenderState, Goalie, GoalieInputs, GoalieState, Mark,
                                     MarkState, block_position, goalie_guard_position, mark_position)
-from ssl_marl.plays.navigation import (NavigateToPoint, NavParams, defense_corner_waypoint, detour_waypoint,
+from ssl_marl.skills.navigation import (NavigateToPoint, NavParams, defense_corner_waypoint, detour_waypoint,
                                        repulsion_velocity, sanitize_target)
 from ssl_marl.plays.scene import ball_in_front, make_world
 from ssl_marl.plays.shoot import Attacker, GoToBallAndShoot, ShootInputs, ShootParams, ShootState

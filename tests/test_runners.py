@@ -17,7 +17,7 @@ from ssl_marl.envs.deadline import ControlDeadline  # noqa: E402
 from ssl_marl.runners.controllers import load_team_file, parse_skill_source, team_skills  # noqa: E402
 from ssl_marl.runners.pool import chunk_indices, run_pool  # noqa: E402
 from ssl_marl.envs.animation import VideoSink  # noqa: E402
-from ssl_marl.skills.learned import PRETRAINED  # noqa: E402
+from ssl_marl.skills.registry import get_skill  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -176,7 +176,7 @@ def test_skill_sources_parse_and_merge(tmp_path):
         parse_skill_source("go-to-ball")
     with pytest.raises(ValueError, match="unknown skill 'fly'"):
         parse_skill_source("fly=learned")
-    ckpt = str(PRETRAINED["go_to_ball"])
+    ckpt = str(get_skill("go_to_ball").actor)
     assert team_skills("baseline", {"go-to-ball": ckpt}) == {"go_to_ball": ckpt, "aim_to_shoot": "baseline"}
     assert team_skills("learned", {}) == "learned"
     with pytest.raises(ValueError, match="STP team"):
@@ -188,7 +188,7 @@ def test_skill_sources_parse_and_merge(tmp_path):
 def test_team_file_resolves_paths_against_its_folder(tmp_path):
     import shutil
 
-    shutil.copy(PRETRAINED["go_to_ball"], tmp_path / "gtb.pt")
+    shutil.copy(get_skill("go_to_ball").actor, tmp_path / "gtb.pt")
     team = tmp_path / "team.json"
     team.write_text(json.dumps({"kind": "learned", "skills": {"go-to-ball": "gtb.pt", "aim-to-shoot": "baseline"}}))
     kind, sources = load_team_file(team)
@@ -203,7 +203,7 @@ def test_team_file_resolves_paths_against_its_folder(tmp_path):
 def test_wrong_skill_checkpoint_fails_before_the_match_with_one_line(tmp_path, capsys):
     from ssl_marl.cli import main
 
-    wrong = str(PRETRAINED["aim_to_shoot"])
+    wrong = str(get_skill("aim_to_shoot").actor)
     rc = main(["match", "--blue", "learned", "--skill", f"go-to-ball={wrong}", "--seconds", "1", "--render", "none",
                "--quiet"])
     err = capsys.readouterr().err.strip()
@@ -222,7 +222,7 @@ def test_a_checkpoint_source_plays_like_the_same_actor_shipped():
     from ssl_marl.runners.match import play_match
     from ssl_marl.runners.tactic_eval import evaluate_tactic
 
-    ckpt = str(PRETRAINED["go_to_ball"])
+    ckpt = str(get_skill("go_to_ball").actor)
     a = evaluate_tactic("learned", episodes=2, seed=20_000, progress=False)
     b = evaluate_tactic({"go-to-ball": ckpt, "aim_to_shoot": "learned"}, episodes=2, seed=20_000, progress=False)
     assert a["episodes_detail"] == b["episodes_detail"]

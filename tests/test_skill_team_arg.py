@@ -8,7 +8,7 @@ import pytest
 
 from ssl_marl.envs import parallel_env
 from ssl_marl.physics.state import to_team_frame
-from ssl_marl.skills import SKILL_NAMES, make_skill
+from ssl_marl.skills import make_skill, skill_names
 
 
 @pytest.fixture(scope="module")
@@ -21,7 +21,7 @@ def env():
 
 
 @pytest.mark.parametrize("kind", ["baseline", "learned"])
-@pytest.mark.parametrize("name", SKILL_NAMES)
+@pytest.mark.parametrize("name", skill_names())
 @pytest.mark.parametrize("team", ["blue", "yellow"])
 def test_team_argument_equals_team_frame_snapshot(env, kind, name, team):
     from ssl_marl.skills.registry import get_skill

@@ -11,7 +11,8 @@ import ssl_marl  # noqa: F401  (registers the envs)
 from ssl_marl.physics import BallParams, FieldGeometry, RobotParams
 from ssl_marl.physics.state import TeamState, WorldState, make_team_state, to_team_frame
 from ssl_marl.skills import SkillStatus, make_skill
-from ssl_marl.skills.baseline import AimToShootBaseline, DriveForward, GoToBallBaseline, MoveToPoint
+from ssl_marl.skills.baseline import AimToShootBaseline, DriveForward, GoToBallBaseline
+from ssl_marl.skills.navigation import MoveToPoint
 from ssl_marl.skills.demos import aim_to_shoot_demos, go_to_ball_demos
 from ssl_marl.skills.features import (aim_to_shoot_features, aim_to_shoot_reward, dribbler_ball_distance,
                                       go_to_ball_features, go_to_ball_reward)

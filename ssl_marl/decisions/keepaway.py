@@ -100,8 +100,9 @@ from ..physics.state import wrap_angle
 from ..plays.pass_tactic import Pass, PassState
 from ..plays.receive_tactic import Receive, ReceiveState
 from ..plays.shoot import govern_approach
-from ..skills.baseline import GoToBallBaseline, approach_speed, velocity_command
+from ..skills.baseline import GoToBallBaseline
 from ..skills.batched_features import dribbler_ball_distance_batch
+from ..skills.motion import approach_speed, velocity_command
 from ..skills.navigation import NavigateToPoint, detour_waypoint
 from .base import DecisionEnv
 

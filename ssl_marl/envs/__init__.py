@@ -1,7 +1,7 @@
 """PettingZoo API of the full-field SSL simulator.
 
 ``parallel_env(**config)`` returns the :class:`~ssl_marl.envs.ssl_env.SSLParallelEnv`
-(ParallelEnv); ``env(**config)`` its AEC form. Options: :class:`~ssl_marl.envs.config.EnvConfig`.
+(ParallelEnv); ``env(**config)`` its AEC form. Options: :func:`~ssl_marl.envs.config.make_config`.
 """
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ from typing import Any
 
 from pettingzoo.utils.conversions import parallel_to_aec
 
-from .config import EnvConfig, RealismConfig, make_config
+from .config import EnvConfig, MatchRules, RealismConfig, make_config
 from .ssl_env import SSLParallelEnv
 
 
@@ -24,4 +24,4 @@ def env(**config: Any):
     return parallel_to_aec(parallel_env(**config))
 
 
-__all__ = ["parallel_env", "env", "EnvConfig", "RealismConfig", "make_config", "SSLParallelEnv"]
+__all__ = ["parallel_env", "env", "EnvConfig", "MatchRules", "RealismConfig", "make_config", "SSLParallelEnv"]

@@ -47,11 +47,11 @@ from ..physics.batched import BatchedPhysics
 from ..physics.state import WorldState, to_team_frame
 from .actions import ACTION_DIM, scale_actions
 from .batched_obs import batched_observations
-from .config import EnvConfig, make_config
+from .config import EnvConfig, MatchRules, make_config
 from .observation import all_observations, state_vector
 from .referee import NoProgressWatch, clear_robots_from, kickoff_poses, placement_point
 from .ssl_env import SSLParallelEnv
-from .tasks import FreePlayTask, MatchRules, MatchTask
+from .tasks import FreePlayTask, MatchTask
 
 TEAMS = ("blue", "yellow")
 

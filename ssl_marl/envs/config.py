@@ -1,4 +1,11 @@
-"""Env configuration: one dataclass that fails loudly, naming the offending field."""
+"""Env configuration: frozen dataclasses that fail loudly, naming the offending field.
+
+:class:`EnvConfig` holds the engine's options, :class:`RealismConfig` the vision and radio
+effects and :class:`MatchRules` the parameters of the match task. This module imports
+nothing else from :mod:`ssl_marl.envs`: task names are checked where the task is built
+(:func:`ssl_marl.envs.tasks.make_task`) and randomisation ranges where the env is built
+(:func:`ssl_marl.envs.randomization.resolve_randomization`).
+"""
 
 from __future__ import annotations
 
@@ -12,6 +19,8 @@ from ..physics.params import BallParams, RobotParams
 
 REWARD_TERMS = ("goal", "ball_progress", "possession")
 AFTER_GOAL = ("kickoff", "terminate")
+#: reward scales of the match task when none are given
+DEFAULT_REWARD_SCALES = {"goal": 1.0, "ball_progress": 0.0, "possession": 0.0}
 
 
 @dataclass(frozen=True)
@@ -75,46 +84,92 @@ class RealismConfig:
         raise ValueError(f"realism: unknown preset {name!r}; expected 'none', 'realistic' or 'randomized'")
 
 
+def check_no_progress_s(v: Any) -> None:
+    """ValueError unless ``v`` (``no_progress_s``) is None or a positive finite number of seconds."""
+    if v is not None and not (isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and v > 0):
+        raise ValueError(f"no_progress_s must be None (off) or a positive finite number of seconds, got {v!r}")
+
+
 @dataclass(frozen=True)
-class EnvConfig:
-    """Options of the full-field SSL env (see :class:`ssl_marl.envs.ssl_env.SSLParallelEnv`).
+class MatchRules:
+    """Parameters of the match task (:class:`ssl_marl.envs.tasks.match.MatchTask`), the one
+    place they live: an env reads them from ``config.match`` (or its match task's ``rules``).
 
     Attributes:
-        n_blue, n_yellow: robots per team (0-11 each, at least one robot in all, and
-            no more than the division allows unless ``enforce_division_limit`` is False).
-        field: "div_a", "div_b" or a :class:`FieldGeometry`.
-        max_time_s: episode truncation time (s of simulated time).
-        control_hz: control (and vision) rate; the paper uses 60 Hz.
-        physics_substeps: Box2D steps per control step.
-        robot, ball: physical parameters.
-        after_goal: "kickoff" (place the kickoff formation and play on) or "terminate".
-        reward_scales: scale per named reward term ("goal", "ball_progress", "possession").
-        realism: noise / latency settings, or a preset name ("none", "realistic",
-            "randomized": the realistic preset as nominal conditions plus per-episode
-            domain randomisation, see ``randomization``).
-        randomization: per-episode domain randomisation
-            (:mod:`ssl_marl.envs.randomization`): None (off; the default unless
-            ``realism="randomized"``), True (default ranges), a dict of ranges, or a
-            ``RandomizationRanges`` / ``DomainRandomization``.
-        realtime: advance with the wall clock; a command that arrives after the
-            control deadline misses its step (the paper's evaluation mode).
-        obs_max_teammates, obs_max_opponents: observation slots (padded with a mask);
-            with fewer slots than robots, each agent sees the nearest ones.
-        task: what an episode is about: a name ("match", the default; "free_play": no
-            rules, rewards or end) or a :class:`ssl_marl.envs.tasks.Task` object (see
-            :mod:`ssl_marl.envs.tasks`). ``max_time_s``, ``after_goal``,
-            ``reward_scales``, ``randomize_reset`` and ``referee`` are the match task's
-            parameters.
-        randomize_reset: True: robots and ball at random on reset; False: kickoff formation.
-        referee: False switches goal / out-of-play handling off (the walls still hold
+        referee: goals, out-of-play and no progress are called (False: the walls hold
             everything in).
+        after_goal: "kickoff" (place the kickoff formation and play on) or "terminate".
+        max_time_s: truncation time (s of simulated time; ``math.inf``: no limit).
+        reward_scales: scale per named reward term ("goal", "ball_progress",
+            "possession"); terms not named keep their defaults (goal 1, the others 0).
+        randomize_reset: True: robots and ball at random on reset; False: kickoff formation.
         no_progress_s: the referee's "lack of progress" call (SSL rules, Force Start:
             "a clear lack of progress for at least 10 seconds"): when the ball has stayed
             within ``NO_PROGRESS_RADIUS_M`` of one spot for this long (s), play is
             restarted as after the ball left the field (the ball placed at least 0.2 m
             inside the lines and out of the defense areas, robots within 0.5 m moved
             out; event ``no_progress``), which breaks two robots pinning the ball
-            against each other. None = off (the rule before 2026-11-26).
+            against each other. None switches the call off (see
+            :mod:`ssl_marl.envs.referee`).
+    """
+
+    referee: bool = True
+    after_goal: str = "kickoff"
+    max_time_s: float = 300.0
+    reward_scales: Mapping[str, float] = dc_field(default_factory=lambda: dict(DEFAULT_REWARD_SCALES))
+    randomize_reset: bool = False
+    no_progress_s: float | None = 10.0
+
+    def __post_init__(self) -> None:
+        v = self.max_time_s
+        if not (isinstance(v, (int, float)) and not isinstance(v, bool) and v > 0):
+            raise ValueError(f"max_time_s must be a positive number of seconds (math.inf: no limit), got {v!r}")
+        if self.after_goal not in AFTER_GOAL:
+            raise ValueError(f"after_goal must be one of {AFTER_GOAL}, got {self.after_goal!r}")
+        check_no_progress_s(self.no_progress_s)
+        scales = dict(self.reward_scales)
+        for k, s in scales.items():
+            if k not in REWARD_TERMS:
+                raise ValueError(f"reward_scales: unknown term {k!r}; expected some of {REWARD_TERMS}")
+            if not (isinstance(s, (int, float)) and math.isfinite(s)):
+                raise ValueError(f"reward_scales[{k!r}] must be a finite number, got {s!r}")
+        object.__setattr__(self, "reward_scales", {**DEFAULT_REWARD_SCALES, **scales})
+
+
+#: the env options that are :class:`MatchRules` fields (collected into ``EnvConfig.match``)
+MATCH_OPTIONS = tuple(f.name for f in fields(MatchRules))
+
+
+@dataclass(frozen=True)
+class EnvConfig:
+    """Options of the full-field SSL engine (see :class:`ssl_marl.envs.ssl_env.SSLParallelEnv`).
+
+    Build it with :func:`make_config`, which also takes the match parameters as single
+    keywords (``max_time_s=60``, ...).
+
+    Attributes:
+        n_blue, n_yellow: robots per team (0-11 each, at least one robot in all, and
+            no more than the division allows unless ``enforce_division_limit`` is False).
+        field: "div_a", "div_b" or a :class:`FieldGeometry`.
+        control_hz: control (and vision) rate; the paper uses 60 Hz.
+        physics_substeps: Box2D steps per control step.
+        robot, ball: physical parameters.
+        realism: noise / latency settings, or a preset name ("none", "realistic",
+            "randomized": the realistic preset as nominal conditions plus per-episode
+            domain randomisation, see ``randomization``).
+        randomization: per-episode domain randomisation
+            (:mod:`ssl_marl.envs.randomization`): None (off; the default unless
+            ``realism="randomized"``, which makes it True), True (default ranges), a dict
+            of ranges, or a ``RandomizationRanges`` / ``DomainRandomization``. The env
+            checks and resolves it when it is built.
+        realtime: advance with the wall clock; a command that arrives after the
+            control deadline misses its step (the paper's evaluation mode).
+        obs_max_teammates, obs_max_opponents: observation slots (padded with a mask);
+            with fewer slots than robots, each agent sees the nearest ones.
+        task: what an episode is about: a name ("match", the default; "free_play": no
+            rules, rewards or end; "keepaway") or a :class:`ssl_marl.envs.tasks.Task`
+            object (see :mod:`ssl_marl.envs.tasks`, which checks it when the env is built).
+        match: the match task's parameters (:class:`MatchRules`, or a dict of its fields).
         render_mode: None, "rgb_array" or "human".
         render_trails: draw trajectories (the paper's Fig. 7).
         render_width_px: frame width in pixels.
@@ -125,22 +180,16 @@ class EnvConfig:
     n_blue: int = 6
     n_yellow: int = 6
     field: Any = "div_b"
-    max_time_s: float = 300.0
     control_hz: float = 60.0
     physics_substeps: int = 2
     robot: RobotParams = dc_field(default_factory=RobotParams)
     ball: BallParams = dc_field(default_factory=BallParams)
-    after_goal: str = "kickoff"
-    reward_scales: Mapping[str, float] = dc_field(default_factory=lambda: {"goal": 1.0, "ball_progress": 0.0,
-                                                                       "possession": 0.0})
     realism: Any = "none"
     realtime: bool = False
     obs_max_teammates: int = 10
     obs_max_opponents: int = 11
     task: Any = "match"
-    randomize_reset: bool = False
-    referee: bool = True
-    no_progress_s: float | None = 10.0
+    match: MatchRules = dc_field(default_factory=MatchRules)
     enforce_division_limit: bool = False
     render_mode: str | None = None
     render_trails: bool = False
@@ -149,15 +198,10 @@ class EnvConfig:
     randomization: Any = None
 
     def __post_init__(self) -> None:
-        from .randomization import resolve_randomization
-        from .tasks import TASKS, Task
-
         if isinstance(self.realism, str) and self.realism == "randomized" and self.randomization is None:
             object.__setattr__(self, "randomization", True)
-        object.__setattr__(self, "randomization", resolve_randomization(self.randomization))
-
-        if not (isinstance(self.task, Task) or (isinstance(self.task, str) and self.task in TASKS)):
-            raise ValueError(f"task must be one of {tuple(TASKS)} or a Task object, got {self.task!r}")
+        if self.randomization is False:
+            object.__setattr__(self, "randomization", None)
         geom = FieldGeometry.from_name(self.field)
         object.__setattr__(self, "field", geom)
         if isinstance(self.realism, str):
@@ -166,6 +210,10 @@ class EnvConfig:
             object.__setattr__(self, "realism", RealismConfig(**self.realism))
         elif not isinstance(self.realism, RealismConfig):
             raise ValueError(f"realism: expected a preset name, a dict or a RealismConfig, got {self.realism!r}")
+        if isinstance(self.match, Mapping):
+            object.__setattr__(self, "match", MatchRules(**self.match))
+        elif not isinstance(self.match, MatchRules):
+            raise ValueError(f"match: expected a MatchRules or a dict of its fields, got {self.match!r}")
         for name in ("n_blue", "n_yellow"):
             v = getattr(self, name)
             if not isinstance(v, int) or isinstance(v, bool) or not 0 <= v <= 11:
@@ -174,24 +222,10 @@ class EnvConfig:
                 raise ValueError(f"{name}={v} exceeds the {geom.name} limit of {geom.max_robots_per_team} robots")
         if self.n_blue + self.n_yellow < 1:
             raise ValueError("n_blue + n_yellow must be at least 1 robot")
-        if not (isinstance(self.max_time_s, (int, float)) and math.isfinite(self.max_time_s) and self.max_time_s > 0):
-            raise ValueError(f"max_time_s must be a positive finite number, got {self.max_time_s!r}")
         if not (isinstance(self.control_hz, (int, float)) and math.isfinite(self.control_hz) and self.control_hz > 0):
             raise ValueError(f"control_hz must be a positive finite number, got {self.control_hz!r}")
         if not isinstance(self.physics_substeps, int) or self.physics_substeps < 1:
             raise ValueError(f"physics_substeps must be an integer >= 1, got {self.physics_substeps!r}")
-        if self.after_goal not in AFTER_GOAL:
-            raise ValueError(f"after_goal must be one of {AFTER_GOAL}, got {self.after_goal!r}")
-        check_no_progress_s(self.no_progress_s)
-        scales = dict(self.reward_scales)
-        for k, v in scales.items():
-            if k not in REWARD_TERMS:
-                raise ValueError(f"reward_scales: unknown term {k!r}; expected some of {REWARD_TERMS}")
-            if not (isinstance(v, (int, float)) and math.isfinite(v)):
-                raise ValueError(f"reward_scales[{k!r}] must be a finite number, got {v!r}")
-        full = {"goal": 1.0, "ball_progress": 0.0, "possession": 0.0}
-        full.update(scales)
-        object.__setattr__(self, "reward_scales", full)
         for name in ("obs_max_teammates", "obs_max_opponents"):
             v = getattr(self, name)
             if not isinstance(v, int) or v < 0:
@@ -214,16 +248,20 @@ class EnvConfig:
         return replace(self, **changes)
 
 
-def check_no_progress_s(v: Any) -> None:
-    """ValueError unless ``v`` (``no_progress_s``) is None or a positive finite number of seconds."""
-    if v is not None and not (isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and v > 0):
-        raise ValueError(f"no_progress_s must be None (off) or a positive finite number of seconds, got {v!r}")
-
-
-def make_config(**kwargs: Any) -> EnvConfig:
-    """Build an :class:`EnvConfig`, turning unknown keywords into a clear ValueError."""
-    known = {f.name for f in fields(EnvConfig)}
-    unknown = sorted(set(kwargs) - known)
+def make_config(**options: Any) -> EnvConfig:
+    """An :class:`EnvConfig` from the env's keyword options: :class:`EnvConfig`'s fields,
+    and :class:`MatchRules`' fields (``referee``, ``after_goal``, ``max_time_s``,
+    ``reward_scales``, ``randomize_reset``, ``no_progress_s``) as single keywords, which
+    make up ``match`` (or ``match=`` gives them all at once; not both). An unknown
+    keyword is a ValueError listing the known ones."""
+    known = {f.name for f in fields(EnvConfig)} | set(MATCH_OPTIONS)
+    unknown = sorted(set(options) - known)
     if unknown:
         raise ValueError(f"unknown env option(s) {unknown}; known options: {sorted(known)}")
-    return EnvConfig(**kwargs)
+    rules = {k: options.pop(k) for k in MATCH_OPTIONS if k in options}
+    if rules:
+        if "match" in options:
+            raise ValueError(f"match: give the match parameters either as match= or as keywords "
+                             f"{sorted(rules)}, not both")
+        options["match"] = MatchRules(**rules)
+    return EnvConfig(**options)

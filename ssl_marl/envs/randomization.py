@@ -1,4 +1,4 @@
-"""Domain randomisation: per-episode draws of the conditions a team meets (issue 13).
+"""Domain randomisation: per-episode draws of the conditions a team meets.
 
 ``realism="randomized"`` (``EnvConfig``) draws, at every ``reset``, one
 :class:`EpisodeConditions` from :class:`RandomizationRanges`: vision latency, vision
@@ -15,33 +15,33 @@ Reproducible: the draw comes from a generator seeded from the env's ``np_random`
 ``reset(seed=s)`` gives the same conditions for the same ``s``, and successive resets
 without a seed give new ones.
 
-Ranges and their sources (``shared/reference/ssl_facts.md`` [F], ``tracking.md`` [T];
-"our choice" where no source gives a range; the nominal value of this project in
-brackets):
+Ranges and their sources, in ``docs/references.md``: [V] "Vision and tracking", [R]
+"Robot and ball figures", [B] "Ball motion models", [D] "Domain randomisation"; "our
+choice" where no source gives a range; the nominal value of this project in brackets:
 
 =========================  ==================  =====================================================
 quantity                   range               source
 =========================  ==================  =====================================================
-vision latency             1-4 steps (17-67    [T] ER-Force budget ~26 ms + processing, realistic
+vision latency             1-4 steps (17-67    [V] ER-Force budget ~26 ms + processing, realistic
                            ms) [3 = 50 ms]     preset 35 + 10 = 45 ms, ZJU predicts ~63 ms ahead;
-                                               Haarnoja et al. observation delay 10-50 ms
-radio latency              0-2 steps (0-33     [T] ER-Force ~11 ms out (one 60 Hz step rounds
+                                               [D] Haarnoja et al. observation delay 10-50 ms
+radio latency              0-2 steps (0-33     [V] ER-Force ~11 ms out (one 60 Hz step rounds
                            ms) [1]             it up); 2 steps for a slow radio: our choice
-robot position noise       0.5-4 mm [1.3]      [F]/[T] ER-Force realistic 1.3 mm; ER-Force tracker
+robot position noise       0.5-4 mm [1.3]      [V] ER-Force realistic 1.3 mm; ER-Force tracker
                                                assumes 4 mm (primary camera); real cameras ~3 mm
-robot heading noise        0.002-0.03 rad      [T] ER-Force 0.01 (primary) / 0.03 rad (other
+robot heading noise        0.002-0.03 rad      [V] ER-Force 0.01 (primary) / 0.03 rad (other
                            [0.01]              cameras)
-ball position noise        0.5-4 mm [1.4]      [T] ER-Force realistic 1.4 mm, tracker 3 mm, real ~3 mm
+ball position noise        0.5-4 mm [1.4]      [V] ER-Force realistic 1.4 mm, tracker 3 mm, real ~3 mm
 velocity noise             0-0.05 m/s [0.02]   our choice (the env reports velocities; SSL vision
                                                does not)
-ball dropout               0-10 % [5 %]        [F] realistic preset 5 %; up to 2x: our choice
-command loss               0-10 % [3 %]        [F] realistic preset 3 %; [T] plus 10 % response loss
-robot top speed            2.2-3.2 m/s [3.0]   [F] real teams 2.2-3.2 m/s
-robot acceleration         1.5-4.0 m/s^2 [3]   [F] 1.5-4 m/s^2
-ball sliding decel         2.5-4.0 m/s^2       [T] TIGERs sim 2.46, ER-Force real field 2.79,
+ball dropout               0-10 % [5 %]        [V] realistic preset 5 %; up to 2x: our choice
+command loss               0-10 % [3 %]        [V] realistic preset 3 %, plus 10 % response loss
+robot top speed            2.2-3.2 m/s [3.0]   [R] real teams 2.2-3.2 m/s
+robot acceleration         1.5-4.0 m/s^2 [3]   [R] 1.5-4 m/s^2
+ball sliding decel         2.5-4.0 m/s^2       [B] TIGERs sim 2.46, ER-Force real field 2.79,
                            [3.9]               TIGERs 3.0, ER-Force sim 3.9, ZJU 4.0
-ball rolling decel         0.25-0.45 m/s^2     [T] TIGERs 0.26 (older 0.4), ER-Force 0.33 (real) /
-                           [0.35]              0.35 (sim), ZJU 0.325
+ball rolling decel         0.25-0.45 m/s^2     [B] TIGERs 0.26 (0.4 in an earlier model), ER-Force
+                           [0.35]              0.33 (real) / 0.35 (sim), ZJU 0.325
 ball-wall restitution      0.4-0.8 [0.6]       our choice around the nominal (no source)
 ball-robot restitution     0.15-0.45 [0.3]     our choice around the nominal (no source)
 =========================  ==================  =====================================================

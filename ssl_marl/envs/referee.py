@@ -9,11 +9,11 @@
   within 0.5 m of it outwards to 0.5 m (SSL: robots keep 0.5 m at restarts).
 * No progress (SSL rules, Force Start: the referee restarts play after "a clear lack
   of progress for at least 10 seconds"): the ball has stayed within
-  ``NO_PROGRESS_RADIUS_M`` of one spot for ``no_progress_s`` (EnvConfig); the restart
+  ``NO_PROGRESS_RADIUS_M`` of one spot for ``no_progress_s`` (MatchRules); the restart
   is the ball-out one at the ball's own position (:func:`placement_point`,
   :func:`clear_robots_from`), so two robots pinning the ball between them are parted.
 * After a goal: kickoff formation (both teams in their own halves, ball at the
-  centre mark) or termination, per ``EnvConfig.after_goal``.
+  centre mark) or termination, per ``MatchRules.after_goal``.
 """
 
 from __future__ import annotations

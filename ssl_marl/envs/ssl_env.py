@@ -64,13 +64,17 @@ from .observation import (
     state_dim,
     state_vector,
 )
+from .randomization import DomainRandomization, resolve_randomization
 from .realism import Radio, Vision
 from .tasks import Task, make_task
 
 
 class SSLParallelEnv(ParallelEnv, EzPickle):
     """Full-field SSL simulator (Box2D) with the PettingZoo Parallel API. Options: see
-    :class:`ssl_marl.envs.config.EnvConfig` (all keyword arguments)."""
+    :func:`ssl_marl.envs.config.make_config` (all keyword arguments: the
+    :class:`~ssl_marl.envs.config.EnvConfig` fields and the match task's
+    :class:`~ssl_marl.envs.config.MatchRules` fields). It implements the tasks'
+    :class:`~ssl_marl.envs.tasks.engine.Engine` protocol."""
 
     metadata = {"name": "ssl_marl_v0", "render_modes": ["human", "rgb_array"], "render_fps": 60,
                 "is_parallelizable": True}
@@ -79,6 +83,9 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         EzPickle.__init__(self, **config)
         self.config: EnvConfig = make_config(**config)
         cfg = self.config
+        #: per-episode domain randomisation (None: off), resolved from ``config.randomization``
+        self.randomization: DomainRandomization | None = resolve_randomization(cfg.randomization)
+        self.task: Task = make_task(cfg.task)
         self.field = cfg.field
         self.render_mode = cfg.render_mode
         self.possible_agents = [f"blue_{i}" for i in range(cfg.n_blue)] + [f"yellow_{i}" for i in range(cfg.n_yellow)]
@@ -98,7 +105,7 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
                                     cfg.physics_substeps)
         self.vision = Vision(cfg.realism)
         self.radio = Radio(cfg.realism, self.n, ACTION_DIM)
-        #: this episode's domain-randomised conditions (None without ``config.randomization``)
+        #: this episode's domain-randomised conditions (None without randomisation)
         self.conditions = None
         self._truth: WorldState | None = None
         self._seen: WorldState | None = None
@@ -109,7 +116,6 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         self._deadline = ControlDeadline(self.config.dt)
         self._renderer = None
         self._team_of = {a: a.split("_")[0] for a in self.possible_agents}
-        self.task: Task = make_task(cfg.task)
         self.task.bind(self)
 
     # ------------------------------------------------------------------ spaces
@@ -132,7 +138,7 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         if seed is not None:
             self.np_random = np.random.default_rng(seed)
         self._noise_rng = np.random.default_rng(self.np_random.integers(2 ** 63))
-        if self.config.randomization is not None:
+        if self.randomization is not None:
             self._apply_conditions(np.random.default_rng(self.np_random.integers(2 ** 63)))
         options = dict(options or {})
         scene = self.task.reset_scene(self, options)
@@ -158,12 +164,12 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         return obs, infos
 
     def _apply_conditions(self, rng: np.random.Generator) -> None:
-        """Domain randomisation (``config.randomization``): draw this episode's conditions
+        """Domain randomisation (:attr:`randomization`): draw this episode's conditions
         and rebuild vision, radio and the physics parameters from them. Actions stay
         scaled by the nominal ``config.robot`` (a command is a velocity in m/s; a slower
         robot simply cannot follow a fast one)."""
         cfg = self.config
-        self.conditions = cfg.randomization.draw(rng, cfg.robot, cfg.ball)
+        self.conditions = self.randomization.draw(rng, cfg.robot, cfg.ball)
         self.vision = Vision(self.conditions.realism)
         self.radio = Radio(self.conditions.realism, self.n, ACTION_DIM)
         self.physics.set_params(robot=self.conditions.robot, ball=self.conditions.ball)

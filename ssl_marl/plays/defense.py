@@ -25,8 +25,8 @@ from ..physics.field import FieldGeometry
 from ..physics.params import RobotParams
 from ..physics.state import WorldState
 from ..skills.features import dribbler_ball_distance
+from ..skills.navigation import NavigateToPoint, NavParams, defense_rect, facing_towards, push_out_of_rect
 from .clearing import BallClearing, ClearPhase, clear_phase
-from .navigation import NavigateToPoint, NavParams, defense_rect, facing_towards, push_out_of_rect
 from .tactic_base import NEAR_BALL_M, Tactic
 
 

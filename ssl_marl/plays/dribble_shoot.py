@@ -61,8 +61,8 @@ import numpy as np
 from ..physics.field import FieldGeometry
 from ..physics.state import WorldState, wrap_angle
 from ..skills.base import SkillStatus, make_action
-from ..skills.baseline import velocity_command
 from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance
+from ..skills.motion import velocity_command
 from .shoot import govern_approach
 from .tactic_base import NEAR_BALL_M, Tactic, skill_status
 

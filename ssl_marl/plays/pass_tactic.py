@@ -31,9 +31,9 @@ import numpy as np
 
 from ..physics.state import WorldState, wrap_angle
 from ..skills.base import SkillStatus, make_action
-from ..skills.baseline import velocity_command
 from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance
-from .navigation import facing_towards
+from ..skills.motion import velocity_command
+from ..skills.navigation import facing_towards
 from .shoot import govern_approach
 from .tactic_base import NEAR_BALL_M, Tactic, check_field_point, skill_status
 

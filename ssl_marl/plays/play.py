@@ -35,9 +35,9 @@ import numpy as np
 from ..physics.field import FieldGeometry
 from ..physics.params import RobotParams
 from ..physics.state import WorldState
+from ..skills.navigation import NavParams, sanitize_target
 from .assignment import DEFAULT_UNFILLED_COST, Assignment
 from .defense import Defender, Goalie, Mark, block_position, goalie_guard_position, mark_position
-from .navigation import NavParams, sanitize_target
 from .shoot import Attacker
 from .support import Support, SupportParams
 from .tactic_base import Tactic, TacticStatus

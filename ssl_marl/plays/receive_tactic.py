@@ -32,7 +32,7 @@ import numpy as np
 
 from ..physics.state import WorldState, wrap_angle
 from ..skills.base import SkillStatus, make_action
-from .navigation import NavigateToPoint, NavParams, facing_towards
+from ..skills.navigation import NavigateToPoint, NavParams, facing_towards
 from .tactic_base import Tactic, check_field_point, skill_status
 
 

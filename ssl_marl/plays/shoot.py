@@ -41,7 +41,7 @@ from ..physics.state import wrap_angle
 from ..skills.base import SkillStatus, make_action
 from ..skills.baseline import DriveForward
 from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance, heading_between_posts
-from .navigation import NavigateToPoint, NavParams, defense_rect, facing_towards, push_out_of_rect
+from ..skills.navigation import NavigateToPoint, NavParams, defense_rect, facing_towards, push_out_of_rect
 from .tactic_base import NEAR_BALL_M, Tactic, skill_status
 
 

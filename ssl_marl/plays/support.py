@@ -30,8 +30,8 @@ import numpy as np
 
 from ..physics.field import FieldGeometry
 from ..physics.state import WorldState
+from ..skills.navigation import NavigateToPoint, NavParams, facing_towards
 from .pass_decision import DecisionParams, pass_success
-from .navigation import NavigateToPoint, NavParams, facing_towards
 from .tactic_base import Tactic
 
 

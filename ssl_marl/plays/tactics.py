@@ -8,7 +8,7 @@ Everything a play needs, in one import:
 * :class:`Goalie`, :class:`Defender`, :class:`Mark` and their geometry
   (:mod:`ssl_marl.plays.defense`);
 * :class:`Support` (:mod:`ssl_marl.plays.support`);
-* navigation around robots and out of defense areas (:mod:`ssl_marl.plays.navigation`).
+* navigation around robots and out of defense areas (:mod:`ssl_marl.skills.navigation`).
 
 All tactics take ``(field, robot=None, ball=None, skills="baseline"|"learned"|{...},
 dt=1/60, **params)`` and implement ``act(world_team_frame, robot) -> (5,) action``,
@@ -17,10 +17,10 @@ dt=1/60, **params)`` and implement ``act(world_team_frame, robot) -> (5,) action
 
 from __future__ import annotations
 
+from ..skills.navigation import NavigateToPoint, NavParams
 from .clearing import BallClearing, clear_kick_action
 from .defense import (Defender, DefenderParams, DefenderState, Goalie, GoalieParams, GoalieState, Mark, MarkParams,
                       MarkState, block_position, goalie_guard_position, mark_position)
-from .navigation import NavigateToPoint, NavParams
 from .shoot import Attacker, GoToBallAndShoot, ShootParams, ShootState
 from .support import Support, SupportParams, SupportState, open_space_scores
 from .tactic_base import NEAR_BALL_M, Tactic, TacticStatus

@@ -39,7 +39,7 @@ from ..envs.ssl_env import SSLParallelEnv
 from ..io import episode_seed, wilson_interval
 from ..physics.state import WorldState
 from ..skills.base import SkillStatus, make_action
-from ..skills.baseline import MoveToPoint
+from ..skills.navigation import MoveToPoint
 from .provenance import build_manifest
 from .result import write_result_folder
 

@@ -212,7 +212,7 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
     config = dict(blue=controller_label(blue, blue_skills), yellow=controller_label(yellow, yellow_skills),
                   robots=robots, field=geom.name, seconds=float(seconds), seed=seed,
                   realism=realism if isinstance(realism, str) else repr(realism), realtime=realtime,
-                  no_progress_s=env.config.no_progress_s,
+                  no_progress_s=env.config.match.no_progress_s,
                   tracker=hasattr(env, "raw_vision_state"),
                   start_jitter_m=start_jitter_m, render=str(render) if render is not None else None,
                   skills={t: _json_safe(getattr(c, "skills", None)) for t, c in ctrls.items()})

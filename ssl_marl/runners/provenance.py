@@ -91,10 +91,10 @@ def _version(package: str) -> str:
 def code_rules() -> dict[str, Any]:
     """The rule switches whose defaults live in the code: the referee's no-progress call
     (s; None = off) and the passing plays' snap shot."""
-    from ..envs.config import EnvConfig
+    from ..envs.config import MatchRules
     from ..plays.passing_play import PassingParams
 
-    return {"no_progress_s": EnvConfig.no_progress_s, "passing_snap_shot": PassingParams.snap_shot}
+    return {"no_progress_s": MatchRules.no_progress_s, "passing_snap_shot": PassingParams.snap_shot}
 
 
 def build_manifest(rules: dict[str, Any], seeds: dict[str, Any],

@@ -25,10 +25,4 @@ def make_skill(name: str, kind: str, field: FieldGeometry, robot: RobotParams | 
     return get_skill(name).build(kind, field, robot, ball, checkpoint=checkpoint, **kwargs)
 
 
-def __getattr__(name: str):
-    if name == "SKILL_NAMES":  # computed from the registry (kept for old imports)
-        return skill_names()
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
 __all__ = ["Skill", "SkillStatus", "make_action", "make_skill", "SKILL_KINDS", "get_skill", "skill_names"]

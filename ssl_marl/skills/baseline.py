@@ -1,7 +1,9 @@
 """Hand-coded skills: the paper's baselines and the fixed skills tactics need.
 
 All implement :class:`ssl_marl.skills.base.Skill`: ``act(world, robot)`` with a
-team-frame snapshot, returning a normalised (5,) action, and a ``status``.
+team-frame snapshot, returning a normalised (5,) action, and a ``status``. Their motion
+primitives are in :mod:`ssl_marl.skills.motion`; the move-to-point skill is
+:class:`ssl_marl.skills.navigation.MoveToPoint`.
 """
 
 from __future__ import annotations
@@ -10,29 +12,10 @@ import math
 
 import numpy as np
 
-from ..physics.params import RobotParams
 from ..physics.state import WorldState, wrap_angle
 from .base import AimToShootSkill, GoToBallSkill, SkillBase, SkillStatus, make_action
-from .features import goal_post_angles, rotate_to_robot
-
-
-def _pose(world: WorldState, robot: int) -> tuple[np.ndarray, float, np.ndarray]:
-    ts = world.team(world.frame)
-    return ts.pos[robot], float(ts.heading[robot]), ts.vel[robot]
-
-
-def velocity_command(world: WorldState, robot: int, v_field: np.ndarray, omega: float, rp: RobotParams,
-                     dribble: bool = False, kick: float = 0.0) -> np.ndarray:
-    """Normalised action for a desired team-frame velocity (m/s) and omega (rad/s)."""
-    _, h, _ = _pose(world, robot)
-    vb = rotate_to_robot(np.asarray(v_field, float), h) / rp.max_speed
-    return make_action(vb[0], vb[1], omega / rp.max_omega, dribble=dribble, kick=kick)
-
-
-def approach_speed(distance: float, rp: RobotParams, decel: float | None = None, v_end: float = 0.0) -> float:
-    """Speed (m/s) from which the robot can still stop (down to v_end) within distance."""
-    a = decel if decel is not None else 0.8 * rp.max_brake
-    return min(rp.max_speed, math.sqrt(max(v_end * v_end + 2.0 * a * max(distance, 0.0), 0.0)))
+from .features import goal_post_angles
+from .motion import approach_speed, robot_motion, velocity_command
 
 
 class GoToBallBaseline(GoToBallSkill):
@@ -52,7 +35,7 @@ class GoToBallBaseline(GoToBallSkill):
         self.turn_gain, self.touch_speed = turn_gain, touch_speed
 
     def approach(self, world: WorldState, robot: int) -> np.ndarray:
-        pos, h, _ = _pose(world, robot)
+        pos, h, _ = robot_motion(world, robot)
         rp = self.rp
         reach = rp.front_distance + self.bp.radius
         d_ball = world.ball_pos - pos
@@ -124,10 +107,3 @@ class DriveForward(SkillBase):
         ramp = min(1.0, max(remaining - self.dt, 0.0) / self.ramp_s) if self.ramp_s > 0 else 1.0
         return make_action(vx=self.speed * ramp / self.rp.max_speed, dribble=True)
 
-
-def __getattr__(name: str):
-    if name == "MoveToPoint":  # the one move-to-point behaviour lives in navigation (which imports this module)
-        from .navigation import MoveToPoint
-
-        return MoveToPoint
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -17,13 +17,7 @@ from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState
 from .base import AimToShootSkill, GoToBallSkill
 from .features import aim_to_shoot_env_action, aim_to_shoot_features, go_to_ball_env_action, go_to_ball_features
-from .registry import PRETRAINED_DIR, get_skill, learned_skills  # noqa: F401  (PRETRAINED_DIR: old import path)
-
-
-def __getattr__(name: str):
-    if name == "PRETRAINED":  # skill -> shipped actor path, from the registry (kept for old imports)
-        return {s.name: s.actor for s in learned_skills() if s.actor is not None}
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+from .registry import get_skill, learned_skills
 
 
 class NumpyActor:

@@ -38,7 +38,7 @@ from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState, wrap_angle
 from .base import SkillBase, SkillStatus
-from .baseline import approach_speed, velocity_command
+from .motion import approach_speed, velocity_command
 
 
 @dataclass(frozen=True)

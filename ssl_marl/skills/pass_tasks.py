@@ -24,9 +24,9 @@ from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState, to_team_frame
 from .base import make_action
-from .baseline import velocity_command
 from .demos import Transition, successful_skill_demos
 from .features import BALL_LOST_DISTANCE, dribbler_ball_distance
+from .motion import velocity_command
 from .passing import PassBaseline, ReceiveBaseline
 from .passing_features import (
     PASS_SPEC,

@@ -26,7 +26,8 @@ from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState, wrap_angle
 from .base import KickSkill, SkillBase, SkillStatus, make_action
-from .baseline import GoToBallBaseline, velocity_command
+from .baseline import GoToBallBaseline
+from .motion import velocity_command
 from .passing_features import (
     RECEIVE_ACTION_FORMS,
     SLOW_BALL,

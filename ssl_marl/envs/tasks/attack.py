@@ -1,6 +1,6 @@
 """Attack 3v2: three attackers (blue) against a goalie and a defender (yellow) on half a Division B field.
 
-The engine task behind :class:`ssl_marl.decisions.attack.Attack3v2Env` (issue 12): the
+The engine task behind :class:`ssl_marl.decisions.attack.Attack3v2Env`: the
 scene and the judge. Who does what (the attackers' options, the defence's tactics)
 is the decision env's business; this task only reads the world.
 
@@ -43,15 +43,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .base import Scene, Task
-from .scene import scene_from_options
+from .base import Task
+from .engine import Engine
+from .scene import Scene, scene_from_options
 
-if TYPE_CHECKING:  # pragma: no cover
-    from ..ssl_env import SSLParallelEnv
 
 OUTCOMES = ("goal", "lost_goalie", "lost_defender", "out", "timeout")
 N_ATTACKERS = 3
@@ -81,7 +79,7 @@ class AttackSpawn:
 @dataclass(frozen=True)
 class AttackRules:
     """Attributes:
-        max_time_s: truncation after this much play (s; the issue's 15 s).
+        max_time_s: truncation after this much play (s).
         rest_speed: a ball slower than this (m/s) inside the yellow defense area is the goalie's.
     """
 
@@ -102,7 +100,7 @@ class AttackTask(Task):
         self.goal = 0
         self.carrier_robot: str | None = None
 
-    def bind(self, env: "SSLParallelEnv") -> None:
+    def bind(self, env: Engine) -> None:
         cfg = env.config
         if cfg.n_blue != N_ATTACKERS + 1 or cfg.n_yellow != 2:
             raise ValueError(f"AttackTask needs n_blue=4 (a parked goalie and 3 attackers) and n_yellow=2, got "
@@ -110,13 +108,13 @@ class AttackTask(Task):
         super().bind(env)
 
     # ------------------------------------------------------------------ start
-    def reset_scene(self, env: "SSLParallelEnv", options: dict) -> Scene:
+    def reset_scene(self, env: Engine, options: dict) -> Scene:
         if options and ("robots" in options or "ball" in options):
             self.carrier_robot = None
             return scene_from_options(env, options, default_formation="kickoff")
         return self.random_scene(env)
 
-    def random_scene(self, env: "SSLParallelEnv") -> Scene:
+    def random_scene(self, env: Engine) -> Scene:
         f, s, rng = env.field, self.spawn, env.np_random
         L2 = f.half_length
         goal = f.goal_center(+1)
@@ -160,16 +158,16 @@ class AttackTask(Task):
         self.carrier_robot = ATTACKER_ROBOTS[k]
         return Scene(pose, ball, np.zeros(2))
 
-    def start(self, env: "SSLParallelEnv") -> None:
+    def start(self, env: Engine) -> None:
         self.outcome = None
         self.goal = 0
         self._scored = False
 
-    def begin_step(self, env: "SSLParallelEnv") -> None:
+    def begin_step(self, env: Engine) -> None:
         self._scored = False
 
     # ------------------------------------------------------------------ judge
-    def judge(self, env: "SSLParallelEnv") -> str | None:
+    def judge(self, env: Engine) -> str | None:
         """The outcome the world shows now (None: play on); module docstring."""
         w, f = env.world_state(), env.field
         r = env.config.ball.radius
@@ -189,7 +187,7 @@ class AttackTask(Task):
             return "timeout"
         return None
 
-    def after_tick(self, env: "SSLParallelEnv", events: list[dict]) -> bool:
+    def after_tick(self, env: Engine, events: list[dict]) -> bool:
         if self.outcome is not None:
             return True
         out = self.judge(env)
@@ -202,12 +200,12 @@ class AttackTask(Task):
             events.append({"type": "goal", "team": "blue", "t": float(env.world_state().t)})
         return True
 
-    def rewards(self, env: "SSLParallelEnv") -> tuple[dict[str, float], dict[str, dict[str, float]]]:
+    def rewards(self, env: Engine) -> tuple[dict[str, float], dict[str, dict[str, float]]]:
         g = 1.0 if self._scored else 0.0
         return ({a: (g if env.team_of(a) == "blue" else -g) for a in env.agents},
                 {"blue": {"goal": g}, "yellow": {"goal": -g}})
 
-    def end(self, env: "SSLParallelEnv") -> tuple[bool, bool]:
+    def end(self, env: Engine) -> tuple[bool, bool]:
         if self.outcome is None:
             return False, False
         return self.outcome != "timeout", self.outcome == "timeout"

@@ -21,30 +21,16 @@ kickoff after a goal). The engine calls these hooks in a fixed order every step:
 
 A task reads the world through the engine's public methods (``world_state()``,
 ``robot_poses()``, ``config``, ``field``, ``np_random``) and changes it only through
-``place_robots``, ``place_ball`` and ``award_goal``. One task object belongs to one
+``place_robots``, ``place_ball`` and ``award_goal``: the :class:`~.engine.Engine`
+protocol, which the hooks are typed against. One task object belongs to one
 env (it may keep per-episode state). Multi-agent drills (keepaway, attack drills)
 are tasks too: their own scene, judge, per-agent rewards and end.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import TYPE_CHECKING
-
-import numpy as np
-
-if TYPE_CHECKING:  # pragma: no cover
-    from ..ssl_env import SSLParallelEnv
-
-
-@dataclass(frozen=True)
-class Scene:
-    """Start of an episode in the field frame: robot poses ``(n, 3)`` (x, y m; heading
-    rad; blue rows first), ball position and velocity (m, m/s)."""
-
-    robot_pose: np.ndarray
-    ball_pos: np.ndarray
-    ball_vel: np.ndarray
+from .engine import Engine
+from .scene import Scene, scene_from_options
 
 
 class Task:
@@ -53,40 +39,38 @@ class Task:
     name = "task"
 
     def __init__(self) -> None:
-        self._env: "SSLParallelEnv | None" = None
+        self._env: Engine | None = None
 
-    def bind(self, env: "SSLParallelEnv") -> None:
+    def bind(self, env: Engine) -> None:
         """Called once by the engine that owns this task."""
         if self._env is not None and self._env is not env:
             raise ValueError(f"task {self.name!r} already belongs to another env; build one task per env")
         self._env = env
 
-    def reset_scene(self, env: "SSLParallelEnv", options: dict) -> Scene:
-        """The episode's start (default: the reset options, see :func:`scene_from_options`)."""
-        from .scene import scene_from_options
-
+    def reset_scene(self, env: Engine, options: dict) -> Scene:
+        """The episode's start (default: the reset options, see :func:`~.scene.scene_from_options`)."""
         return scene_from_options(env, options, default_formation="kickoff")
 
-    def start(self, env: "SSLParallelEnv") -> None:
+    def start(self, env: Engine) -> None:
         """The world exists (``env.world_state()``): initialise per-episode state."""
 
-    def begin_step(self, env: "SSLParallelEnv") -> None:
+    def begin_step(self, env: Engine) -> None:
         """A step begins (before its first physics tick)."""
 
-    def after_tick(self, env: "SSLParallelEnv", events: list[dict]) -> bool:
+    def after_tick(self, env: Engine, events: list[dict]) -> bool:
         """Judge the world after one physics tick; append events; True stops the step's
         remaining ticks (real-time catch-up)."""
         return False
 
-    def rewards(self, env: "SSLParallelEnv") -> tuple[dict[str, float], dict[str, dict[str, float]]]:
+    def rewards(self, env: Engine) -> tuple[dict[str, float], dict[str, dict[str, float]]]:
         """(reward per live agent, named reward terms per team) for this step."""
         return {a: 0.0 for a in env.agents}, {"blue": {}, "yellow": {}}
 
-    def end(self, env: "SSLParallelEnv") -> tuple[bool, bool]:
+    def end(self, env: Engine) -> tuple[bool, bool]:
         """(terminated, truncated) for every agent after this step."""
         return False, False
 
-    def after_step(self, env: "SSLParallelEnv", terminated: bool, truncated: bool) -> None:
+    def after_step(self, env: Engine, terminated: bool, truncated: bool) -> None:
         """Between steps (after rewards and the end test): e.g. place a kickoff."""
 
 
@@ -98,4 +82,4 @@ class FreePlayTask(Task):
     name = "free_play"
 
 
-__all__ = ["Scene", "Task", "FreePlayTask"]
+__all__ = ["Task", "FreePlayTask"]

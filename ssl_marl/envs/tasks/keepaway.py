@@ -42,14 +42,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields
-from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .base import Scene, Task
+from .base import Task
+from .engine import Engine
+from .scene import Scene
 
-if TYPE_CHECKING:  # pragma: no cover
-    from ..ssl_env import SSLParallelEnv
 
 OUTCOMES = ("taker_control", "out", "time")
 
@@ -102,7 +101,7 @@ class KeepawayTask(Task):
         self.duration_s = 0.0
         self.taker_control_by: int | None = None
 
-    def bind(self, env: "SSLParallelEnv") -> None:
+    def bind(self, env: Engine) -> None:
         super().bind(env)
         cfg = env.config
         if cfg.n_blue != 3 or cfg.n_yellow != 2:
@@ -136,7 +135,7 @@ class KeepawayTask(Task):
         ball = pose[0, :2] + reach * np.array([math.cos(h0), math.sin(h0)])
         return Scene(pose, ball, np.zeros(2))
 
-    def reset_scene(self, env: "SSLParallelEnv", options: dict) -> Scene:
+    def reset_scene(self, env: Engine, options: dict) -> Scene:
         """The keepaway start; reset options ``{"ball": ..., "robots": ...}`` (field frame)
         override parts of it (constructed scenes in tests), ``{"taker_corner": 0..3}``
         fixes the takers' corner."""
@@ -158,7 +157,7 @@ class KeepawayTask(Task):
         return Scene(pose, ball_pos, ball_vel)
 
     # ------------------------------------------------------------------- judge
-    def start(self, env: "SSLParallelEnv") -> None:
+    def start(self, env: Engine) -> None:
         self.outcome = None
         self.duration_s = 0.0
         self.taker_control_by = None
@@ -180,7 +179,7 @@ class KeepawayTask(Task):
         lim = self.rules.half + self._ball_r
         return abs(float(ball_pos[0])) > lim or abs(float(ball_pos[1])) > lim
 
-    def after_tick(self, env: "SSLParallelEnv", events: list[dict]) -> bool:
+    def after_tick(self, env: Engine, events: list[dict]) -> bool:
         if self.outcome is not None:
             return True
         w = env.world_state()
@@ -202,12 +201,12 @@ class KeepawayTask(Task):
             return True
         return False
 
-    def rewards(self, env: "SSLParallelEnv"):
+    def rewards(self, env: Engine):
         dt = self._dt
         return ({a: (dt if a.startswith("blue") else -dt) for a in env.agents},
                 {"blue": {"time": dt}, "yellow": {"time": -dt}})
 
-    def end(self, env: "SSLParallelEnv") -> tuple[bool, bool]:
+    def end(self, env: Engine) -> tuple[bool, bool]:
         if self.outcome is None:
             return False, False
         return self.outcome != "time", self.outcome == "time"

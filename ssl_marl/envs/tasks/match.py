@@ -21,58 +21,20 @@ End
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Mapping
-
 import numpy as np
 
-from ..config import AFTER_GOAL, EnvConfig, check_no_progress_s
+from ..config import MatchRules
 from ..referee import NoProgressWatch, clear_robots_from, judge, kickoff_poses, placement_point
-from .base import Scene, Task
-from .scene import scene_from_options
+from .base import Task
+from .engine import Engine
+from .scene import Scene, scene_from_options
 
 _WORLD = np.zeros(1, np.intp)  # the single env is world 0 of a one-world NoProgressWatch
 
-if TYPE_CHECKING:  # pragma: no cover
-    from ..ssl_env import SSLParallelEnv
-
-
-@dataclass(frozen=True)
-class MatchRules:
-    """Parameters of :class:`MatchTask` (taken from the env config by default).
-
-    Attributes:
-        referee: goals and out-of-play are called (False: the walls hold everything in).
-        after_goal: "kickoff" or "terminate".
-        max_time_s: truncation time (s of simulated time).
-        reward_scales: scale per reward term ("goal", "ball_progress", "possession").
-        randomize_reset: random robots and ball on reset (False: kickoff formation).
-        no_progress_s: the no-progress call after this many seconds (None: off; see
-            :mod:`ssl_marl.envs.referee`).
-    """
-
-    referee: bool = True
-    after_goal: str = "kickoff"
-    max_time_s: float = 300.0
-    reward_scales: Mapping[str, float] = field(default_factory=lambda: {"goal": 1.0, "ball_progress": 0.0,
-                                                                        "possession": 0.0})
-    randomize_reset: bool = False
-    no_progress_s: float | None = 10.0
-
-    def __post_init__(self) -> None:
-        if self.after_goal not in AFTER_GOAL:
-            raise ValueError(f"after_goal must be one of {AFTER_GOAL}, got {self.after_goal!r}")
-        check_no_progress_s(self.no_progress_s)
-
-    @staticmethod
-    def from_config(cfg: EnvConfig) -> "MatchRules":
-        return MatchRules(referee=cfg.referee, after_goal=cfg.after_goal, max_time_s=cfg.max_time_s,
-                          reward_scales=dict(cfg.reward_scales), randomize_reset=cfg.randomize_reset,
-                          no_progress_s=cfg.no_progress_s)
-
 
 class MatchTask(Task):
-    """The full-field match (see the module docstring)."""
+    """The full-field match (see the module docstring); ``rules`` default to the env's
+    ``config.match`` (:class:`~ssl_marl.envs.config.MatchRules`)."""
 
     name = "match"
 
@@ -83,28 +45,28 @@ class MatchTask(Task):
         self._prev_ball_x = 0.0
         self._watch: NoProgressWatch | None = None
 
-    def bind(self, env: "SSLParallelEnv") -> None:
+    def bind(self, env: Engine) -> None:
         super().bind(env)
         if self.rules is None:
-            self.rules = MatchRules.from_config(env.config)
+            self.rules = env.config.match
 
-    def reset_scene(self, env: "SSLParallelEnv", options: dict) -> Scene:
+    def reset_scene(self, env: Engine, options: dict) -> Scene:
         return scene_from_options(env, options, "random" if self.rules.randomize_reset else "kickoff")
 
-    def start(self, env: "SSLParallelEnv") -> None:
+    def start(self, env: Engine) -> None:
         self.goal_for = None
         self._prev_ball_x = float(env.world_state().ball_pos[0])
         self._watch = NoProgressWatch(1, self.rules.no_progress_s)
         self._restart_watch(env)
 
-    def _restart_watch(self, env: "SSLParallelEnv") -> None:
+    def _restart_watch(self, env: Engine) -> None:
         w = env.world_state()
         self._watch.restart(_WORLD, w.ball_pos[None, :], np.array([w.t]))
 
-    def begin_step(self, env: "SSLParallelEnv") -> None:
+    def begin_step(self, env: Engine) -> None:
         self.goal_for = None
 
-    def after_tick(self, env: "SSLParallelEnv", events: list[dict]) -> bool:
+    def after_tick(self, env: Engine, events: list[dict]) -> bool:
         if not self.rules.referee:
             return False
         truth, f = env.world_state(), env.field
@@ -122,7 +84,7 @@ class MatchTask(Task):
             self._restart_play(env, place)
         return False
 
-    def _restart_play(self, env: "SSLParallelEnv", place: np.ndarray) -> None:
+    def _restart_play(self, env: Engine, place: np.ndarray) -> None:
         """Ball at ``place`` (m, at rest), robots within 0.5 m of it moved out."""
         pose = env.robot_poses()
         new_pos = clear_robots_from(place, pose[:, 0:2], env.field)
@@ -134,7 +96,7 @@ class MatchTask(Task):
         self._prev_ball_x = float(env.world_state().ball_pos[0])
         self._restart_watch(env)
 
-    def rewards(self, env: "SSLParallelEnv") -> tuple[dict[str, float], dict[str, dict[str, float]]]:
+    def rewards(self, env: Engine) -> tuple[dict[str, float], dict[str, dict[str, float]]]:
         scales = self.rules.reward_scales
         truth = env.world_state()
         bx = float(truth.ball_pos[0])
@@ -150,12 +112,12 @@ class MatchTask(Task):
         team_reward = {team: float(sum(t.values())) for team, t in terms.items()}
         return {a: team_reward[env.team_of(a)] for a in env.agents}, terms
 
-    def end(self, env: "SSLParallelEnv") -> tuple[bool, bool]:
+    def end(self, env: Engine) -> tuple[bool, bool]:
         terminated = self.goal_for is not None and self.rules.after_goal == "terminate"
         truncated = (env.world_state().t >= self.rules.max_time_s - 1e-9) and not terminated
         return terminated, truncated
 
-    def after_step(self, env: "SSLParallelEnv", terminated: bool, truncated: bool) -> None:
+    def after_step(self, env: Engine, terminated: bool, truncated: bool) -> None:
         if self.goal_for is not None and not terminated:  # kickoff
             env.place_robots(kickoff_poses(env.field, env.config.n_blue, env.config.n_yellow))
             env.place_ball(np.zeros(2))

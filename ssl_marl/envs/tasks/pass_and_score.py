@@ -36,7 +36,9 @@ import numpy as np
 from pettingzoo import ParallelEnv
 
 from ..referee import judge
-from .base import Scene, Task
+from .base import Task
+from .engine import Engine
+from .scene import Scene
 
 
 @dataclass(frozen=True)
@@ -67,7 +69,7 @@ class PassAndScoreTask(Task):
         self._reward = 0.0
         self._goal = np.zeros(2)
 
-    def reset_scene(self, env: Any, options: dict) -> Scene:
+    def reset_scene(self, env: Engine, options: dict) -> Scene:
         rng = env.np_random
         p0 = np.array([rng.uniform(-1.5, 0.5), rng.uniform(-1.5, 1.5)])
         while True:
@@ -79,7 +81,7 @@ class PassAndScoreTask(Task):
         ball = p0 + r * np.array([np.cos(h0), np.sin(h0)])
         return Scene(np.array([[*p0, h0], [*p1, h1]]), ball, np.zeros(2))
 
-    def start(self, env: Any) -> None:
+    def start(self, env: Engine) -> None:
         ws = env.world_state()
         self._goal = np.array([env.field.half_length, 0.0])
         self.passed = self.released = False
@@ -88,10 +90,10 @@ class PassAndScoreTask(Task):
         self._g = float(np.linalg.norm(ws.ball_pos - self._goal))
         self._reward = 0.0
 
-    def begin_step(self, env: Any) -> None:
+    def begin_step(self, env: Engine) -> None:
         self._reward = 0.0
 
-    def after_tick(self, env: Any, events: list[dict]) -> bool:
+    def after_tick(self, env: Engine, events: list[dict]) -> bool:
         ws = env.world_state()
         ball = ws.ball_pos
         if not self.released and np.linalg.norm(ball - ws.blue.pos[0]) >= self.p.release_distance:
@@ -125,10 +127,10 @@ class PassAndScoreTask(Task):
             return True
         return False
 
-    def rewards(self, env: Any) -> tuple[dict[str, float], dict[str, dict[str, float]]]:
+    def rewards(self, env: Engine) -> tuple[dict[str, float], dict[str, dict[str, float]]]:
         return {a: self._reward for a in env.agents}, {"blue": {"drill": self._reward}, "yellow": {}}
 
-    def end(self, env: Any) -> tuple[bool, bool]:
+    def end(self, env: Engine) -> tuple[bool, bool]:
         if self.outcome:
             return True, False
         if env.world_state().t >= self.p.max_time_s - 1e-9:

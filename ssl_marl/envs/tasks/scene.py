@@ -1,6 +1,6 @@
-"""Reset options -> a :class:`~ssl_marl.envs.tasks.base.Scene`, shared by the tasks.
+"""The start of an episode (:class:`Scene`) and the scene that reset options ask for.
 
-Options (field frame, metres, radians)::
+Reset options, shared by the tasks (:func:`scene_from_options`; field frame, metres, radians)::
 
     {"ball": {"pos": (x, y), "vel": (vx, vy)},
      "robots": {"blue_0": (x, y, heading), ...},
@@ -14,19 +14,27 @@ spot 0.15 m from the named robots. Random draws come from ``env.np_random``.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from dataclasses import dataclass
+from typing import Any
 
 import gymnasium
 import numpy as np
 
 from ..referee import kickoff_poses
-from .base import Scene
-
-if TYPE_CHECKING:  # pragma: no cover
-    from ..ssl_env import SSLParallelEnv
+from .engine import Engine
 
 KNOWN_OPTIONS = ("ball", "robots", "formation")
 FORMATIONS = ("kickoff", "random")
+
+
+@dataclass(frozen=True)
+class Scene:
+    """Start of an episode in the field frame: robot poses ``(n, 3)`` (x, y m; heading
+    rad; blue rows first), ball position and velocity (m, m/s)."""
+
+    robot_pose: np.ndarray
+    ball_pos: np.ndarray
+    ball_vel: np.ndarray
 
 
 def option_vector(v: Any, n: int, name: str) -> np.ndarray | None:
@@ -39,7 +47,7 @@ def option_vector(v: Any, n: int, name: str) -> np.ndarray | None:
     return a
 
 
-def scene_from_options(env: "SSLParallelEnv", options: dict, default_formation: str) -> Scene:
+def scene_from_options(env: Engine, options: dict, default_formation: str) -> Scene:
     """The scene the reset options ask for (see the module docstring)."""
     cfg, f = env.config, env.field
     unknown = set(options) - set(KNOWN_OPTIONS)
@@ -75,3 +83,6 @@ def scene_from_options(env: "SSLParallelEnv", options: dict, default_formation: 
             placed.append(xy)
             pose[i] = (xy[0], xy[1], rng.uniform(-np.pi, np.pi))
     return Scene(pose, ball_pos, ball_vel)
+
+
+__all__ = ["Scene", "scene_from_options", "option_vector", "KNOWN_OPTIONS", "FORMATIONS"]
