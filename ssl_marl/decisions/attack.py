@@ -7,7 +7,7 @@ ranges, outcomes, 15 s, reward +1 for a goal, all documented there). Agents
 parked in its own goal: the passing play's team layout, robot 0 = goalie).
 
 **Who plays what.** The attackers are one :class:`~ssl_marl.plays.team.TeamController`
-running the passing play's roles (:mod:`ssl_marl.plays.passing_play`: attacker,
+running the passing play's roles (:mod:`ssl_marl.plays.passing_roles`: attacker,
 passer / receiver with the handshake, two supports that move to open spots rated by
 their pass lanes, the goalie) with the play's :class:`~ssl_marl.plays.pass_coordinator.PassCoordinator`;
 the only change from a match is that the coordinator's carrier decision comes from the
