@@ -27,7 +27,7 @@ from __future__ import annotations
 from typing import Any
 
 _LAZY = {"TEAM_KINDS": "controllers", "make_controller": "controllers", "team_spec": "controllers",
-         "team_skills": "controllers",
+         "team_skills": "controllers", "resolve_team_option": "controllers",
          "load_team_file": "controllers", "parse_skill_source": "controllers",
          "play_match": "match", "play_series": "series", "MatchResult": "result", "summarize": "result",
          "evaluate_skill": "skill_eval", "evaluate_tactic": "tactic_eval", "run_pool": "pool", "BACKENDS": "pool",

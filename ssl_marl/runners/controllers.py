@@ -28,8 +28,10 @@ small JSON team file (:func:`load_team_file`)::
 
     {"kind": "learned", "skills": {"go-to-ball": "runs/gtb/actor.pt"}}
 
-(checkpoint paths relative to the file's folder). Any object with ``agents`` and
-``act(env) -> {agent: action}`` is accepted as a controller too.
+(checkpoint paths relative to the file's folder); :func:`resolve_team_option` reads a
+team named on the command line (a kind or a team file, plus per-skill sources). Any
+object with ``agents`` and ``act(env) -> {agent: action}`` is accepted as a controller
+too.
 """
 
 from __future__ import annotations
@@ -146,6 +148,18 @@ def load_team_file(path: str | Path) -> tuple[str, dict[str, str]]:
         sources[name] = source
     team_skills(kind, sources, where=f"team file {path}")
     return kind, sources
+
+
+def resolve_team_option(value: str, sources: Any = (), where: str = "team") -> tuple[str, Any]:
+    """(kind, skills spec or None) for a team named on the command line: a kind of
+    :data:`TEAM_KINDS` or a JSON team file (``*.json``, :func:`load_team_file`), with
+    per-skill ``sources`` ((skill, source) pairs, :func:`parse_skill_source`) that win
+    over the file's; the spec is :func:`team_skills`, None without sources."""
+    kind, own = (load_team_file(value) if value.lower().endswith(".json") else (value, {}))
+    merged = {**{k.replace("-", "_"): v for k, v in own.items()}, **dict(sources)}  # later wins
+    if not merged:
+        return kind, None
+    return kind, team_skills(kind, merged, where=where)
 
 
 def controller_label(kind: Any, skills: Any = None) -> Any:
