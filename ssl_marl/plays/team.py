@@ -16,6 +16,12 @@ Each tick:
 4. each robot's tactic (kept while its role name and factory stay the same, else
    built fresh) gets its parameters from the role's ``update`` and returns an action;
    robots without a role stop in place.
+
+Every team outside unit tests is built by :func:`build_team` from a :class:`TeamSpec`:
+its plays (a :class:`PlaysFactory`), its skill set, and its ball carrier's decision
+(any :class:`~ssl_marl.plays.pass_coordinator.CarrierDecider`; the learned ones live in
+``ssl_marl.decisions`` and are plugged in by the runners, this package imports nothing
+from there).
 """
 
 from __future__ import annotations
