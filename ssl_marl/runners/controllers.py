@@ -39,9 +39,12 @@ from __future__ import annotations
 import json
 from dataclasses import replace
 from pathlib import Path
-from typing import Any, Mapping
+from typing import TYPE_CHECKING, Any, Mapping
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from ..plays.team import TeamController, TeamSpec
 
 TEAM_KINDS = ("learned", "baseline", "random", "idle", "passing-learned", "passing-baseline",
               "passing-learned-decision")
@@ -195,7 +198,7 @@ def decision_label(kind: Any, decision: Any = None) -> Any:
     return str(spec) if isinstance(spec, (str, Path)) else type(spec).__name__
 
 
-def team_spec(kind: str, skills: Any = None, decision: Any = None, where: str = "team") -> Any:
+def team_spec(kind: str, skills: Any = None, decision: Any = None, where: str = "team") -> TeamSpec:
     """The :class:`~ssl_marl.plays.team.TeamSpec` of STP team ``kind`` (one of
     :data:`STP_KINDS`).
 
@@ -225,7 +228,7 @@ def team_spec(kind: str, skills: Any = None, decision: Any = None, where: str = 
 
 def make_controller(kind: Any, team: str, n_robots: int, field: Any = "div_b", seed: int = 0,
                     skills: Any = None, decision: Any = None, robot: Any = None, ball: Any = None,
-                    dt: float = 1.0 / 60.0, **options: Any):
+                    dt: float = 1.0 / 60.0, **options: Any) -> TeamController | Any:
     """Controller ``kind`` (one of :data:`TEAM_KINDS`) for ``team``.
 
     STP kinds: :func:`~ssl_marl.plays.team.build_team` of :func:`team_spec` (``skills``,
