@@ -1,5 +1,5 @@
 """Tune the passing plays on tuning seeds: N matches of ``passing-learned`` with overridden
-:class:`~ssl_marl.plays.passing_play.PassingParams` / ``DecisionParams`` fields against an
+:class:`~ssl_marl.plays.pass_coordinator.PassingParams` / ``DecisionParams`` fields against an
 opponent team kind, played on a process pool; writes one JSON (per-match score, possession,
 referee statistics, no-progress restarts and the blue coordinator's own pass counters: planned,
 kicked, completed, aborted) and prints a summary line.
@@ -22,12 +22,15 @@ from multiprocessing import get_context
 def play(args: tuple) -> dict:
     seed, opponent, override, kind, seconds, skills = args
     from ssl_marl.plays.pass_decision import DecisionParams
-    from ssl_marl.plays.passing_play import PassingParams, passing_plays
+    from functools import partial
+
+    from ssl_marl.plays.pass_coordinator import PassingParams
+    from ssl_marl.plays.passing_play import passing_plays
     from ssl_marl.runners.controllers import make_controller
     from ssl_marl.runners.match import play_match
 
     params = PassingParams(decision=DecisionParams(**override.get("decision", {})), **override.get("passing", {}))
-    blue = make_controller(kind, "blue", 6, "div_b", seed=seed, plays=passing_plays(params), skills=skills)
+    blue = make_controller(kind, "blue", 6, "div_b", seed=seed, plays=partial(passing_plays, params), skills=skills)
     r = play_match(blue, opponent, robots=6, field="div_b", seconds=seconds, seed=seed, progress=False)
     from dataclasses import asdict
 

@@ -20,7 +20,12 @@ import numpy as np
 
 from ssl_marl.envs import parallel_env
 from ssl_marl.plays.play import Play, PlayContext, attacker_role, goalie_role, support_role
-from ssl_marl.plays.team import TeamController
+from ssl_marl.plays.team import TeamSpec, build_team
+
+
+def all_out_attack_plays(*, ball, decider) -> tuple[Play, ...]:
+    """The custom team's plays (a ``PlaysFactory``: ``ball`` and ``decider`` unused)."""
+    return (all_out_attack(),)
 
 
 def all_out_attack() -> Play:
@@ -42,9 +47,10 @@ def main(argv: list[str] | None = None) -> dict:
 
     env = parallel_env(n_blue=6, n_yellow=6, field="div_b", max_time_s=args.seconds, after_goal="kickoff",
                        render_mode="rgb_array" if args.render else None, render_width_px=480)
-    blue = TeamController("blue", 6, env.field, skills="learned", plays=[all_out_attack()],
-                          robot=env.config.robot, ball=env.config.ball)
-    yellow = TeamController("yellow", 6, env.field, skills="baseline", robot=env.config.robot, ball=env.config.ball)
+    blue = build_team(TeamSpec(plays=all_out_attack_plays, skills="learned"), "blue", 6, env.field,
+                      robot=env.config.robot, ball=env.config.ball)
+    yellow = build_team(TeamSpec(skills="baseline"), "yellow", 6, env.field, robot=env.config.robot,
+                        ball=env.config.ball)
     env.reset(seed=args.seed, options={"formation": "kickoff"})
     frames, roles_seen, steps = [], set(), 0
     while env.agents:

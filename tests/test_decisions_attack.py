@@ -20,7 +20,7 @@ from ssl_marl.envs.tasks.attack import AttackRules
 from ssl_marl.physics import FieldGeometry
 from ssl_marl.physics.params import BallParams, RobotParams
 from ssl_marl.plays.pass_decision import Choice, DecisionParams, decide
-from ssl_marl.plays.passing_play import CarrierRequest, CostDecider, PassCoordinator, PassingParams
+from ssl_marl.plays.pass_coordinator import CarrierRequest, CostDecider, PassCoordinator, PassingParams
 from ssl_marl.plays.play import make_context
 from ssl_marl.plays.scene import ball_in_front, make_world
 from ssl_marl.plays.shoot import ShootState

@@ -1,4 +1,4 @@
-"""DribbleAndShoot (issue 13): each transition on hand-built inputs and scenes, the shooting
+"""DribbleAndShoot: each transition on hand-built inputs and scenes, the shooting
 window geometry, the approach gates, and short physics runs that check the ball is kept."""
 
 import math

@@ -7,7 +7,7 @@ import pytest
 
 from ssl_marl.physics import FieldGeometry, ball_model
 from ssl_marl.physics.params import BallParams, RobotParams
-from ssl_marl.plays.pass_decision import (Choice, DecisionParams, ball_times, decide, evaluate_passes, motion_time,
+from ssl_marl.plays.pass_decision import (Choice, DecisionParams, decide, evaluate_passes, motion_time,
                                           open_goal_interval, pass_kick_speed, path_margin, shot_value)
 from ssl_marl.plays.pass_tactic import Pass, PassInputs, PassParams, PassState
 from ssl_marl.plays.receive_tactic import Receive, ReceiveInputs, ReceiveParams, ReceiveState, ball_incoming
@@ -29,13 +29,13 @@ def test_motion_time_accelerates_then_cruises():
     assert motion_time(4.5, 3.0, 3.0) == pytest.approx(4.5 / 3.0 + 0.5)
 
 
-def test_ball_times_match_the_ball_model_while_the_ball_moves():
+def test_tabulated_ball_times_match_the_ball_model_while_the_ball_moves():
     for v0 in (1.63, 2.43, 3.5, 5.21, 6.5):  # on and between the table's rows
         s = np.linspace(0.05, 10.0, 200)
         s = s[np.array([ball_model.speed_at_distance(v0, float(x), BP) for x in s]) >= 0.8]
         ref = np.array([ball_model.time_to_distance(v0, float(x), BP) for x in s])
-        assert np.abs(ball_times(v0, s, BP) - ref).max() < 0.05
-    assert math.isinf(float(ball_times(2.0, ball_model.stop_distance(2.0, BP) + 0.2, BP)))
+        assert np.abs(ball_model.times_to_distances(v0, s, BP) - ref).max() < 0.05
+    assert math.isinf(float(ball_model.times_to_distances(2.0, ball_model.stop_distance(2.0, BP) + 0.2, BP)))
 
 
 def test_pass_kick_speed_arrives_at_the_requested_speed():
@@ -348,19 +348,20 @@ def test_passing_team_kinds_in_matches_report_stats():
     from ssl_marl.runners.controllers import TEAM_KINDS as CONTROLLERS, make_controller
     from ssl_marl.runners.match import play_match
     from ssl_marl.runners.result import summarize
-    from ssl_marl.plays.passing_play import coordinator_of, passing_team_skills
+    from ssl_marl.plays.passing_play import coordinator_of
+    from ssl_marl.plays.skillset import team_skill_set
     from ssl_marl.plays.team import required_skills
 
     assert {"passing-learned", "passing-baseline"} <= set(CONTROLLERS)
     c = make_controller("passing-baseline", "yellow", 6, "div_b")
     assert coordinator_of(c.selector.plays) is not None
     assert set(required_skills(c.selector.plays)) == {"go_to_ball", "aim_to_shoot", "pass", "receive"}
-    assert passing_team_skills("baseline") == {k: "baseline" for k in ("go_to_ball", "aim_to_shoot", "pass",
+    assert team_skill_set("baseline") == {k: "baseline" for k in ("go_to_ball", "aim_to_shoot", "pass",
                                                                          "receive")}
-    learned = passing_team_skills("learned")
+    learned = team_skill_set("learned")
     assert learned["go_to_ball"] == learned["aim_to_shoot"] == "learned"
-    with pytest.raises(ValueError, match="passing team skills"):
-        passing_team_skills("expert")
+    with pytest.raises(ValueError, match="passing team: skills must be one of"):
+        team_skill_set("expert", where="passing team")
     r = play_match("passing-baseline", "baseline", robots=3, seconds=2.0, seed=3, progress=False)
     assert set(r.stats) >= {"blue", "yellow", "events"}
     assert r.config["skills"]["blue"]["pass"] == "baseline"
@@ -391,7 +392,7 @@ BLOCKED = dict(blue=[(-4.2, 0.0, 0.0), (1.5, 0.0, 0.0), (2.0, 2.2, -1.8)],
 
 
 def test_coordinator_plans_a_pass_only_once_the_carrier_has_settled():
-    from ssl_marl.plays.passing_play import PassCoordinator, PassPhase
+    from ssl_marl.plays.pass_coordinator import PassCoordinator, PassPhase
 
     c = PassCoordinator()
     w = make_world(**BLOCKED, t=1.0, frame="blue")
@@ -405,7 +406,7 @@ def test_coordinator_plans_a_pass_only_once_the_carrier_has_settled():
 
 
 def test_coordinator_follows_the_handshake_to_completion_and_aborts_on_failure():
-    from ssl_marl.plays.passing_play import PassCoordinator, PassPhase, PassPlan
+    from ssl_marl.plays.pass_coordinator import PassCoordinator, PassPhase, PassPlan
 
     c = PassCoordinator()
     w = make_world(**BLOCKED, t=2.0, frame="blue")
@@ -440,7 +441,8 @@ class _Recorder:
 
 
 def test_contested_setup_turns_urgent_and_the_passer_kicks_without_ready():
-    from ssl_marl.plays.passing_play import PassCoordinator, PassingParams, PassPhase, PassPlan, passer_role
+    from ssl_marl.plays.pass_coordinator import PassCoordinator, PassingParams, PassPhase, PassPlan
+    from ssl_marl.plays.passing_roles import passer_role
 
     c = PassCoordinator(PassingParams(contested_kick=True))
     c.plan = PassPlan(1, 2, np.array([2.0, 2.2]), PassPhase.SETUP, 1.9)

@@ -198,3 +198,27 @@ def test_yellow_attacker_scores_into_the_minus_x_goal():
     goal = run_until_goal(env, lambda: c.act(env), "yellow")
     assert goal is not None and goal["team"] == "yellow"
     assert env.world_state().ball_pos[0] < -F.half_length  # in the -x goal (field frame)
+
+
+def test_build_team_from_a_spec_acts_like_the_controller_it_builds():
+    from ssl_marl.plays.passing_play import coordinator_of, passing_plays
+    from ssl_marl.plays.team import TeamSpec, build_team, standard_team_plays
+
+    spec = TeamSpec(skills="baseline", adaptive=True, stickiness=0.1)
+    team = build_team(spec, "blue", 3, "div_b", seed=4)
+    assert [p.name for p in team.selector.plays] == ["kickoff", "offense", "defense"]
+    assert team.skills == "baseline" and team.stickiness == 0.1 and team.selector.adaptive
+    direct = TeamController("blue", 3, "div_b", skills="baseline", adaptive=True, stickiness=0.1, seed=4)
+    env = parallel_env(n_blue=3, n_yellow=3, max_time_s=1.0)
+    env.reset(seed=1, options={"formation": "kickoff"})
+    for _ in range(20):
+        a, b = team.act(env), direct.act(env)
+        assert all(np.array_equal(a[k], b[k]) for k in a)
+        env.step({**a, **{f"yellow_{i}": np.zeros(5, np.float32) for i in range(3)}})
+    decider = SimpleNamespace(decide=lambda request: None)
+    passing = build_team(TeamSpec(plays=passing_plays, decider=decider), "yellow", 4)
+    assert coordinator_of(passing.selector.plays).decider is decider
+    two = [build_team(TeamSpec(plays=passing_plays), "blue", 4) for _ in range(2)]
+    assert coordinator_of(two[0].selector.plays) is not coordinator_of(two[1].selector.plays)
+    with pytest.raises(ValueError, match="carrier decider"):
+        standard_team_plays(ball=None, decider=decider)

@@ -282,3 +282,29 @@ def test_training_sweep_runs_each_seed_like_a_single_run_and_resumes(tmp_path):
     assert all(r["resumed"] for r in again["runs"])
     assert [r["mean_return"] for r in again["runs"]] == [r["mean_return"] for r in par["runs"]]
     assert sweep_main(["pendulum", "--seeds", "1", "1", "--out", str(tmp_path / "x"), "--quiet"]) == 2
+
+
+def test_team_spec_resolves_team_kinds_skills_and_decisions(tmp_path):
+    from ssl_marl.plays.passing_play import passing_plays
+    from ssl_marl.plays.team import TeamSpec, standard_team_plays
+    from ssl_marl.runners.controllers import make_controller, resolve_team_option, team_spec
+
+    assert team_spec("learned") == TeamSpec(plays=standard_team_plays, skills="learned")
+    passing = team_spec("passing-baseline", where="blue")
+    assert passing.plays is passing_plays and passing.decider is None
+    assert passing.skills == {k: "baseline" for k in ("go_to_ball", "aim_to_shoot", "pass", "receive")}
+    assert team_spec("passing-learned-decision").decider is not None
+    assert team_spec("passing-learned", decision="handcoded").decider is None
+    with pytest.raises(ValueError, match="carrier decision"):
+        team_spec("baseline", decision="learned")
+    with pytest.raises(ValueError, match="STP team"):
+        team_spec("random")
+    assert make_controller("idle", "blue", 2).agents == ["blue_0", "blue_1"]
+    assert make_controller("baseline", "blue", 2, stickiness=0.2).stickiness == 0.2
+    assert resolve_team_option("baseline") == ("baseline", None)
+    kind, skills = resolve_team_option("learned", [("go_to_ball", "baseline")], where="--blue")
+    assert kind == "learned" and skills["go_to_ball"] == "baseline"
+    path = tmp_path / "team.json"
+    path.write_text(json.dumps({"kind": "baseline", "skills": {"aim-to-shoot": "learned"}}))
+    kind, skills = resolve_team_option(str(path), [("aim_to_shoot", "baseline")])
+    assert kind == "baseline" and skills["aim_to_shoot"] == "baseline"  # the option wins over the file

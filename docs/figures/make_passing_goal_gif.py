@@ -22,19 +22,15 @@ import numpy as np
 
 
 def controller(cfg: dict, side: str, field, seed: int, ck: dict):
-    """The team controller the match ran: its kind, and the skill kinds recorded in the
-    match config (so that a replay uses the actors that played, even if others have been
-    shipped since)."""
+    """The team controller the match ran: its kind, its carrier decision, and the skill
+    kinds recorded in the match config (so that a replay uses the actors that played,
+    even if others have been shipped since)."""
     from ssl_marl.runners.controllers import make_controller
 
     kind, skills = cfg[side], (cfg.get("skills") or {}).get(side)
-    if kind.startswith("passing-") and isinstance(skills, dict):
-        from ssl_marl.plays.passing_play import passing_plays
-        from ssl_marl.plays.team import TeamController
-
-        return TeamController(side, cfg["robots"], field=field, skills=skills, seed=seed,
-                              plays=passing_plays(ball=ck["ball"]), **ck)
-    return make_controller(kind, side, cfg["robots"], field, seed=seed, **ck)
+    decision = (cfg.get("decision") or {}).get(side)
+    skills = skills if kind.startswith("passing-") and isinstance(skills, dict) else None
+    return make_controller(kind, side, cfg["robots"], field, seed=seed, skills=skills, decision=decision, **ck)
 
 
 def replay_for_passing_goal(match: dict, team: str, within: float, before: float, after: float, width: int,

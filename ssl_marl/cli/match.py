@@ -69,13 +69,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def resolve_team(side: str, value: str, sources: list[tuple[str, str]]):
     """(kind, skills spec or None) for a team option (``--blue`` / ``--yellow``) and its skill sources."""
-    from ..runners.controllers import load_team_file, team_skills
+    from ..runners.controllers import resolve_team_option
 
-    kind, own = (load_team_file(value) if value.lower().endswith(".json") else (value, {}))
-    merged = {**{k.replace("-", "_"): v for k, v in own.items()}, **dict(sources)}  # later wins
-    if not merged:
-        return kind, None
-    return kind, team_skills(kind, merged, where=f"--{side}")
+    return resolve_team_option(value, sources, where=f"--{side}")
 
 
 def match_line(res) -> str:

@@ -7,11 +7,11 @@ ranges, outcomes, 15 s, reward +1 for a goal, all documented there). Agents
 parked in its own goal: the passing play's team layout, robot 0 = goalie).
 
 **Who plays what.** The attackers are one :class:`~ssl_marl.plays.team.TeamController`
-running the passing play's roles (:mod:`ssl_marl.plays.passing_play`: attacker,
+running the passing play's roles (:mod:`ssl_marl.plays.passing_roles`: attacker,
 passer / receiver with the handshake, two supports that move to open spots rated by
-their pass lanes, the goalie) with the play's :class:`~ssl_marl.plays.passing_play.PassCoordinator`;
+their pass lanes, the goalie) with the play's :class:`~ssl_marl.plays.pass_coordinator.PassCoordinator`;
 the only change from a match is that the coordinator's carrier decision comes from the
-agents (the :class:`~ssl_marl.plays.passing_play.CarrierDecider` hook) and that it asks
+agents (the :class:`~ssl_marl.plays.pass_coordinator.CarrierDecider` hook) and that it asks
 every tick (``decide_every=1``, matches: 3) so a decision is not delayed. The defence
 is a TeamController with the project's :class:`~ssl_marl.plays.defense.Goalie` and
 :class:`~ssl_marl.plays.defense.Defender` tactics (``goalie_role``, ``defender_role``).
@@ -43,7 +43,7 @@ goalie and defender (x, y, vx, vy, scaled alike), the ball (x, y, vx / 6.5, vy /
 the shot value from the ball, elapsed time / 15 s, and whether a pass is running.
 
 **Benchmark.** :class:`HandcodedAttackPolicy` is the passing play's cost decision
-(:class:`~ssl_marl.plays.passing_play.CostDecider`, the same function as in matches)
+(:class:`~ssl_marl.plays.pass_coordinator.CostDecider`, the same function as in matches)
 on the same request, mapped to the options: SHOOT -> shoot, PASS to k -> the slot of
 k, KEEP -> ``dribble_goal`` (the match's KEEP creeps towards the goal too); as in the
 play, a carrier that has kept the ball for more than ``max_keep_s`` (0.8 s) shoots.
@@ -52,6 +52,7 @@ play, a carrier that has kept the ball for more than ``max_keep_s`` (0.8 s) shoo
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from typing import Any, Mapping
 
@@ -59,11 +60,13 @@ import numpy as np
 
 from ..envs.tasks.attack import ATTACKER_ROBOTS, N_ATTACKERS, AttackRules, AttackSpawn, AttackTask
 from ..plays.pass_decision import Choice, Decision
-from ..plays.passing_play import (CarrierRequest, CostDecider, PassCoordinator, PassingParams, PrepareHook,
-                                  passer_role, passing_attacker_role, passing_support_role, receiver_role)
+from ..physics.params import BallParams
+from ..plays.pass_coordinator import CarrierDecider, CarrierRequest, CostDecider, PassCoordinator, PassingParams
+from ..plays.passing_play import PrepareHook, coordinator_of
+from ..plays.passing_roles import passer_role, passing_attacker_role, passing_support_role, receiver_role
 from ..plays.play import Play, defender_role, goalie_role
-from ..plays.skillset import CORE_SKILLS, PASSING_SKILLS, skill_kind
-from ..plays.team import TeamController
+from ..plays.skillset import team_skill_set
+from ..plays.team import TeamSpec, build_team
 from ..plays.pass_decision import shot_value
 from .attack_features import (ATTACK_OBS_DIM, ATTACK_OPTIONS, OBS_BOUND, SHOOT, attack_action_mask,
                               attack_observation, decision_option, option_decision)
@@ -74,7 +77,7 @@ STALE_REQUEST_S = 0.1  # s: an answer is dropped if the play has not taken it wi
 
 
 class DrillDecider:
-    """The drill's :class:`~ssl_marl.plays.passing_play.CarrierDecider`: records the
+    """The drill's :class:`~ssl_marl.plays.pass_coordinator.CarrierDecider`: records the
     play's request for the env (the agent answers at its next step) and hands the
     answer to the play on the next tick."""
 
@@ -120,12 +123,16 @@ def drill_defence_play() -> Play:
     return Play("defence_2", lambda ctx: True, (goalie_role(100), defender_role(0, 80)))
 
 
-def team_skills_of(kind: str) -> dict[str, str]:
-    """Skill sources of both drill teams: every skill ``kind`` ("learned": where an
-    actor is shipped, else hand-coded; "baseline": hand-coded)."""
-    if kind not in ("learned", "baseline"):
-        raise ValueError(f"Attack3v2Env: skills must be 'learned' or 'baseline', got {kind!r}")
-    return {name: skill_kind(kind, name) for name in CORE_SKILLS + PASSING_SKILLS}
+def drill_attack_plays(passing: PassingParams, *, ball: BallParams | None,
+                       decider: CarrierDecider | None) -> tuple[Play, ...]:
+    """The attackers' plays (a :class:`~ssl_marl.plays.team.PlaysFactory` once
+    ``passing`` is bound): :func:`drill_attack_play` with a new coordinator."""
+    return (drill_attack_play(PassCoordinator(passing, ball, decider)),)
+
+
+def drill_defence_plays(*, ball: BallParams | None, decider: CarrierDecider | None) -> tuple[Play, ...]:
+    """The defence's plays (a :class:`~ssl_marl.plays.team.PlaysFactory`): :func:`drill_defence_play`."""
+    return (drill_defence_play(),)
 
 
 class Attack3v2Env(DecisionEnv):
@@ -134,7 +141,7 @@ class Attack3v2Env(DecisionEnv):
     Args:
         skills: "learned" (default) or "baseline": both teams' skills.
         rules, spawn: :class:`~ssl_marl.envs.tasks.attack.AttackRules` / ``AttackSpawn``.
-        passing: the attackers' :class:`~ssl_marl.plays.passing_play.PassingParams`
+        passing: the attackers' :class:`~ssl_marl.plays.pass_coordinator.PassingParams`
             (default: the match's, with ``decide_every=1``).
         kwargs: :class:`~ssl_marl.decisions.base.DecisionEnv` options (field,
             realism, max_interval_s, illegal_option, render_mode).
@@ -149,7 +156,7 @@ class Attack3v2Env(DecisionEnv):
 
     def __init__(self, skills: str = "learned", rules: AttackRules | None = None, spawn: AttackSpawn | None = None,
                  passing: PassingParams | None = None, **kwargs: Any) -> None:
-        self.skills = team_skills_of(skills)
+        self.skills = team_skill_set(skills, where="Attack3v2Env")
         self.skills_kind = skills
         self.rules, self.spawn = rules or AttackRules(), spawn or AttackSpawn()
         self.passing = passing or PassingParams(decide_every=1)
@@ -158,12 +165,13 @@ class Attack3v2Env(DecisionEnv):
         self.rp, self.bp = cfg.robot, cfg.ball
         self.decision_params = self.passing.decision
         self.decider = DrillDecider()
-        self.coordinator = PassCoordinator(self.passing, self.bp, self.decider)
+        attack = TeamSpec(plays=functools.partial(drill_attack_plays, self.passing), skills=self.skills,
+                          decider=self.decider)
+        self.blue = build_team(attack, "blue", N_ATTACKERS + 1, self.field, self.rp, self.bp, dt=self.dt)
+        self.coordinator = coordinator_of(self.blue.selector.plays)
         self.decider.coordinator = self.coordinator
-        self.blue = TeamController("blue", N_ATTACKERS + 1, self.field, self.rp, self.bp, skills=self.skills,
-                                   plays=(drill_attack_play(self.coordinator),), dt=self.dt)
-        self.yellow = TeamController("yellow", 2, self.field, self.rp, self.bp, skills=self.skills,
-                                     plays=(drill_defence_play(),), dt=self.dt)
+        self.yellow = build_team(TeamSpec(plays=drill_defence_plays, skills=self.skills), "yellow", 2, self.field,
+                                 self.rp, self.bp, dt=self.dt)
         self._request_obs: np.ndarray | None = None
         self._request_mask: np.ndarray | None = None
 
@@ -296,4 +304,4 @@ class HandcodedAttackPolicy:
 
 
 __all__ = ["Attack3v2Env", "HandcodedAttackPolicy", "DrillDecider", "drill_attack_play", "drill_defence_play",
-           "STATE_DIM"]
+           "drill_attack_plays", "drill_defence_plays", "STATE_DIM"]

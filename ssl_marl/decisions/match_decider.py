@@ -2,7 +2,7 @@
 
 :class:`PolicyCarrierDecider` adapts any object with the decision-policy interface
 (``act(env, agent, obs, info) -> int``, :mod:`ssl_marl.decisions.policies`; e.g.
-``LearnedDecisionPolicy``) into a :class:`~ssl_marl.plays.passing_play.CarrierDecider`:
+``LearnedDecisionPolicy``) into a :class:`~ssl_marl.plays.pass_coordinator.CarrierDecider`:
 when the passing play asks the carrier's decision it builds the Attack 3v2 observation
 and legal-option mask of the carrier (:mod:`ssl_marl.decisions.attack_features`, the
 same functions the drill uses), asks the policy, and turns the option into the play's
@@ -26,7 +26,7 @@ import gymnasium
 import numpy as np
 
 from ..plays.pass_decision import Decision
-from ..plays.passing_play import CarrierRequest, CostDecider
+from ..plays.pass_coordinator import CarrierRequest, CostDecider
 from .attack_features import (ATTACK_OBS_DIM, ATTACK_OPTIONS, N_ATTACK_OPTIONS, OBS_BOUND, attack_action_mask,
                               attack_observation, option_decision)
 

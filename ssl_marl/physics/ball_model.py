@@ -24,6 +24,7 @@ where the ball will be (:func:`predict`, :func:`time_to_distance`).
 
 from __future__ import annotations
 
+import functools
 import math
 from typing import overload
 
@@ -254,5 +255,69 @@ def stop_point(pos, vel, bp: BallParams, sliding: bool = False, v_kick: float | 
     return p + v / sp * stop_distance(sp, bp, sliding, v_kick, friction_dt)
 
 
-__all__ = ["KICK_SPEED_MAX", "distance_at", "kick_speed_for_arrival", "predict", "speed_at",
-           "speed_at_distance", "stop_distance", "stop_point", "stop_time", "time_to_distance"]
+#: kick speeds (m/s) of the ball-time table of :func:`times_to_distances`
+TIME_TABLE_V = np.arange(0.25, 6.5 + 1e-9, 0.05)
+#: distances (m) of the ball-time table of :func:`times_to_distances`
+TIME_TABLE_S = np.arange(0.0, 12.0 + 1e-9, 0.025)
+
+
+@functools.lru_cache(maxsize=8)
+def _ball_time_table(bp: BallParams) -> np.ndarray:
+    """(V, S) time (s) a ball kicked at ``TIME_TABLE_V[i]`` needs to cover ``TIME_TABLE_S[j]``
+    (inf where it stops short), from :func:`distance_at` on a fine time grid."""
+    table = np.full((len(TIME_TABLE_V), len(TIME_TABLE_S)), np.inf)
+    for i, v0 in enumerate(TIME_TABLE_V):
+        tg = np.linspace(0.0, stop_time(float(v0), bp), 600)
+        dg = np.maximum.accumulate(np.asarray(distance_at(float(v0), tg, bp), float))
+        reach = TIME_TABLE_S <= dg[-1] - 1e-6
+        table[i, reach] = np.interp(TIME_TABLE_S[reach], dg, tg)
+    return table
+
+
+def times_to_distances(kick_speed, s, bp: BallParams) -> np.ndarray:
+    """Times (s) at which balls kicked at ``kick_speed`` (m/s; scalar or (K, 1)) have
+    covered the distances ``s`` (m; broadcastable, e.g. (K, P)); inf where the ball
+    stops short. :func:`distance_at`, tabulated once per :class:`BallParams` (every
+    0.05 m/s and 2.5 cm, up to 12 m) and interpolated bilinearly, so that many paths
+    cost a few array operations; within 0.05 s of :func:`time_to_distance` while the ball is faster than 0.8 m/s
+    (tested; the model's slide ends on the simulator's 1/120 s friction steps, which
+    makes time a slightly kinked function of the kick speed)."""
+    table = _ball_time_table(bp)
+    v = np.clip(np.asarray(kick_speed, float), TIME_TABLE_V[0], TIME_TABLE_V[-1])
+    d = np.clip(np.asarray(s, float), 0.0, TIME_TABLE_S[-1])
+    v, d = np.broadcast_arrays(v, d)
+    fi = (v - TIME_TABLE_V[0]) / (TIME_TABLE_V[1] - TIME_TABLE_V[0])
+    fj = d / (TIME_TABLE_S[1] - TIME_TABLE_S[0])
+    i0 = np.minimum(np.floor(fi).astype(int), len(TIME_TABLE_V) - 2)
+    j0 = np.minimum(np.floor(fj).astype(int), len(TIME_TABLE_S) - 2)
+    a, b = fi - i0, fj - j0
+    with np.errstate(invalid="ignore"):
+        t = ((1 - a) * (1 - b) * table[i0, j0] + a * (1 - b) * table[i0 + 1, j0]
+             + (1 - a) * b * table[i0, j0 + 1] + a * b * table[i0 + 1, j0 + 1])
+    return np.where(np.isnan(t), np.inf, t)
+
+
+#: m between the distances of the kick-speed table of :func:`kick_speeds_for_arrival`
+KICK_TABLE_STEP_M = 0.05
+
+
+@functools.lru_cache(maxsize=32)
+def _kick_speed_table(bp: BallParams, v_arrive: float, v_max: float) -> tuple[np.ndarray, np.ndarray]:
+    """(distances, kick speeds) of :func:`kick_speed_for_arrival` on a 5 cm grid
+    up to 12 m (the model's solve is exact but slow to call per candidate and tick)."""
+    d = np.arange(0.0, 12.0 + KICK_TABLE_STEP_M, KICK_TABLE_STEP_M)
+    v = np.array([kick_speed_for_arrival(float(x), v_arrive, bp, v_max=v_max) for x in d])
+    return d, v
+
+
+def kick_speeds_for_arrival(lengths, v_arrive: float, bp: BallParams, v_max: float) -> np.ndarray:
+    """Kick speeds (m/s) at which balls still move at ``v_arrive`` (m/s) after ``lengths``
+    (m; any shape): :func:`kick_speed_for_arrival` capped at ``v_max`` (m/s), tabulated
+    every 5 cm up to 12 m and interpolated linearly."""
+    d, v = _kick_speed_table(bp, v_arrive, v_max)
+    return np.interp(np.asarray(lengths, float), d, v)
+
+
+__all__ = ["KICK_SPEED_MAX", "distance_at", "kick_speed_for_arrival", "kick_speeds_for_arrival", "predict",
+           "speed_at", "speed_at_distance", "stop_distance", "stop_point", "stop_time", "time_to_distance",
+           "times_to_distances"]

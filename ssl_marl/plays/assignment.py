@@ -3,7 +3,7 @@
 Solver: ``scipy.optimize.linear_sum_assignment`` (the Hungarian-family optimal
 solver every scientific Python install has; scipy is the standard, well-tested
 implementation, already a project dependency). Modern SSL teams solve the role
-assignment optimally per priority tier (see ``ssl_facts.md``, STP section).
+assignment optimally per priority tier (docs/references.md, "Role assignment").
 
 Rules of :func:`assign`:
 

@@ -1,4 +1,4 @@
-"""Dribble-and-shoot: take the ball, carry it to a shooting window, aim, shoot (issue 13).
+"""Dribble-and-shoot: take the ball, carry it to a shooting window, aim, shoot.
 
 What limits the paper's go-to-ball-and-shoot (``docs/RESULTS.md`` section 3): the ball is
 lost between the phases (the 1 s drive-forward pushes it away, a learned go-to-ball hits

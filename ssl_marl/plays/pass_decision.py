@@ -9,10 +9,10 @@ point ``q`` after ``reaction_s + T(max(|q - o| - reach, 0))``, where ``T(d)`` is
 time to cover ``d`` from rest with acceleration ``a`` up to top speed ``v``
 (``sqrt(2 d / a)`` while accelerating, then ``d / v + v / (2 a)``) and ``reach`` the
 robot radius plus the ball radius. This is TIGERs' "reachable disc growing with time",
-fast model (shared/reference/team-play.md, section A), with a reaction time.
+fast model (docs/references.md, "Passing and pass rating"), with a reaction time.
 
 **Ball time** along a path: the two-phase slide/roll model of
-:mod:`ssl_marl.physics.ball_model` (``time_to_distance``), the same model the
+:mod:`ssl_marl.physics.ball_model` (``times_to_distances``), the same model the
 simulator integrates.
 
 **Path margin** (:func:`path_margin`): sample the ball's straight path from the kick
@@ -71,7 +71,6 @@ their defaults.
 from __future__ import annotations
 
 import enum
-import functools
 import math
 from dataclasses import dataclass
 
@@ -95,7 +94,7 @@ class DecisionParams:
             the robot parameters (3 m/s, 3 m/s^2).
         shot_speed: kick speed of a shot (m/s; the kicker cap).
         pass_arrive_speed: pass arrival speed (m/s); TIGERs aim <= 3.2 and rate 1 from 2,
-            the issue 1-2; the Pass tactic asks its skill for the same.
+            a receivable pass arrives at 1-2; the Pass tactic asks its skill for the same.
         min_pass_speed: passes are kicked at least this fast (m/s).
         path_samples: samples along a ball path for the margin.
         skip_near_m: path samples closer than this to the kick point are ignored (m).
@@ -104,15 +103,15 @@ class DecisionParams:
         shot_margin_lo, shot_margin_hi: shot path margin (s) at which f_margin is 0 / 1.
         near_shot_m, far_shot_m, far_shot_floor: distance term of the shot value.
         pass_margin_lo, pass_margin_hi: pass path margin (s) at which P is 0 / 1.
-        min_pass_m, max_pass_m: pass length range (m) (the issue's 1-6 m).
+        min_pass_m, max_pass_m: pass length range (m).
         w_receiver_shot, w_progress, w_possession: pass value weights.
         progress_scale_m: forward gain (m) that counts as full progress.
         w_keep, press_lo, press_hi: keep value (see the module docstring).
-        shoot_threshold: shoot at once at or above this shot value. 0.25 (was 0.5, at which
-            the carrier almost never shot: with a goalie and a defender on the ball-goal
-            line the value rarely reaches 0.5, docs/RESULTS.md "Passing game"): picked among
-            0.5 / 0.25 / 0.12 by the hand-coded Attack 3v2 goal rate on 60 validation
-            episodes (seeds 46000-46059: 0.15 / 0.32 / 0.25, 2026-11-25).
+        shoot_threshold: shoot at once at or above this shot value. 0.25: with a goalie
+            and a defender on the ball-goal line the value rarely reaches 0.5, so at 0.5
+            the carrier almost never shoots (docs/RESULTS.md, "Passing game"); among
+            0.5 / 0.25 / 0.12, 0.25 gives the highest hand-coded Attack 3v2 goal rate on
+            60 validation episodes (seeds 46000-46059: 0.15 / 0.32 / 0.25).
         min_pass_success: passes with a lower P are not considered.
         pass_gain: a pass must beat both the shot and the keep value by this much.
         shoot_fallback: without a good pass, shoot anyway at or above this shot value.
@@ -239,47 +238,6 @@ def opponent_reach_time(opponents: np.ndarray, points: np.ndarray, rp: RobotPara
     return params.opp_reaction_s + motion_time(d, v, a)
 
 
-TIME_TABLE_V = np.arange(0.25, 6.5 + 1e-9, 0.05)  # kick speeds (m/s) of the ball-time table
-TIME_TABLE_S = np.arange(0.0, 12.0 + 1e-9, 0.025)  # distances (m) of the ball-time table
-
-
-@functools.lru_cache(maxsize=8)
-def _ball_time_table(bp: BallParams) -> np.ndarray:
-    """(V, S) time (s) a ball kicked at ``TIME_TABLE_V[i]`` needs to cover ``TIME_TABLE_S[j]``
-    (inf where it stops short), from :func:`ball_model.distance_at` on a fine time grid."""
-    table = np.full((len(TIME_TABLE_V), len(TIME_TABLE_S)), np.inf)
-    for i, v0 in enumerate(TIME_TABLE_V):
-        tg = np.linspace(0.0, ball_model.stop_time(float(v0), bp), 600)
-        dg = np.maximum.accumulate(np.asarray(ball_model.distance_at(float(v0), tg, bp), float))
-        reach = TIME_TABLE_S <= dg[-1] - 1e-6
-        table[i, reach] = np.interp(TIME_TABLE_S[reach], dg, tg)
-    return table
-
-
-def ball_times(kick_speed, s, bp: BallParams) -> np.ndarray:
-    """Times (s) at which balls kicked at ``kick_speed`` (m/s; scalar or (K, 1)) have
-    covered the distances ``s`` (m; broadcastable, e.g. (K, P)); inf where the ball
-    stops short. The slide/roll model of :mod:`ssl_marl.physics.ball_model`, tabulated
-    once per :class:`BallParams` (every 0.05 m/s and 2.5 cm, up to 12 m) and
-    interpolated bilinearly, so that many paths cost a few array operations; within
-    0.05 s of ``ball_model.time_to_distance`` while the ball is faster than 0.8 m/s
-    (tested; the model's slide ends on the simulator's 1/120 s friction steps, which
-    makes time a slightly kinked function of the kick speed)."""
-    table = _ball_time_table(bp)
-    v = np.clip(np.asarray(kick_speed, float), TIME_TABLE_V[0], TIME_TABLE_V[-1])
-    d = np.clip(np.asarray(s, float), 0.0, TIME_TABLE_S[-1])
-    v, d = np.broadcast_arrays(v, d)
-    fi = (v - TIME_TABLE_V[0]) / (TIME_TABLE_V[1] - TIME_TABLE_V[0])
-    fj = d / (TIME_TABLE_S[1] - TIME_TABLE_S[0])
-    i0 = np.minimum(np.floor(fi).astype(int), len(TIME_TABLE_V) - 2)
-    j0 = np.minimum(np.floor(fj).astype(int), len(TIME_TABLE_S) - 2)
-    a, b = fi - i0, fj - j0
-    with np.errstate(invalid="ignore"):
-        t = ((1 - a) * (1 - b) * table[i0, j0] + a * (1 - b) * table[i0 + 1, j0]
-             + (1 - a) * b * table[i0, j0 + 1] + a * b * table[i0 + 1, j0 + 1])
-    return np.where(np.isnan(t), np.inf, t)
-
-
 def path_margins(start: np.ndarray, ends: np.ndarray, kick_speeds: np.ndarray, opponents: np.ndarray,
                  rp: RobotParams, bp: BallParams, params: DecisionParams) -> np.ndarray:
     """(K,) smallest interception-time margin (s) of any opponent along each straight ball
@@ -293,7 +251,7 @@ def path_margins(start: np.ndarray, ends: np.ndarray, kick_speeds: np.ndarray, o
     length = np.hypot(rel[:, 0], rel[:, 1])[:, None]  # (K, 1)
     frac = np.linspace(0.0, 1.0, params.path_samples)[None, :]
     s = np.maximum(frac * length, np.minimum(params.skip_near_m, length))  # (K, P)
-    t_ball = ball_times(v0, s, bp)  # (K, P)
+    t_ball = ball_model.times_to_distances(v0, s, bp)  # (K, P)
     stops_short = ~np.isfinite(t_ball[:, -1])
     if opp.shape[0] == 0:
         return np.where(stops_short, -np.inf, np.inf)
@@ -387,24 +345,12 @@ def shot_value(p: np.ndarray, opponents: np.ndarray, others: np.ndarray, field: 
     return float(f_angle * f_margin * f_dist)
 
 
-KICK_TABLE_STEP_M = 0.05  # m between the distances of the kick-speed table
-
-
-@functools.lru_cache(maxsize=32)
-def _kick_speed_table(bp: BallParams, v_arrive: float, v_max: float) -> tuple[np.ndarray, np.ndarray]:
-    """(distances, kick speeds) of :func:`ball_model.kick_speed_for_arrival` on a 5 cm grid
-    up to 12 m (the model's solve is exact but slow to call per candidate and tick)."""
-    d = np.arange(0.0, 12.0 + KICK_TABLE_STEP_M, KICK_TABLE_STEP_M)
-    v = np.array([ball_model.kick_speed_for_arrival(float(x), v_arrive, bp, v_max=v_max) for x in d])
-    return d, v
-
-
 def pass_kick_speeds(lengths, bp: BallParams, rp: RobotParams, params: DecisionParams) -> np.ndarray:
     """Kick speeds (m/s) of passes of ``lengths`` m: arriving at ``pass_arrive_speed``
     (the ball model, tabulated every 5 cm and interpolated), at least ``min_pass_speed``,
     at most the kicker cap."""
-    d, v = _kick_speed_table(bp, float(params.pass_arrive_speed), float(rp.kick_speed_max))
-    return np.clip(np.interp(np.asarray(lengths, float), d, v), params.min_pass_speed, rp.kick_speed_max)
+    v = ball_model.kick_speeds_for_arrival(lengths, float(params.pass_arrive_speed), bp, float(rp.kick_speed_max))
+    return np.clip(v, params.min_pass_speed, rp.kick_speed_max)
 
 
 def pass_kick_speed(length: float, bp: BallParams, rp: RobotParams, params: DecisionParams) -> float:
@@ -498,6 +444,6 @@ def decide(p: np.ndarray, carrier: int, teammates: np.ndarray, opponents: np.nda
     return Decision(Choice.KEEP, shot, keep, passes, best)
 
 
-__all__ = ["DecisionParams", "Choice", "PassOption", "Decision", "motion_time", "opponent_reach_time", "ball_times",
-           "path_margins", "path_margin", "pass_success", "pass_kick_speeds", "open_goal_interval", "shot_value", "pass_kick_speed", "keep_value",
-           "valid_receive_point", "evaluate_passes", "decide"]
+__all__ = ["DecisionParams", "Choice", "PassOption", "Decision", "motion_time", "opponent_reach_time",
+           "path_margins", "path_margin", "pass_success", "pass_kick_speeds", "open_goal_interval", "shot_value",
+           "pass_kick_speed", "keep_value", "valid_receive_point", "evaluate_passes", "decide"]

@@ -42,17 +42,13 @@ SkillsSpec = Union[str, Mapping[str, Union[str, os.PathLike]]]
 CORE_SKILLS = ("go_to_ball", "aim_to_shoot")
 #: used only by the passing plays' Pass / Receive tactics
 PASSING_SKILLS = ("pass", "receive")
+#: every skill a team's tactics build (core and passing)
+TEAM_SKILLS = CORE_SKILLS + PASSING_SKILLS
 
 
 def swappable_skills() -> tuple[str, ...]:
     """Skills a skill set can switch between learned and baseline (registry order)."""
     return tuple(s.name for s in learned_skills())
-
-
-def __getattr__(name: str):
-    if name in ("SWAPPABLE", "TACTIC_SKILLS"):  # kept for old imports; computed from the registry
-        return swappable_skills()
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def _canonical(name: Any) -> Any:
@@ -117,6 +113,17 @@ def skill_source(skills: SkillsSpec, name: str) -> tuple[str, str | None]:
 def skill_kind(skills: SkillsSpec, name: str) -> str:
     """The kind ("baseline"/"learned") that ``skills`` selects for skill ``name``."""
     return skill_source(skills, name)[0]
+
+
+def team_skill_set(kind: str, names: tuple[str, ...] = TEAM_SKILLS, where: str = "team") -> dict[str, str]:
+    """The skill set ``{skill: "baseline" | "learned"}`` of a team whose skills ``names``
+    are all of ``kind``: ``"baseline"``: every skill hand-coded; ``"learned"``: every
+    skill learned where its actor is shipped, else hand-coded (:func:`skill_kind`). A
+    match result's ``config["skills"]`` records this mapping. ValueError (naming
+    ``where``) for another kind."""
+    if kind not in SKILL_KINDS:
+        raise ValueError(f"{where}: skills must be one of {SKILL_KINDS}, got {kind!r}")
+    return {name: skill_kind(kind, name) for name in names}
 
 
 def check_skills(skills: SkillsSpec, field: FieldGeometry, robot: RobotParams | None = None,

@@ -73,7 +73,7 @@ class Tactic:
     """
 
     name: ClassVar[str] = "tactic"
-    #: skills (names in :data:`~ssl_marl.plays.skillset.TACTIC_SKILLS`) the tactic builds;
+    #: skills (names in :func:`~ssl_marl.plays.skillset.swappable_skills`) the tactic builds;
     #: a team checks that they can be built (e.g. a learned actor exists) before kickoff.
     uses_skills: ClassVar[tuple[str, ...]] = ()
     State: ClassVar[type[enum.Enum]]

@@ -16,12 +16,18 @@ Each tick:
 4. each robot's tactic (kept while its role name and factory stay the same, else
    built fresh) gets its parameters from the role's ``update`` and returns an action;
    robots without a role stop in place.
+
+Every team outside unit tests is built by :func:`build_team` from a :class:`TeamSpec`:
+its plays (a :class:`PlaysFactory`), its skill set, and its ball carrier's decision
+(any :class:`~ssl_marl.plays.pass_coordinator.CarrierDecider`; the learned ones live in
+``ssl_marl.decisions`` and are plugged in by the runners, this package imports nothing
+from there).
 """
 
 from __future__ import annotations
 
-from dataclasses import replace
-from typing import Any, Sequence
+from dataclasses import dataclass, replace
+from typing import Any, Protocol, Sequence
 
 import numpy as np
 
@@ -30,6 +36,7 @@ from ..physics.params import BallParams, RobotParams
 from ..physics.state import TEAMS, WorldState, to_team_frame
 from ..skills.base import make_action
 from .assignment import Assignment, RoleSlot, assign
+from .pass_coordinator import CarrierDecider
 from .play import Play, PlayContext, PlaySelector, RoleDef, make_context, standard_plays
 from .skillset import CORE_SKILLS, SkillsSpec, check_skills, validate_skills
 from .tactic_base import Tactic
@@ -200,10 +207,69 @@ class TeamController:
         return actions
 
 
+class PlaysFactory(Protocol):
+    """Builds one team's plays: ``factory(ball=..., decider=...)``, fresh objects on every
+    call (plays may hold per-team state, e.g. the passing plays' pass plan).
+    ``decider``: the ball carrier's decision for plays that have one (None: theirs)."""
+
+    def __call__(self, *, ball: BallParams | None, decider: CarrierDecider | None) -> Sequence[Play]:
+        ...
+
+
+def standard_team_plays(ball: BallParams | None = None, decider: CarrierDecider | None = None) -> tuple[Play, ...]:
+    """:class:`PlaysFactory` of the standard plays (:func:`~ssl_marl.plays.play.standard_plays`);
+    they have no carrier decision, so ``decider`` must be None."""
+    if decider is not None:
+        raise ValueError("a carrier decider needs plays with a carrier decision (the passing plays), "
+                         "not the standard plays")
+    return standard_plays()
+
+
+@dataclass(frozen=True)
+class TeamSpec:
+    """What a team is, apart from its colour, size and the world it plays in.
+
+    Attributes:
+        plays: the team's plays (:class:`PlaysFactory`; e.g.
+            :func:`~ssl_marl.plays.passing_play.passing_plays`).
+        skills: the skill set every tactic uses (:mod:`~ssl_marl.plays.skillset`:
+            "baseline", "learned" or {skill: kind or actor checkpoint path}).
+        decider: the ball carrier's decision, handed to ``plays``
+            (:class:`~ssl_marl.plays.pass_coordinator.CarrierDecider`; None: the plays'
+            own). Every team built from this spec shares the object.
+        min_hold_s, adaptive, stickiness: play selection and assignment options of
+            :class:`TeamController`.
+    """
+
+    plays: PlaysFactory = standard_team_plays
+    skills: SkillsSpec = "baseline"
+    decider: CarrierDecider | None = None
+    min_hold_s: float = 0.5
+    adaptive: bool = False
+    stickiness: float = 0.3
+
+
+def build_team(spec: TeamSpec, team: str, n_robots: int, field: str | FieldGeometry = "div_b",
+               robot: RobotParams | None = None, ball: BallParams | None = None, seed: int = 0,
+               dt: float = 1.0 / 60.0) -> TeamController:
+    """The :class:`TeamController` of ``spec`` for ``team`` ("blue" / "yellow") with
+    ``n_robots`` robots on ``field``; ``robot`` / ``ball``: physical parameters (None:
+    defaults), ``seed``: the play-selection RNG's, ``dt``: control period (s)."""
+    plays = spec.plays(ball=ball, decider=spec.decider)
+    return TeamController(team, n_robots, field=field, robot=robot, ball=ball, skills=spec.skills, plays=plays,
+                          min_hold_s=spec.min_hold_s, adaptive=spec.adaptive, stickiness=spec.stickiness,
+                          seed=seed, dt=dt)
+
+
 def stp_traffic(env: Any, skills: SkillsSpec = "baseline") -> list[TeamController]:
     """Drivers for :class:`~ssl_marl.skills.robot_env.RobotSkillEnv`: one STP team per
     colour that has robots in ``env`` (skill-task traffic; name it in a training
     config as ``"traffic": "ssl_marl.plays.team:stp_traffic"``)."""
     cfg = env.config
-    return [TeamController(team, n, cfg.field, cfg.robot, cfg.ball, skills=skills, dt=cfg.dt)
+    spec = TeamSpec(skills=skills)
+    return [build_team(spec, team, n, cfg.field, cfg.robot, cfg.ball, dt=cfg.dt)
             for team, n in (("blue", cfg.n_blue), ("yellow", cfg.n_yellow)) if n > 0]
+
+
+__all__ = ["TeamController", "TeamSpec", "PlaysFactory", "build_team", "standard_team_plays", "stp_traffic",
+           "required_skills"]

@@ -4,8 +4,9 @@ Layers: physics -> envs -> skills -> plays -> **runners** (``plays`` imports not
 from here). One module per job:
 
 ==========================  ========================================================
-:mod:`.controllers`         team kinds (:data:`TEAM_KINDS`), random / idle teams,
-                            per-skill sources and JSON team files
+:mod:`.controllers`         team kinds (:data:`TEAM_KINDS`) resolved to a TeamSpec
+                            (:func:`team_spec`) and built (:func:`make_controller`),
+                            random / idle teams, per-skill sources, JSON team files
 :mod:`.match`               one match: :func:`play_match`
 :mod:`.series`              K matches over a pool: :func:`play_series`
 :mod:`.result`              :class:`MatchResult`, :func:`summarize`
@@ -25,7 +26,8 @@ from __future__ import annotations
 
 from typing import Any
 
-_LAZY = {"TEAM_KINDS": "controllers", "make_controller": "controllers", "team_skills": "controllers",
+_LAZY = {"TEAM_KINDS": "controllers", "make_controller": "controllers", "team_spec": "controllers",
+         "team_skills": "controllers", "resolve_team_option": "controllers",
          "load_team_file": "controllers", "parse_skill_source": "controllers",
          "play_match": "match", "play_series": "series", "MatchResult": "result", "summarize": "result",
          "evaluate_skill": "skill_eval", "evaluate_tactic": "tactic_eval", "run_pool": "pool", "BACKENDS": "pool",

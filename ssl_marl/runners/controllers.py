@@ -1,12 +1,12 @@
-"""Team controllers for the runners, and how a team is named on the command line.
+"""How a team is named on the command line, and the team it names.
 
 A team is one of :data:`TEAM_KINDS`:
 
-* ``"learned"`` / ``"baseline"``: a :class:`~ssl_marl.plays.team.TeamController`
-  (STP) whose skills are the shipped DDPG actors / the hand-coded skills;
+* ``"learned"`` / ``"baseline"``: an STP :class:`~ssl_marl.plays.team.TeamController`
+  whose skills are the shipped DDPG actors / the hand-coded skills;
 * ``"passing-learned"`` / ``"passing-baseline"``: the same controller with the passing
   plays (:mod:`ssl_marl.plays.passing_play`: shoot, pass or keep by cost, set plays with
-  passes) and those skills (:func:`~ssl_marl.plays.passing_play.passing_team_skills`);
+  passes) and those skills (:func:`~ssl_marl.plays.skillset.team_skill_set`);
 * ``"passing-learned-decision"``: ``"passing-learned"`` whose ball carrier decides
   with the learned Attack 3v2 decision (:mod:`ssl_marl.decisions.match_decider`,
   the shipped actor ``ssl_marl/decisions/pretrained/attack_3v2.pt``) instead of the cost
@@ -14,7 +14,12 @@ A team is one of :data:`TEAM_KINDS`:
 * ``"random"``: uniform random actions (seeded); ``"idle"``: zero actions.
 
 A passing team's carrier decision can also be chosen per team (``decision=``,
-``ssl-marl match --blue-decision handcoded|learned|PATH``): :func:`make_controller`.
+``ssl-marl match --blue-decision handcoded|learned|PATH``).
+
+:func:`team_spec` resolves an STP kind, its skill sources and its decision to a
+:class:`~ssl_marl.plays.team.TeamSpec` (loading a learned decider here: ``plays``
+imports nothing of ``decisions``); :func:`make_controller` builds any kind's controller
+(STP teams through :func:`~ssl_marl.plays.team.build_team`).
 
 An STP team may replace any skill with another source (:func:`team_skills`):
 ``{"go-to-ball": "runs/gtb/actor.pt"}`` runs that trained actor inside the tactics,
@@ -23,17 +28,23 @@ small JSON team file (:func:`load_team_file`)::
 
     {"kind": "learned", "skills": {"go-to-ball": "runs/gtb/actor.pt"}}
 
-(checkpoint paths relative to the file's folder). Any object with ``agents`` and
-``act(env) -> {agent: action}`` is accepted as a controller too.
+(checkpoint paths relative to the file's folder); :func:`resolve_team_option` reads a
+team named on the command line (a kind or a team file, plus per-skill sources). Any
+object with ``agents`` and ``act(env) -> {agent: action}`` is accepted as a controller
+too.
 """
 
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 from pathlib import Path
-from typing import Any, Mapping
+from typing import TYPE_CHECKING, Any, Mapping
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from ..plays.team import TeamController, TeamSpec
 
 TEAM_KINDS = ("learned", "baseline", "random", "idle", "passing-learned", "passing-baseline",
               "passing-learned-decision")
@@ -78,18 +89,19 @@ def team_skills(kind: str, sources: Mapping[str, Any] | None = None, where: str 
     skills ``sources`` ({skill: "baseline" | "learned" | checkpoint path}) replace
     the kind's own: ``kind`` itself when there are none, else a full mapping.
     Raises ValueError for a non-STP kind with sources or an unknown skill."""
-    from ..plays.skillset import CORE_SKILLS, SWAPPABLE, validate_skills
+    from ..plays.skillset import CORE_SKILLS, swappable_skills, team_skill_set, validate_skills
 
     if not sources:
         return kind
     if kind not in STP_KINDS:
         raise ValueError(f"{where}: skill sources need an STP team ({' or '.join(STP_KINDS)}), not {kind!r}")
-    spec: dict[str, Any] = dict(_kind_skills(kind)) if kind in PASSING_KINDS else {name: kind for name in CORE_SKILLS}
+    spec: dict[str, Any] = (dict(kind_skills(kind)) if kind in PASSING_KINDS
+                            else team_skill_set(kind, CORE_SKILLS, where=where))
     for name, source in sources.items():
         key = name.replace("-", "_") if isinstance(name, str) else name
-        if key not in SWAPPABLE:
+        if key not in swappable_skills():
             raise ValueError(f"{where}: unknown skill {name!r}; expected one of "
-                             f"{tuple(n.replace('_', '-') for n in SWAPPABLE)}")
+                             f"{tuple(n.replace('_', '-') for n in swappable_skills())}")
         spec[key] = str(source) if not isinstance(source, str) else source
     validate_skills(spec)
     return spec
@@ -97,15 +109,15 @@ def team_skills(kind: str, sources: Mapping[str, Any] | None = None, where: str 
 
 def parse_skill_source(text: str) -> tuple[str, str]:
     """``"go-to-ball=runs/gtb/actor.pt"`` -> ("go_to_ball", "runs/gtb/actor.pt")."""
-    from ..plays.skillset import SWAPPABLE
+    from ..plays.skillset import swappable_skills
 
     name, sep, source = text.partition("=")
     key = name.strip().replace("-", "_")
     if not sep or not source.strip():
         raise ValueError(f"skill source must be SKILL=SOURCE (e.g. go-to-ball=runs/gtb/actor.pt), got {text!r}")
-    if key not in SWAPPABLE:
+    if key not in swappable_skills():
         raise ValueError(f"skill source {text!r}: unknown skill {name.strip()!r}; expected one of "
-                         f"{tuple(n.replace('_', '-') for n in SWAPPABLE)}")
+                         f"{tuple(n.replace('_', '-') for n in swappable_skills())}")
     return key, source.strip()
 
 
@@ -141,6 +153,18 @@ def load_team_file(path: str | Path) -> tuple[str, dict[str, str]]:
     return kind, sources
 
 
+def resolve_team_option(value: str, sources: Any = (), where: str = "team") -> tuple[str, Any]:
+    """(kind, skills spec or None) for a team named on the command line: a kind of
+    :data:`TEAM_KINDS` or a JSON team file (``*.json``, :func:`load_team_file`), with
+    per-skill ``sources`` ((skill, source) pairs, :func:`parse_skill_source`) that win
+    over the file's; the spec is :func:`team_skills`, None without sources."""
+    kind, own = (load_team_file(value) if value.lower().endswith(".json") else (value, {}))
+    merged = {**{k.replace("-", "_"): v for k, v in own.items()}, **dict(sources)}  # later wins
+    if not merged:
+        return kind, None
+    return kind, team_skills(kind, merged, where=where)
+
+
 def controller_label(kind: Any, skills: Any = None) -> Any:
     """How a team appears in results: its kind, or {kind, skills} with sources."""
     if not isinstance(kind, str):
@@ -174,18 +198,45 @@ def decision_label(kind: Any, decision: Any = None) -> Any:
     return str(spec) if isinstance(spec, (str, Path)) else type(spec).__name__
 
 
+def team_spec(kind: str, skills: Any = None, decision: Any = None, where: str = "team") -> TeamSpec:
+    """The :class:`~ssl_marl.plays.team.TeamSpec` of STP team ``kind`` (one of
+    :data:`STP_KINDS`).
+
+    ``skills``: a :mod:`~ssl_marl.plays.skillset` spec that replaces the kind's skills
+    (see :func:`team_skills`). ``decision`` (passing kinds only): the ball carrier's
+    decision, "handcoded" (the cost decision, default), "learned" (the shipped attack
+    actor; default of "passing-learned-decision"), an actor path, or a decider /
+    decision-policy object (:func:`ssl_marl.decisions.match_decider.make_match_decider`,
+    called once per spec: build one spec per team)."""
+    from ..plays.team import TeamSpec
+
+    if not (isinstance(kind, str) and kind in STP_KINDS):
+        raise ValueError(f"{where}: a team spec needs an STP team ({' or '.join(STP_KINDS)}), not {kind!r}")
+    decision = decision_spec(kind, decision, where=where)
+    team_set = kind_skills(kind) if skills is None else skills
+    if kind not in PASSING_KINDS:
+        return TeamSpec(skills=team_set)
+    from ..plays.passing_play import passing_plays
+
+    decider = None
+    if decision is not None:
+        from ..decisions.match_decider import make_match_decider
+
+        decider = make_match_decider(decision, where=f"{where} decision")
+    return TeamSpec(plays=passing_plays, skills=team_set, decider=decider)
+
+
 def make_controller(kind: Any, team: str, n_robots: int, field: Any = "div_b", seed: int = 0,
-                    skills: Any = None, decision: Any = None, **kwargs: Any):
+                    skills: Any = None, decision: Any = None, robot: Any = None, ball: Any = None,
+                    dt: float = 1.0 / 60.0, **options: Any) -> TeamController | Any:
     """Controller ``kind`` (one of :data:`TEAM_KINDS`) for ``team``.
 
-    ``skills`` (STP kinds only): a :mod:`~ssl_marl.plays.skillset` spec that replaces
-    the kind's skills (see :func:`team_skills`). ``decision`` (passing kinds only): the
-    ball carrier's decision, "handcoded" (the cost decision, default), "learned" (the
-    shipped attack actor; default of "passing-learned-decision"), an actor path, or a
-    decider / decision-policy object (:func:`ssl_marl.decisions.match_decider.make_match_decider`).
-    ``kwargs`` go to :class:`~ssl_marl.plays.team.TeamController` (robot, ball, plays,
-    adaptive, ...). An object with ``act(env) -> {agent: action}`` and ``agents`` is
-    passed through."""
+    STP kinds: :func:`~ssl_marl.plays.team.build_team` of :func:`team_spec` (``skills``,
+    ``decision``; ``options`` replace further :class:`~ssl_marl.plays.team.TeamSpec`
+    fields: min_hold_s, adaptive, stickiness, plays) with ``robot`` / ``ball``
+    parameters and control period ``dt`` (s).
+    ``"random"`` / ``"idle"``: :class:`RandomController` / :class:`IdleController`. An
+    object with ``act(env) -> {agent: action}`` and ``agents`` is passed through."""
     decision = decision_spec(kind, decision, where=team)
     if not isinstance(kind, str):
         if not (hasattr(kind, "act") and hasattr(kind, "agents")):
@@ -193,21 +244,11 @@ def make_controller(kind: Any, team: str, n_robots: int, field: Any = "div_b", s
                              f"agents, got {kind!r}")
         return kind
     if kind in STP_KINDS:
-        from ..plays.team import TeamController
+        from ..plays.team import build_team
 
-        if kind in PASSING_KINDS:
-            from ..plays.passing_play import passing_plays
-
-            decider = None
-            if decision is not None:
-                from ..decisions.match_decider import make_match_decider
-
-                decider = make_match_decider(decision, where=f"{team} decision")
-            if decider is not None and "plays" in kwargs:
-                raise ValueError(f"{team}: give either plays or a decision, not both")
-            kwargs.setdefault("plays", passing_plays(ball=kwargs.get("ball"), decider=decider))
-        return TeamController(team, n_robots, field=field, skills=_kind_skills(kind) if skills is None else skills,
-                              seed=seed, **kwargs)
+        spec = team_spec(kind, skills, decision, where=team)
+        return build_team(replace(spec, **options) if options else spec, team, n_robots, field, robot, ball,
+                          seed=seed, dt=dt)
     if skills is not None:
         raise ValueError(f"{team}: skill sources need an STP team ({' or '.join(STP_KINDS)}), not {kind!r}")
     if kind == "random":
@@ -217,11 +258,11 @@ def make_controller(kind: Any, team: str, n_robots: int, field: Any = "div_b", s
     raise ValueError(f"unknown controller {kind!r} for {team}; expected one of {TEAM_KINDS}")
 
 
-def _kind_skills(kind: str) -> Any:
-    """The skill set of an STP team kind: the kind itself, or for a passing team
-    :func:`~ssl_marl.plays.passing_play.passing_team_skills` of its skill kind."""
-    if kind in PASSING_KINDS:
-        from ..plays.passing_play import passing_team_skills
+def kind_skills(kind: str) -> Any:
+    """The skill set of STP team ``kind``: the kind itself ("learned" / "baseline"), or
+    for a passing team :func:`~ssl_marl.plays.skillset.team_skill_set` of its skill kind."""
+    from ..plays.skillset import team_skill_set
 
-        return passing_team_skills(kind.split("-")[1])
+    if kind in PASSING_KINDS:
+        return team_skill_set(kind.split("-")[1], where=kind)
     return kind

@@ -114,7 +114,8 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
             sigma / 0.1 m x 0.1 rad), drawn from ``seed``. Without noise (realism
             "none") the simulation is deterministic, so this is what makes matches
             with different seeds differ; 0 = the exact formation.
-        controller_kwargs: extra TeamController options for both teams.
+        controller_kwargs: extra :func:`~ssl_marl.runners.controllers.make_controller`
+            options for both STP teams (robot, ball, dt, TeamSpec fields).
         env_kwargs: extra env options.
         tracker: "auto" (on unless realism is "none"), "on" or "off": both teams read
             :class:`~ssl_marl.envs.tracking.TrackedVisionEnv`'s tracked state.
