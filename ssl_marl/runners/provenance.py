@@ -92,7 +92,7 @@ def code_rules() -> dict[str, Any]:
     """The rule switches whose defaults live in the code: the referee's no-progress call
     (s; None = off) and the passing plays' snap shot."""
     from ..envs.config import MatchRules
-    from ..plays.passing_play import PassingParams
+    from ..plays.pass_coordinator import PassingParams
 
     return {"no_progress_s": MatchRules.no_progress_s, "passing_snap_shot": PassingParams.snap_shot}
 
