@@ -185,3 +185,60 @@ def test_batched_worlds_with_chips_are_bit_equal_to_single_worlds():
             assert (s.ball_z, s.ball_vz, s.ball_max_height) == (bw.ball_z, bw.ball_vz, bw.ball_max_height), step
             assert batch.snapshot(k).ball_height == s.snapshot().ball_height
     assert chips >= 3
+
+
+def test_kick_on_contact_redirects_a_moving_ball_and_is_off_by_default():
+    """A robot facing the target with its kicker armed meets a pass: with kick_on_contact
+    the ball leaves along the robot's heading at the kick speed; without it the ball
+    bounces off the face."""
+    import dataclasses
+
+    for on in (True, False):
+        rp = dataclasses.replace(RP, kick_on_contact=on)
+        w = PhysicsWorld(FieldGeometry.div_b(), rp, BP, 1, 0)
+        heading = math.pi - 0.5  # rad: the ball comes from -x; the robot faces it, turned 0.5 rad
+        face_y = RP.front_distance * math.sin(heading)
+        w.reset(np.array([[0.0, 0.0, heading]]), np.array([-2.0, face_y]), ball_vel=np.array([4.0, 0.0]))
+        fired_at = None
+        for step in range(90):
+            w.step(np.zeros((1, 2)), np.zeros(1), np.zeros(1, bool), np.array([0.8]), np.zeros(1))
+            if w.kicks_this_step and fired_at is None:
+                fired_at = step
+        if on:
+            assert fired_at is not None
+            v = w.ball_vel
+            assert math.atan2(v[1], v[0]) == pytest.approx(heading, abs=0.05)
+        else:
+            assert fired_at is None or w.ball_vel[0] < 0  # no redirect along the heading
+
+
+def test_batched_kick_on_contact_is_bit_equal_to_single_worlds():
+    import dataclasses
+
+    rp = dataclasses.replace(RP, kick_on_contact=True)
+    f, K, n = FieldGeometry.div_b(), 3, 2
+    singles = [PhysicsWorld(f, rp, BP, n, 0) for _ in range(K)]
+    batch = BatchedPhysics(f, rp, BP, n, 0, K)
+    rng = np.random.default_rng(11)
+    for k in range(K):
+        h = math.pi + rng.uniform(-0.6, 0.6)
+        pose = np.array([[0.0, 0.0, h], [1.5, 1.0, 0.0]])
+        ball = np.array([-2.0, RP.front_distance * math.sin(h) + rng.uniform(-0.01, 0.01)])
+        vel = np.array([rng.uniform(2.0, 5.0), 0.0])
+        singles[k].reset(pose, ball, vel)
+        batch.reset_world(k, pose, ball, vel)
+    fired = 0
+    for step in range(120):
+        kick = np.where(rng.random((K, n)) < 0.7, rng.uniform(0.3, 1.0, (K, n)), 0.0)
+        chip = np.where(rng.random((K, n)) < 0.3, 0.5, 0.0)
+        v = rng.uniform(-0.05, 0.05, (K, n, 2))
+        for k in range(K):
+            singles[k].step(v[k], np.zeros(n), np.zeros(n, bool), kick[k], chip[k])
+            fired += len(singles[k].kicks_this_step)
+        batch.step(v, np.zeros((K, n)), np.zeros((K, n), bool), kick, chip=chip)
+        for k in range(K):
+            s = singles[k]
+            for name in ("pos", "heading", "vel", "omega", "ball_pos", "ball_vel", "on_dribbler", "kick_cooldown"):
+                np.testing.assert_array_equal(getattr(s, name), getattr(batch, name)[k], err_msg=f"{name} step {step}")
+            assert (s.kicks_this_step[0] if s.kicks_this_step else (-1, 0.0)) == (batch.kicker[k], batch.kick_speed[k])
+    assert fired >= 3

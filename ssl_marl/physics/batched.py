@@ -282,6 +282,9 @@ class BatchedPhysics:
             self.in_flight[idx[kj]] = lifted
             cool[kj, ki] = rp.kick_recharge_s
             kick_speed[kj] = speed
+        armed = near & (kick > 0) & (cool <= 0) & ~kicked[:, None] if rp.kick_on_contact else None
+        if armed is not None and not armed.any():
+            armed = None
         # --- sub-steps: dribbler, ball friction, Box2D ------------------------------
         drib = near & dribble & ~kicked[:, None]
         drib_worlds = np.flatnonzero(drib.any(axis=1))
@@ -329,6 +332,12 @@ class BatchedPhysics:
                     b2step(w, self.sub_dt, VEL_ITERS, POS_ITERS)
             if near_pairs[0].size and sub < self.substeps - 1:
                 self._mark_touches(idx, near_pairs, touched)
+            if armed is not None:
+                fired = self._fire_armed(idx, armed, kick, chip, cool, slide_until, kicker, kick_speed)
+                if fired:
+                    drib_lists = [(k, lst) for k, lst in drib_lists if k not in fired]
+                    if not armed.any():
+                        armed = None
         # --- read back --------------------------------------------------------------
         raw = self._raw_state(idx, full)
         self._enforce_caps(idx, full, raw)
@@ -350,6 +359,45 @@ class BatchedPhysics:
             for name, v in vals.items():
                 getattr(self, name)[idx] = v
             self.t[idx] = t
+
+    def _fire_armed(self, idx: np.ndarray, armed: np.ndarray, kick: np.ndarray, chip: np.ndarray | None,
+                    cool: np.ndarray, slide_until: np.ndarray, kicker: np.ndarray, kick_speed: np.ndarray) -> set[int]:
+        """Kick on contact (PhysicsWorld.step's armed kickers): in each world with an armed
+        robot touching the ball now, the first such robot fires through the world's own
+        ``_fire_kick``; the batch's arrays take its result. Returns the worlds that fired."""
+        wj, ri = np.nonzero(armed)
+        S, n = SCALE, self.n
+        if self._fast:
+            mem, slot = self._span()
+            ks = idx[wj]
+            r = mem[slot[ks, ri][:, None] + _R19[[3, 4, bm.ANGLE]]].astype(np.float64)
+            q = mem[slot[ks, n][:, None] + _R19[[3, 4]]].astype(np.float64)
+            rows = np.concatenate([r, q], axis=1)
+        else:
+            rows = np.empty((wj.size, 5))
+            for m, (j, i) in enumerate(zip(wj.tolist(), ri.tolist())):
+                w = self.worlds[int(idx[j])]
+                b, ball = w._robot_bodies[i], w._ball_body
+                p, q = b.position, ball.position
+                rows[m] = p[0], p[1], b.angle, q[0], q[1]
+        hit = self.ball_on_face(rows[:, 0:2] / S, rows[:, 2], rows[:, 3:5] / S)
+        fired: set[int] = set()
+        for m in np.flatnonzero(hit).tolist():
+            j, i = int(wj[m]), int(ri[m])
+            k = int(idx[j])
+            w = self.worlds[k]
+            if k in fired or w.ball_z > self.ball_params.radius:
+                continue
+            w.kicks_this_step = []
+            w._fire_kick(i, float(kick[j, i]), float(rows[m, 2]), 0.0 if chip is None else float(chip[j, i]))
+            fired.add(k)
+            cool[j, i] = self.robot.kick_recharge_s
+            slide_until[j] = w._slide_until
+            kicker[j] = i
+            kick_speed[j] = w.kicks_this_step[-1][1]
+            self.in_flight[k] = w.ball_z > 0.0 or w.ball_vz > 0.0
+            armed[j] = False
+        return fired
 
     def _after_flight(self, idx: np.ndarray, on_face: np.ndarray, touched: np.ndarray) -> None:
         """PhysicsWorld.step's end for worlds whose ball flew this step: no dribbler

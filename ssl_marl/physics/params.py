@@ -57,6 +57,10 @@ class RobotParams:
     restitution_ball: float = 0.3  # ball-robot coefficient
     height: float = 0.15  # m; a ball higher than this passes over the robot (SSL rules: robots fit under 0.15 m)
     chip_angle_max: float = math.radians(60.0)  # rad, the steepest chip the kicker can lift (3-D speed capped as a flat kick)
+    # Kick on contact: a kick command arms the kicker for the control step and it fires at the
+    # first physics sub-step with the ball on the face (a light barrier, as SSL robots and the
+    # SSL simulation protocol's kick_speed work); off: only a ball already on the face is kicked.
+    kick_on_contact: bool = False
 
     def __post_init__(self) -> None:
         _check_positive(self, ("radius", "front_distance", "mass", "max_speed", "max_accel", "max_brake",

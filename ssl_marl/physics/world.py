@@ -288,22 +288,10 @@ class PhysicsWorld:
         kicked = len(kickers) > 0
         if kicked:  # the first robot (in index order) whose kick fires gets the ball
             i = int(kickers[0])
-            speed = float(min(kick[i], 1.0)) * rp.kick_speed_max
-            h = self.heading[i]
-            angle = 0.0 if chip is None else min(max(float(chip[i]), 0.0), rp.chip_angle_max)
-            if angle > 0.0:
-                vh, vv = ball_flight.launch(np.array([speed]), np.array([angle]))
-                self._ball_body.linearVelocity = (float(vh[0]) * math.cos(h) * S, float(vh[0]) * math.sin(h) * S)
-                self._slide_until = math.inf
-                self._set_flight(0.0, float(vv[0]))
-            else:
-                self._ball_body.linearVelocity = (speed * math.cos(h) * S, speed * math.sin(h) * S)
-                self._launch_ball(speed)
-                if self.ball_z > 0.0 or self.ball_vz != 0.0:
-                    self._set_flight(0.0, 0.0)
-            self.ball_max_height = 0.0
-            self.kick_cooldown[i] = rp.kick_recharge_s
-            self.kicks_this_step.append((i, speed))
+            self._fire_kick(i, float(kick[i]), self.heading[i], 0.0 if chip is None else float(chip[i]))
+        # kick on contact: an armed kicker fires when the ball reaches its face during the step
+        armed = [i for i in near if kick[i] > 0 and self.kick_cooldown[i] <= 0] \
+            if rp.kick_on_contact and not kicked else []
         # --- sub-steps: dribbler, ball friction, Box2D -------------------------
         dribblers = [] if kicked else [i for i in near if dribble[i]]
         # robots near the ball are checked after every sub-step, so a fast robot whose
@@ -320,11 +308,52 @@ class PhysicsWorld:
                 self.world.Step(self.sub_dt, VEL_ITERS, POS_ITERS)
             if near and k < self.substeps - 1:
                 self._mark_touches(near, touched)
+            if armed:
+                i = self._armed_contact(armed)
+                if i >= 0:
+                    b = self._robot_bodies[i]
+                    self._fire_kick(i, float(kick[i]), b.angle, 0.0 if chip is None else float(chip[i]))
+                    armed = dribblers = []
         self.t += dt
         self._read_state(caps=True)
         self.on_dribbler = self._on_face_now if self.ball_z > self.ball_params.radius else self._on_face_now | touched
         if self.ball_max_height > 0.0 and (self.on_dribbler.any() or self._ball_touches_robot()):
             self.ball_max_height = self.ball_z
+
+    def _fire_kick(self, i: int, strength: float, heading: float, chip_angle: float) -> None:
+        """Robot i kicks: 3-D ball speed strength * kick_speed_max (strength capped at 1)
+        along ``heading`` (rad), lifted by ``chip_angle`` (rad, clipped to
+        [0, chip_angle_max]; 0 = flat)."""
+        rp, S = self.robot, SCALE
+        speed = min(strength, 1.0) * rp.kick_speed_max
+        h = heading
+        angle = min(max(chip_angle, 0.0), rp.chip_angle_max)
+        if angle > 0.0:
+            vh, vv = ball_flight.launch(np.array([speed]), np.array([angle]))
+            self._ball_body.linearVelocity = (float(vh[0]) * math.cos(h) * S, float(vh[0]) * math.sin(h) * S)
+            self._slide_until = math.inf
+            self._set_flight(0.0, float(vv[0]))
+        else:
+            self._ball_body.linearVelocity = (speed * math.cos(h) * S, speed * math.sin(h) * S)
+            self._launch_ball(speed)
+            if self.ball_z > 0.0 or self.ball_vz != 0.0:
+                self._set_flight(0.0, 0.0)
+        self.ball_max_height = 0.0
+        self.kick_cooldown[i] = rp.kick_recharge_s
+        self.kicks_this_step.append((i, speed))
+
+    def _armed_contact(self, armed: list[int]) -> int:
+        """The first armed robot (index order) with the ball on its face now (Box2D's
+        current positions, raw angles), or -1; never while the ball is above the bar."""
+        if self.ball_z > self.ball_params.radius:
+            return -1
+        S = SCALE
+        bp = self._ball_body.position
+        ball = np.array((bp[0] / S, bp[1] / S))
+        pos = np.array([(b.position[0] / S, b.position[1] / S) for b in (self._robot_bodies[i] for i in armed)])
+        hd = np.array([self._robot_bodies[i].angle for i in armed])
+        hit = np.flatnonzero(self.ball_on_face(pos, hd, ball))
+        return armed[int(hit[0])] if hit.size else -1
 
     # ------------------------------------------------------------ ball in the air
     def _set_flight(self, z: float, vz: float) -> None:
