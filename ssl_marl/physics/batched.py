@@ -19,7 +19,9 @@ Arrays (SI units, field frame), K worlds, n robots (blue first):
 ``omega`` (K, n) rad/s, ``ball_pos``/``ball_vel`` (K, 2), ``on_dribbler`` (K, n)
 bool, ``kick_cooldown`` (K, n) s, ``t`` (K,) s; after :meth:`step`,
 ``kicker`` (K,) index of the robot whose kick fired this step (-1 none) and
-``kick_speed`` (K,) m/s.
+``kick_speed`` (K,) m/s (3-D). ``in_flight`` (K,) bool: the ball is in the air. A ball in
+the air is rare, so its flight runs per world through the world's own
+:meth:`PhysicsWorld._flight_substep` (its height state lives in the world object).
 """
 
 from __future__ import annotations
@@ -29,6 +31,7 @@ import math
 import numpy as np
 from Box2D._Box2D import b2World_Step as Box2D_step
 
+from . import ball_flight
 from . import body_memory as bm
 from .field import FieldGeometry
 from .params import BallParams, RobotParams
@@ -81,6 +84,9 @@ class BatchedPhysics:
         self.t = np.zeros(K)
         self.kicker = np.full(K, -1)
         self.kick_speed = np.zeros(K)
+        self.in_flight = np.zeros(K, bool)
+        self._flew: set[int] = set()  # worlds whose touchdowns list may be non-empty
+        self._lifted: set[int] = set()  # worlds whose ball_max_height may be > 0
         self._fast = bm.layout_ok()
         self._b2: list = [w.world for w in worlds]
         self._addr = np.zeros((K, n + 1), np.int64)
@@ -103,6 +109,9 @@ class BatchedPhysics:
         self.slide_until[k] = w._slide_until
         self.t[k] = w.t
         self.kick_cooldown[k] = w.kick_cooldown
+        self.in_flight[k] = w.ball_z > 0.0 or w.ball_vz > 0.0
+        if w.ball_max_height > 0.0:
+            self._lifted.add(k)
 
     def push(self, k: int) -> None:
         """Hand world k's cached state to its :class:`PhysicsWorld` (before using it to
@@ -120,9 +129,10 @@ class BatchedPhysics:
         self.worlds[k].reset(robot_pose, ball_pos, ball_vel, robot_vel)
         self.pull(k)
 
-    def set_ball(self, k: int, pos: np.ndarray, vel: np.ndarray | None = None) -> None:
+    def set_ball(self, k: int, pos: np.ndarray, vel: np.ndarray | None = None, z: float = 0.0,
+                 vz: float = 0.0) -> None:
         self.push(k)
-        self.worlds[k].set_ball(pos, vel)
+        self.worlds[k].set_ball(pos, vel, z, vz)
         self.pull(k)
 
     def set_robots(self, k: int, pose: np.ndarray, only: np.ndarray | None = None) -> None:
@@ -194,12 +204,12 @@ class BatchedPhysics:
 
     # ------------------------------------------------------------------ step
     def step(self, v_body: np.ndarray, omega: np.ndarray, dribble: np.ndarray, kick: np.ndarray,
-             worlds: np.ndarray | None = None) -> None:
+             worlds: np.ndarray | None = None, chip: np.ndarray | None = None) -> None:
         """Advance worlds ``worlds`` (indices; default all) by one control period.
 
         Args: as :meth:`PhysicsWorld.step` with a leading world axis of len(worlds):
         v_body (k, n, 2) m/s body frame, omega (k, n) rad/s, dribble (k, n) bool,
-        kick (k, n) strength in [0, 1].
+        kick (k, n) strength in [0, 1], chip (k, n) kick elevation in rad or None (flat).
         """
         idx = np.arange(self.K) if worlds is None else np.asarray(worlds, dtype=np.int64)
         full = worlds is None
@@ -257,10 +267,24 @@ class BatchedPhysics:
             ki = kicker[kj]
             speed = np.minimum(kick[kj, ki], 1.0) * rp.kick_speed_max
             h = heading[kj, ki]
-            self._set_ball_vel_raw(idx[kj], np.stack([speed * np.cos(h) * S, speed * np.sin(h) * S], axis=1))
-            slide_until[kj] = np.where(speed > 0, self.ball_params.slide_to_roll_ratio * speed, math.inf)
+            angle = np.zeros(kj.size) if chip is None else np.minimum(np.maximum(chip[kj, ki], 0.0), rp.chip_angle_max)
+            lifted = angle > 0.0
+            vh, vv = ball_flight.launch(speed, angle)
+            vh = np.where(lifted, vh, speed)
+            self._set_ball_vel_raw(idx[kj], np.stack([vh * np.cos(h) * S, vh * np.sin(h) * S], axis=1))
+            slide_until[kj] = np.where(lifted, math.inf,
+                                       np.where(speed > 0, self.ball_params.slide_to_roll_ratio * speed, math.inf))
+            for j in np.flatnonzero(lifted | self.in_flight[idx[kj]]).tolist():
+                w = self.worlds[int(idx[kj[j]])]
+                w._set_flight(0.0, float(vv[j]) if lifted[j] else 0.0)
+            for k in idx[kj].tolist():
+                self.worlds[k].ball_max_height = 0.0
+            self.in_flight[idx[kj]] = lifted
             cool[kj, ki] = rp.kick_recharge_s
             kick_speed[kj] = speed
+        armed = near & (kick > 0) & (cool <= 0) & ~kicked[:, None] if rp.kick_on_contact else None
+        if armed is not None and not armed.any():
+            armed = None
         # --- sub-steps: dribbler, ball friction, Box2D ------------------------------
         drib = near & dribble & ~kicked[:, None]
         drib_worlds = np.flatnonzero(drib.any(axis=1))
@@ -270,14 +294,18 @@ class BatchedPhysics:
         b2worlds = self._b2 if full else [self._b2[k] for k in idx.tolist()]
         b2step = Box2D_step
         bp = self.ball_params
+        for k in self._flew:
+            self.worlds[k].touchdowns = []
+        self._flew = set()
         for sub in range(self.substeps):
             for k, lst in drib_lists:
                 self.worlds[k]._apply_dribblers(lst)
+            flying = get(self.in_flight).copy()
             # two-phase ball friction (PhysicsWorld._apply_ball_friction, vectorised)
             raw = self._ball_vel_raw(idx, full)
             bx_, by_ = raw[:, 0] / S, raw[:, 1] / S
             bsp = np.sqrt(bx_ * bx_ + by_ * by_)
-            moving = bsp > 0.0
+            moving = (bsp > 0.0) & ~flying
             sliding = bsp > slide_until
             dec = np.where(sliding, bp.slide_decel, bp.roll_decel)
             slide_until = np.where(moving & ~sliding, math.inf, slide_until)
@@ -286,16 +314,38 @@ class BatchedPhysics:
             mv = np.flatnonzero(moving)
             if mv.size:
                 self._set_ball_vel_raw(idx[mv], np.stack([bx_[mv] * kf[mv], by_[mv] * kf[mv]], axis=1))
-            for w in b2worlds:
-                b2step(w, self.sub_dt, VEL_ITERS, POS_ITERS)
+            if flying.any():
+                fly = set(np.flatnonzero(flying).tolist())
+                for j, w in enumerate(b2worlds):
+                    if j not in fly:
+                        b2step(w, self.sub_dt, VEL_ITERS, POS_ITERS)
+                for j in fly:
+                    k = int(idx[j])
+                    pw = self.worlds[k]
+                    pw._flight_substep()
+                    self._flew.add(k)
+                    self.in_flight[k] = pw.ball_z > 0.0 or pw.ball_vz > 0.0
+                    if pw._slide_until == math.inf:
+                        slide_until[j] = math.inf
+            else:
+                for w in b2worlds:
+                    b2step(w, self.sub_dt, VEL_ITERS, POS_ITERS)
             if near_pairs[0].size and sub < self.substeps - 1:
                 self._mark_touches(idx, near_pairs, touched)
+            if armed is not None:
+                fired = self._fire_armed(idx, armed, kick, chip, cool, slide_until, kicker, kick_speed)
+                if fired:
+                    drib_lists = [(k, lst) for k, lst in drib_lists if k not in fired]
+                    if not armed.any():
+                        armed = None
         # --- read back --------------------------------------------------------------
         raw = self._raw_state(idx, full)
         self._enforce_caps(idx, full, raw)
         new_pos = raw[:, :n, 3:5] / S
         new_heading = wrap_angle(raw[:, :n, bm.ANGLE])
         on_face = self.ball_on_face(new_pos, new_heading, raw[:, n, 3:5] / S)
+        if self._lifted or self._flew:
+            self._after_flight(idx, on_face, touched)
         vals = {"pos": new_pos, "heading": new_heading, "vel": raw[:, :n, 16:18] / S,
                 "omega": raw[:, :n, bm.OMEGA], "ball_pos": raw[:, n, 3:5] / S, "ball_vel": raw[:, n, 16:18] / S,
                 "on_face_now": on_face, "on_dribbler": on_face | touched, "kick_cooldown": cool,
@@ -309,6 +359,63 @@ class BatchedPhysics:
             for name, v in vals.items():
                 getattr(self, name)[idx] = v
             self.t[idx] = t
+
+    def _fire_armed(self, idx: np.ndarray, armed: np.ndarray, kick: np.ndarray, chip: np.ndarray | None,
+                    cool: np.ndarray, slide_until: np.ndarray, kicker: np.ndarray, kick_speed: np.ndarray) -> set[int]:
+        """Kick on contact (PhysicsWorld.step's armed kickers): in each world with an armed
+        robot touching the ball now, the first such robot fires through the world's own
+        ``_fire_kick``; the batch's arrays take its result. Returns the worlds that fired."""
+        wj, ri = np.nonzero(armed)
+        S, n = SCALE, self.n
+        if self._fast:
+            mem, slot = self._span()
+            ks = idx[wj]
+            r = mem[slot[ks, ri][:, None] + _R19[[3, 4, bm.ANGLE]]].astype(np.float64)
+            q = mem[slot[ks, n][:, None] + _R19[[3, 4]]].astype(np.float64)
+            rows = np.concatenate([r, q], axis=1)
+        else:
+            rows = np.empty((wj.size, 5))
+            for m, (j, i) in enumerate(zip(wj.tolist(), ri.tolist())):
+                w = self.worlds[int(idx[j])]
+                b, ball = w._robot_bodies[i], w._ball_body
+                p, q = b.position, ball.position
+                rows[m] = p[0], p[1], b.angle, q[0], q[1]
+        hit = self.ball_on_face(rows[:, 0:2] / S, rows[:, 2], rows[:, 3:5] / S)
+        fired: set[int] = set()
+        for m in np.flatnonzero(hit).tolist():
+            j, i = int(wj[m]), int(ri[m])
+            k = int(idx[j])
+            w = self.worlds[k]
+            if k in fired or w.ball_z > self.ball_params.radius:
+                continue
+            w.kicks_this_step = []
+            w._fire_kick(i, float(kick[j, i]), float(rows[m, 2]), 0.0 if chip is None else float(chip[j, i]))
+            fired.add(k)
+            cool[j, i] = self.robot.kick_recharge_s
+            slide_until[j] = w._slide_until
+            kicker[j] = i
+            kick_speed[j] = w.kicks_this_step[-1][1]
+            self.in_flight[k] = w.ball_z > 0.0 or w.ball_vz > 0.0
+            armed[j] = False
+        return fired
+
+    def _after_flight(self, idx: np.ndarray, on_face: np.ndarray, touched: np.ndarray) -> None:
+        """PhysicsWorld.step's end for worlds whose ball flew this step: no dribbler
+        contact while the ball is above the bar; a touch restarts the goal rule's height."""
+        pos_of = {int(k): j for j, k in enumerate(idx.tolist())}
+        self._lifted |= {k for k in self._flew if self.worlds[k].ball_max_height > 0.0}
+        for k in sorted(self._lifted | self._flew):
+            j = pos_of.get(k)
+            if j is None:
+                continue
+            w = self.worlds[k]
+            if w.ball_z > self.ball_params.radius:
+                on_face[j] = False
+                touched[j] = False
+            if w.ball_max_height > 0.0 and ((on_face[j] | touched[j]).any() or w._ball_touches_robot()):
+                w.ball_max_height = w.ball_z
+            if w.ball_max_height <= 0.0:
+                self._lifted.discard(k)
 
     def _enforce_caps(self, idx: np.ndarray, full: bool, raw: np.ndarray) -> None:
         """PhysicsWorld's hard speed caps (world.cap_velocities) on worlds idx; raw is
@@ -381,5 +488,6 @@ class BatchedPhysics:
         bp, bv = self.ball_pos[k].copy(), self.ball_vel[k].copy()
         bp.setflags(write=False)
         bv.setflags(write=False)
+        w = self.worlds[k]
         return WorldState(t=float(self.t[k]), ball_pos=bp, ball_vel=bv, blue=TeamState(*(a[:nb] for a in arrays)),
-                          yellow=TeamState(*(a[nb:] for a in arrays)))
+                          yellow=TeamState(*(a[nb:] for a in arrays)), ball_height=w.ball_z, ball_vz=w.ball_vz)

@@ -55,15 +55,23 @@ class RobotParams:
     dribbler_tolerance: float = 0.01  # m: ball-face gap still counted as "on the dribbler"
     friction: float = 0.3
     restitution_ball: float = 0.3  # ball-robot coefficient
+    height: float = 0.15  # m; a ball higher than this passes over the robot (SSL rules: robots fit under 0.15 m)
+    chip_angle_max: float = math.radians(60.0)  # rad, the steepest chip the kicker can lift (3-D speed capped as a flat kick)
+    # Kick on contact: a kick command arms the kicker for the control step and it fires at the
+    # first physics sub-step with the ball on the face (a light barrier, as SSL robots and the
+    # SSL simulation protocol's kick_speed work); off: only a ball already on the face is kicked.
+    kick_on_contact: bool = False
 
     def __post_init__(self) -> None:
         _check_positive(self, ("radius", "front_distance", "mass", "max_speed", "max_accel", "max_brake",
                                "max_omega", "max_alpha", "kick_speed_max", "kick_recharge_s",
                                "dribbler_max_accel", "dribbler_pull_speed", "dribbler_tolerance",
-                               "friction", "restitution_ball"),
+                               "friction", "restitution_ball", "height", "chip_angle_max"),
                         allow_zero=("kick_recharge_s", "dribbler_pull_speed", "friction", "restitution_ball"))
         if self.front_distance >= self.radius:
             raise ValueError("RobotParams.front_distance must be smaller than RobotParams.radius")
+        if self.chip_angle_max >= math.pi / 2:
+            raise ValueError(f"RobotParams.chip_angle_max must be below pi/2 rad, got {self.chip_angle_max!r}")
 
     @property
     def dribbler_half_width(self) -> float:
@@ -81,9 +89,19 @@ class BallParams:
     roll_decel: float = 0.35  # m/s^2 while rolling (ER-Force)
     slide_to_roll_ratio: float = 0.69  # sliding until speed <= ratio * kick speed (ER-Force)
     restitution_wall: float = 0.6  # ball-wall / ball-goal coefficient
+    # In the air (physics/ball_flight.py): gravity and TIGERs' analytic chip bounce model
+    gravity: float = 9.81  # m/s^2
+    bounce_damping_z: float = 0.47  # vertical speed kept at a bounce
+    bounce_damping_xy_first: float = 0.8  # horizontal speed kept at the first bounce
+    bounce_damping_xy_later: float = 0.85  # ... at every later bounce
+    min_hop_height: float = 0.01  # m: a lower hop ends the flight (the ball then rolls)
 
     def __post_init__(self) -> None:
         _check_positive(self, ("radius", "mass", "slide_decel", "roll_decel", "slide_to_roll_ratio",
-                               "restitution_wall"), allow_zero=("restitution_wall",))
+                               "restitution_wall", "gravity", "bounce_damping_z", "bounce_damping_xy_first",
+                               "bounce_damping_xy_later", "min_hop_height"), allow_zero=("restitution_wall",))
+        for name in ("bounce_damping_z", "bounce_damping_xy_first", "bounce_damping_xy_later"):
+            if getattr(self, name) >= 1.0:
+                raise ValueError(f"BallParams.{name} must lie in (0, 1), got {getattr(self, name)!r}")
         if self.slide_to_roll_ratio > 1.0:
             raise ValueError("BallParams.slide_to_roll_ratio must lie in (0, 1]")

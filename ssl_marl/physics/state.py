@@ -59,6 +59,9 @@ class WorldState:
             the last seen position). Always True for ground truth.
         blue, yellow: :class:`TeamState`.
         frame: "field" or the team name whose own goal is at -x.
+        ball_height: height of the ball's lowest point above the field (m; 0 on the
+            ground). ball_vz: its vertical velocity (m/s, up positive). Both are the
+            same in every frame.
     """
 
     t: float
@@ -68,6 +71,8 @@ class WorldState:
     yellow: TeamState
     ball_visible: bool = True
     frame: str = "field"
+    ball_height: float = 0.0
+    ball_vz: float = 0.0
 
     def team(self, name: str) -> TeamState:
         if name == "blue":

@@ -24,9 +24,16 @@ Model (all parameters in :mod:`ssl_marl.physics.params`):
   ``dribbler_max_accel``. Spinning at 10 rad/s needs ~10 m/s^2 of centripetal
   acceleration at the face, more than the bar can give, so the ball is lost;
   driving forward gently keeps it. Switching the dribbler off releases the ball.
-* Kicker: a kick with strength k in (0, 1] sets the ball velocity to
+* Kicker: a kick with strength k in (0, 1] sets the ball's 3-D speed to
   k * ``kick_speed_max`` along the robot heading, only when the ball is on the
-  kicker face and the kicker has recharged (``kick_recharge_s``).
+  kicker face and the kicker has recharged (``kick_recharge_s``). A chip kick
+  (elevation angle a in (0, ``chip_angle_max``]) sends k * ``kick_speed_max`` * cos(a)
+  along the heading and k * ``kick_speed_max`` * sin(a) upwards.
+* Ball in the air (:mod:`ssl_marl.physics.ball_flight`): height and vertical speed
+  are integrated in closed form beside Box2D; no ground friction in flight; damped
+  bounces; above the robots' height the ball's fixture stops colliding with robots
+  (walls and goals still stop it). ``ball_max_height`` is the highest the ball has
+  been since a robot last touched it (the goal rule's "at most 0.15 m").
 """
 
 from __future__ import annotations
@@ -36,6 +43,7 @@ import math
 import Box2D
 import numpy as np
 
+from . import ball_flight
 from .field import FieldGeometry
 from .params import BallParams, RobotParams
 from .state import TeamState, WorldState, wrap_angle
@@ -47,6 +55,10 @@ POS_ITERS = 3
 # Each physics sub-step the ball's distance to a face must be at least this far
 # "inside" to count as touching (the polygon skin and solver slop are ~1 mm).
 _FACE_PENETRATION_TOL = 0.01
+
+# Box2D collision categories: the ball in flight above the robots collides with walls only.
+CAT_WALL, CAT_ROBOT, CAT_BALL = 0x0001, 0x0002, 0x0004
+MASK_ALL, MASK_WALLS = 0xFFFF, CAT_WALL
 
 
 def cap_velocities(vel: np.ndarray, omega: np.ndarray | None, v_cap: float, w_cap: float = math.inf):
@@ -109,6 +121,12 @@ class PhysicsWorld:
         self.ball_vel = np.zeros(2)
         self._slide_until = math.inf  # ball slides while speed > this (m/s)
         self.kicks_this_step: list[tuple[int, float]] = []  # (robot index, ball speed)
+        self.ball_z = 0.0  # m, height of the ball's lowest point above the field
+        self.ball_vz = 0.0  # m/s, up positive
+        self.ball_bounces = 0  # bounces of the current flight
+        self.ball_max_height = 0.0  # m, highest since a robot last touched the ball
+        self._ball_over_robots = False  # the ball's fixture ignores robots
+        self.touchdowns: list[tuple[float, float]] = []  # (x, y) m of this step's bounces
 
     def set_params(self, robot: RobotParams | None = None, ball: BallParams | None = None) -> None:
         """Replace the robot and/or ball parameters (e.g. one episode's domain-randomised
@@ -145,14 +163,15 @@ class PhysicsWorld:
             xs, ys = np.array(p).T
             area += 0.5 * abs(np.dot(xs, np.roll(ys, 1)) - np.dot(ys, np.roll(xs, 1)))
         self._robot_fixdefs = [Box2D.b2FixtureDef(shape=Box2D.b2PolygonShape(vertices=p), density=rp.mass / area,
-                                                  friction=rp.friction, restitution=rp.restitution_ball)
+                                                  friction=rp.friction, restitution=rp.restitution_ball,
+                                                  categoryBits=CAT_ROBOT)
                                for p in polys]
         br = self.ball_params.radius * S
         # Box2D mixes restitution as max(a, b): the ball's own coefficient is 0 so that
         # ball-robot contacts use the robot's and ball-wall contacts the wall's.
         self._ball_fixdef = Box2D.b2FixtureDef(shape=Box2D.b2CircleShape(radius=br),
                                                density=self.ball_params.mass / (math.pi * br * br),
-                                               friction=0.1, restitution=0.0)
+                                               friction=0.1, restitution=0.0, categoryBits=CAT_BALL)
         f = self.field
         boxes = []
         t = 0.5  # outer wall thickness (m), generous so nothing tunnels
@@ -176,6 +195,7 @@ class PhysicsWorld:
         S = SCALE
         w = Box2D.b2World(gravity=(0.0, 0.0), doSleep=False)
         walls = w.CreateStaticBody(position=(0, 0))
+        self._walls_body = walls
         for fd in self._wall_fixdefs:
             walls.CreateFixture(fd)
         self._robot_bodies = []
@@ -207,12 +227,16 @@ class PhysicsWorld:
         bv = np.zeros(2) if ball_vel is None else np.asarray(ball_vel, float)
         self._build(robot_pose, rv, np.asarray(ball_pos, float), bv)
         self._launch_ball(float(np.hypot(*bv)))
+        self._ball_over_robots = False  # a fresh fixture collides with everything
+        self.ball_max_height = 0.0
+        self._set_flight(0.0, 0.0)
         self.t = 0.0
         self.kick_cooldown = np.zeros(self.n)
         self.kicks_this_step = []
         self._read_state()
 
-    def step(self, v_body: np.ndarray, omega: np.ndarray, dribble: np.ndarray, kick: np.ndarray) -> None:
+    def step(self, v_body: np.ndarray, omega: np.ndarray, dribble: np.ndarray, kick: np.ndarray,
+             chip: np.ndarray | None = None) -> None:
         """Advance one control period.
 
         Args:
@@ -220,6 +244,8 @@ class PhysicsWorld:
             omega: (n,) commanded angular velocity (rad/s).
             dribble: (n,) bool, dribbler on.
             kick: (n,) kick strength in [0, 1]; 0 = no kick.
+            chip: optional (n,) elevation of the kick (rad, clipped to [0, chip_angle_max]);
+                0 or None = a flat kick.
         """
         rp, S, dt = self.robot, SCALE, self.control_dt
         # --- robot velocity tracking ------------------------------------------------
@@ -262,27 +288,129 @@ class PhysicsWorld:
         kicked = len(kickers) > 0
         if kicked:  # the first robot (in index order) whose kick fires gets the ball
             i = int(kickers[0])
-            speed = float(min(kick[i], 1.0)) * rp.kick_speed_max
-            h = self.heading[i]
-            self._ball_body.linearVelocity = (speed * math.cos(h) * S, speed * math.sin(h) * S)
-            self._launch_ball(speed)
-            self.kick_cooldown[i] = rp.kick_recharge_s
-            self.kicks_this_step.append((i, speed))
+            self._fire_kick(i, float(kick[i]), self.heading[i], 0.0 if chip is None else float(chip[i]))
+        # kick on contact: an armed kicker fires when the ball reaches its face during the step
+        armed = [i for i in near if kick[i] > 0 and self.kick_cooldown[i] <= 0] \
+            if rp.kick_on_contact and not kicked else []
         # --- sub-steps: dribbler, ball friction, Box2D -------------------------
         dribblers = [] if kicked else [i for i in near if dribble[i]]
         # robots near the ball are checked after every sub-step, so a fast robot whose
         # face hits the ball is seen even if the ball bounces away within the step
         touched = np.zeros(self.n, bool)
+        self.touchdowns = []
         for k in range(self.substeps):
             if dribblers:
                 self._apply_dribblers(dribblers)
-            self._apply_ball_friction()
-            self.world.Step(self.sub_dt, VEL_ITERS, POS_ITERS)
+            if self.ball_z > 0.0 or self.ball_vz > 0.0:
+                self._flight_substep()
+            else:
+                self._apply_ball_friction()
+                self.world.Step(self.sub_dt, VEL_ITERS, POS_ITERS)
             if near and k < self.substeps - 1:
                 self._mark_touches(near, touched)
+            if armed:
+                i = self._armed_contact(armed)
+                if i >= 0:
+                    b = self._robot_bodies[i]
+                    self._fire_kick(i, float(kick[i]), b.angle, 0.0 if chip is None else float(chip[i]))
+                    armed = dribblers = []
         self.t += dt
         self._read_state(caps=True)
-        self.on_dribbler = self._on_face_now | touched
+        self.on_dribbler = self._on_face_now if self.ball_z > self.ball_params.radius else self._on_face_now | touched
+        if self.ball_max_height > 0.0 and (self.on_dribbler.any() or self._ball_touches_robot()):
+            self.ball_max_height = self.ball_z
+
+    def _fire_kick(self, i: int, strength: float, heading: float, chip_angle: float) -> None:
+        """Robot i kicks: 3-D ball speed strength * kick_speed_max (strength capped at 1)
+        along ``heading`` (rad), lifted by ``chip_angle`` (rad, clipped to
+        [0, chip_angle_max]; 0 = flat)."""
+        rp, S = self.robot, SCALE
+        speed = min(strength, 1.0) * rp.kick_speed_max
+        h = heading
+        angle = min(max(chip_angle, 0.0), rp.chip_angle_max)
+        if angle > 0.0:
+            vh, vv = ball_flight.launch(np.array([speed]), np.array([angle]))
+            self._ball_body.linearVelocity = (float(vh[0]) * math.cos(h) * S, float(vh[0]) * math.sin(h) * S)
+            self._slide_until = math.inf
+            self._set_flight(0.0, float(vv[0]))
+        else:
+            self._ball_body.linearVelocity = (speed * math.cos(h) * S, speed * math.sin(h) * S)
+            self._launch_ball(speed)
+            if self.ball_z > 0.0 or self.ball_vz != 0.0:
+                self._set_flight(0.0, 0.0)
+        self.ball_max_height = 0.0
+        self.kick_cooldown[i] = rp.kick_recharge_s
+        self.kicks_this_step.append((i, speed))
+
+    def _armed_contact(self, armed: list[int]) -> int:
+        """The first armed robot (index order) with the ball on its face now (Box2D's
+        current positions, raw angles), or -1; never while the ball is above the bar."""
+        if self.ball_z > self.ball_params.radius:
+            return -1
+        S = SCALE
+        bp = self._ball_body.position
+        ball = np.array((bp[0] / S, bp[1] / S))
+        pos = np.array([(b.position[0] / S, b.position[1] / S) for b in (self._robot_bodies[i] for i in armed)])
+        hd = np.array([self._robot_bodies[i].angle for i in armed])
+        hit = np.flatnonzero(self.ball_on_face(pos, hd, ball))
+        return armed[int(hit[0])] if hit.size else -1
+
+    # ------------------------------------------------------------ ball in the air
+    def _set_flight(self, z: float, vz: float) -> None:
+        """Put the ball at height z (m) with vertical speed vz (m/s), a new flight."""
+        self.ball_z, self.ball_vz, self.ball_bounces = float(z), float(vz), 0
+        self.ball_max_height = max(self.ball_max_height, self.ball_z)
+        self._update_ball_filter()
+
+    def _update_ball_filter(self) -> None:
+        """The ball's fixture ignores robots exactly while it is above their height."""
+        over = self.ball_z > self.robot.height
+        if over != self._ball_over_robots and self._ball_body is not None:
+            fix = self._ball_body.fixtures[0]
+            fd = fix.filterData
+            fd.maskBits = MASK_WALLS if over else MASK_ALL
+            fix.filterData = fd
+        self._ball_over_robots = over
+
+    def _flight_substep(self) -> None:
+        """One physics sub-step of a ball in the air: height in closed form, horizontal
+        motion by Box2D without ground friction, the bounce's horizontal damping applied
+        from the touchdown on."""
+        bp, S, dt = self.ball_params, SCALE, self.sub_dt
+        fs = ball_flight.advance(np.array([self.ball_z]), np.array([self.ball_vz]), np.array([self.ball_bounces]), dt,
+                                 bp.gravity, bp.bounce_damping_z, bp.bounce_damping_xy_first,
+                                 bp.bounce_damping_xy_later, bp.min_hop_height)
+        self.ball_max_height = max(self.ball_max_height, float(fs.apex[0]))
+        self._update_ball_filter()
+        if not fs.bounced[0]:
+            self.world.Step(dt, VEL_ITERS, POS_ITERS)
+            self.ball_z, self.ball_vz = float(fs.z[0]), float(fs.vz[0])
+            self._update_ball_filter()
+            return
+        ball = self._ball_body
+        v, p = ball.linearVelocity, ball.position
+        vx, vy = v[0], v[1]
+        tt = float(fs.t_touch[0])
+        self.touchdowns.append(((p[0] + vx * tt) / S, (p[1] + vy * tt) / S))
+        eff = float(ball_flight.effective_xy_scale(fs, dt)[0])
+        ball.linearVelocity = (vx * eff, vy * eff)
+        self.world.Step(dt, VEL_ITERS, POS_ITERS)
+        v = ball.linearVelocity
+        k = float(fs.xy_factor[0]) / eff
+        ball.linearVelocity = (v[0] * k, v[1] * k)
+        self.ball_bounces += 1
+        self.ball_z, self.ball_vz = float(fs.z[0]), float(fs.vz[0])
+        if fs.landed[0]:
+            self.ball_bounces = 0
+            self._slide_until = math.inf  # after its hops the ball rolls
+        self._update_ball_filter()
+
+    def _ball_touches_robot(self) -> bool:
+        """A Box2D contact between the ball and a robot body is touching now."""
+        for edge in self._ball_body.contacts:
+            if edge.other is not self._walls_body and edge.contact.touching:
+                return True
+        return False
 
     # ----------------------------------------------------------------- helpers
     def _apply_dribblers(self, idx: list[int]) -> None:
@@ -391,6 +519,8 @@ class PhysicsWorld:
         self.ball_pos = np.array((bp[0] / S, bp[1] / S))
         self.ball_vel = np.array((ball_v[0, 0] / S, ball_v[0, 1] / S))
         self._on_face_now = self.ball_on_face(self.pos, self.heading, self.ball_pos)
+        if self.ball_z > self.ball_params.radius:  # in the air: above the dribbler bar
+            self._on_face_now = np.zeros(self.n, bool)
         self.on_dribbler = self._on_face_now
 
     def ball_on_face(self, pos: np.ndarray, heading: np.ndarray, ball_pos: np.ndarray) -> np.ndarray:
@@ -419,15 +549,24 @@ class PhysicsWorld:
         bv.setflags(write=False)
         blue = TeamState(*(a[:nb] for a in arrays))
         yellow = TeamState(*(a[nb:] for a in arrays))
-        return WorldState(t=self.t, ball_pos=bp, ball_vel=bv, blue=blue, yellow=yellow)
+        return WorldState(t=self.t, ball_pos=bp, ball_vel=bv, blue=blue, yellow=yellow, ball_height=self.ball_z,
+                          ball_vz=self.ball_vz)
 
-    def set_ball(self, pos: np.ndarray, vel: np.ndarray | None = None) -> None:
-        """Teleport the ball (referee ball placement)."""
+    def set_ball(self, pos: np.ndarray, vel: np.ndarray | None = None, z: float = 0.0, vz: float = 0.0) -> None:
+        """Teleport the ball (referee ball placement): position (m), horizontal velocity
+        (m/s), height z >= 0 (m) and vertical velocity vz (m/s; a ball above the ground
+        or rising flies). Counts as a touch for the goal rule."""
         S = SCALE
         v = np.zeros(2) if vel is None else np.asarray(vel, float)
+        if not (math.isfinite(z) and math.isfinite(vz) and z >= 0.0):
+            raise ValueError(f"set_ball: z must be finite and >= 0 and vz finite, got z={z!r}, vz={vz!r}")
         self._ball_body.position = (float(pos[0]) * S, float(pos[1]) * S)
         self._ball_body.linearVelocity = (float(v[0]) * S, float(v[1]) * S)
         self._launch_ball(float(np.hypot(*v)))
+        self.ball_max_height = 0.0
+        self._set_flight(z, vz)
+        if z > 0.0 or vz > 0.0:
+            self._slide_until = math.inf
         self._read_state()
 
     def set_robots(self, pose: np.ndarray, only: np.ndarray | None = None) -> None:
