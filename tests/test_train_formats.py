@@ -156,6 +156,9 @@ def test_a_version_2_train_state_with_a_flat_config_resumes_exactly(tmp_path: Pa
 def test_documented_module_commands_answer_help(module: str, monkeypatch, capsys) -> None:
     argv = [module, "--help"] if module != "train" else [module, "go-to-ball", "--help"]
     monkeypatch.setattr(sys, "argv", argv)
+    for name in (module, f"{module}.__main__"):  # runpy warns when the module it runs is already imported
+        if name != "train":
+            monkeypatch.delitem(sys.modules, name, raising=False)
     with pytest.raises(SystemExit) as exc:
         runpy.run_module(module, run_name="__main__", alter_sys=True)
     assert exc.value.code == 0
