@@ -299,7 +299,7 @@ def cmd_eval_task(args: argparse.Namespace) -> int:
         prepare_output_dir(args.out, "--out")
     s = evaluate_task(args.task, args.policy, episodes=args.episodes, seed=args.seed, workers=_workers(args),
                       realism=args.realism, field=args.field, actor=args.actor, out=args.out,
-                      progress=not args.quiet, backend=args.backend, address=args.address)
+                      progress=not args.quiet, backend=args.backend, address=args.address, tracker=args.tracker)
     oc = ", ".join(f"{k} {v}" for k, v in s["outcomes"].items())
     if "mean_duration_s" in s:
         lo, hi = s["mean_duration_ci95"]
@@ -533,6 +533,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="output folder for results.json and duration_hist.png, created if missing (default: none)")
     _add_backend(k, "the episodes")
     k.add_argument("--quiet", action="store_true", help="no progress bar")
+    _add_tracker_option(k)
     k.set_defaults(func=cmd_eval_task)
 
     b = sub.add_parser("bench", help="env throughput benchmark (JSON); options: ssl-marl bench --help",

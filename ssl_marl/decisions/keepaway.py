@@ -210,18 +210,15 @@ class KeepawayEnv(DecisionEnv):
     n_agents = 3
     team = "blue"
     default_option = HOLD
+    engine_observations = False  # observations from vision_state: skip the engine's per-robot pass
 
-    def __init__(self, field: Any = "div_b", realism: Any = "none", max_interval_s: float = 4.0,
-                 illegal_option: str = "raise", render_mode: str | None = None,
-                 rules: KeepawayRules | None = None, params: KeepawayParams | None = None) -> None:
+    def __init__(self, rules: KeepawayRules | None = None, params: KeepawayParams | None = None,
+                 **kwargs: Any) -> None:
         self.rules = rules or KeepawayRules()
         self.params = params or KeepawayParams()
-        super().__init__(field=field, realism=realism, max_interval_s=max_interval_s,
-                         illegal_option=illegal_option, render_mode=render_mode)
+        super().__init__(**kwargs)
         cfg = self.engine.config
         self.rp, self.bp = cfg.robot, cfg.ball
-        # this env builds its own observations: skip the engine's per-robot pass (~10 % of a tick)
-        self.engine._observations = dict
         f, rp, bp, p = self.field, self.rp, self.bp, self.params
         self.pass_tactics = [Pass(f, rp, bp, skills=p.skills, dt=self.dt) for _ in range(3)]
         side = self.rules.side_m
