@@ -361,6 +361,10 @@ def test_skill_task_env_trains_through_the_tracker():
         GoToBallEnv(tracker="yes")
     assert not isinstance(GoToBallEnv(realism="realistic").env, TrackedVisionEnv)  # skill tasks: off by default
     assert isinstance(GoToBallEnv(realism="realistic", tracker="auto").env, TrackedVisionEnv)
+    from ssl_marl.skills.vector import SkillVectorEnv
+
+    with pytest.raises(ValueError, match="tracker: not supported by the vector env"):
+        SkillVectorEnv("go-to-ball", 2, realism="realistic", tracker="auto")
 
 
 @pytest.mark.parametrize("env_id", ["ssl_marl/Pass-v0", "ssl_marl/Receive-v0"])
