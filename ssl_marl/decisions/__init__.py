@@ -1,4 +1,4 @@
-"""Decision-level multi-agent tasks (issue 12): option-level PettingZoo ParallelEnvs over
+"""Decision-level multi-agent tasks: option-level PettingZoo ParallelEnvs over
 the engine (:mod:`.base`), their benchmark policies (:mod:`.policies`) and registries.
 
 Layer: beside the runners. It uses envs, skills and plays; plays never import it.

@@ -8,7 +8,7 @@ discrete options (``option_names``) at explicit decision points, and everything 
 between (running the chosen option's tactics, the teammates' fixed behaviours, the
 opponents' hand-coded policy) is simulated at the engine's 60 Hz control rate.
 
-Step semantics (the interface of ``/work/notes/decision-interface.md``):
+Step semantics:
 
 * ``reset(seed, options) -> (obs, infos)``; ``step(actions) -> (obs, rewards,
   terminations, truncations, infos)``. All agents live for the whole episode.

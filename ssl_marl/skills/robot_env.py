@@ -13,7 +13,10 @@ and ``act(env) -> {agent: (5,) action}`` (:class:`StaticDriver`,
 robot are ignored, robots nobody drives stand still.
 
 ``ssl_marl/GoToBall-v0`` and ``ssl_marl/AimToShoot-v0`` are this wrapper over a
-one-robot env (:mod:`ssl_marl.skills.wrappers`).
+one-robot env (:mod:`ssl_marl.skills.wrappers`); ``ssl_marl/Pass-v0`` and
+``ssl_marl/Receive-v0`` over the passing tasks' env, the pass's receiver a driver
+(:mod:`ssl_marl.skills.pass_tasks`, :mod:`ssl_marl.skills.receive_task`). The vision
+tracker comes with the env (``tracker=``, :func:`~ssl_marl.envs.tracking.with_tracker`).
 
 A :class:`SkillTask` says where an episode starts (robot pose and ball, team frame),
 what the robot observes, how the task's action becomes an env action, and judges
