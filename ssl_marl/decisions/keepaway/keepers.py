@@ -15,7 +15,6 @@ to the point of a 5 x 5 grid 0.6 m inside the square that maximises
 ``min(distance to the nearest taker, 2 m) + 1.5 * min(pass-lane angle at the ball
 to the takers, pi/4) - penalties`` (within 1.2 m of the ball: -2; within 1.5 m of
 another keeper's spot: -2), re-planned every 0.2 s, keepers in index order.
-
 """
 
 from __future__ import annotations

@@ -32,7 +32,7 @@ class KeepawayParams:
         getopen_replan_s: get-open spots are re-planned this often (s).
         fetch_touch_speed: keepers' go-to-ball governor speed at contact (m/s).
         takers: the takers' policy: "press" (both go for the ball, the default) or
-            "block" (the second taker blocks a pass lane; see the module docstring).
+            "block" (the second taker blocks a pass lane; see :mod:`.takers`).
         press_m: the presser's spot, this far beyond a holding keeper's centre on the far
             side from the chaser (m; robot diameter 0.18 m + 2 cm: the ball, on the
             keeper's dribbler when it faces that way, is then pressed against the presser).

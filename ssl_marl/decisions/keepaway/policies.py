@@ -40,7 +40,7 @@ class HandcodedKeepawayParams:
             (seeds 45000-45011; the differences were within their noise).
         dist_weight: per-teammate score = dist_weight x (its distance to its nearest
             taker, m) + (the smallest angle at the holder between it and a taker, deg).
-        hold_score: None (default): when pressed always pass (the issue's rule); a number:
+        hold_score: None (default): when pressed always pass; a number:
             the original's score of holding (90), kept when no teammate scores higher.
     """
 

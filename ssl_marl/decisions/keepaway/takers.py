@@ -12,13 +12,11 @@ from the chaser (``keeper + press_m * unit(keeper - chaser)``, led by the ball's
 velocity; from farther than 0.5 m it first runs at the keeper, since the spot turns
 with the keeper too fast to chase round a wide circle), so a keeper that turns its back
 to the chaser turns the ball into the presser; otherwise it runs the go-to-ball skill
-like the chaser. ``takers = "block"`` keeps the
-earlier policy, in which the second taker blocked the most dangerous pass lane (of the
-keepers other than the one nearest the ball, the one whose lane from the ball makes the
-largest angle with the chaser, 0.15 rad hysteresis; 40 % of the way along it, at least
-0.6 m from the ball, facing the ball); a shielding keeper could then hold for the full
-60 s (docs/RESULTS.md, "Keepaway 3v2").
-
+like the chaser. With ``takers = "block"`` the second taker blocks the most dangerous
+pass lane instead (of the keepers other than the one nearest the ball, the one whose lane
+from the ball makes the largest angle with the chaser, 0.15 rad hysteresis; 40 % of the
+way along it, at least 0.6 m from the ball, facing the ball); a shielding keeper can then
+hold for the full 60 s (docs/RESULTS.md, "Keepaway 3v2").
 """
 
 from __future__ import annotations
