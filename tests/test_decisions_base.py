@@ -113,6 +113,9 @@ def test_run_episode_and_registries():
 
 
 def test_toy_passes_parallel_api_test():
+    """PettingZoo's API test (it resets once with ``options={"options": 1}``, a key no task
+    knows: the engine warns and ignores it)."""
     from pettingzoo.test import parallel_api_test
 
-    parallel_api_test(_ToyEnv(), num_cycles=30)
+    with pytest.warns(UserWarning, match=r"reset options: ignoring unknown key\(s\) \['options'\]"):
+        parallel_api_test(_ToyEnv(), num_cycles=30)

@@ -1,4 +1,4 @@
-"""Keepaway 3v2 (ssl_marl/decisions/keepaway.py, ssl_marl/envs/tasks/keepaway.py): API,
+"""Keepaway 3v2 (ssl_marl/decisions/keepaway/, ssl_marl/envs/tasks/keepaway.py): API,
 termination and scoring on constructed scenes, honest decision flags, determinism, bounds,
 bad inputs and the benchmark policies."""
 
@@ -10,8 +10,10 @@ import numpy as np
 import pytest
 
 from ssl_marl.decisions import make_decision_env, make_decision_policy
-from ssl_marl.decisions.keepaway import (HOLD, OBS_DIM, PASS1, PASS2, STATE_DIM, AlwaysHoldPolicy,
-                                         HandcodedKeepawayPolicy, KeepawayEnv, KeepawayParams)
+from ssl_marl.decisions.keepaway.env import KeepawayEnv
+from ssl_marl.decisions.keepaway.observation import OBS_DIM, STATE_DIM
+from ssl_marl.decisions.keepaway.params import HOLD, PASS1, PASS2, KeepawayParams
+from ssl_marl.decisions.keepaway.policies import AlwaysHoldPolicy, HandcodedKeepawayPolicy
 from ssl_marl.decisions.policies import RandomPolicy, run_episode
 from ssl_marl.envs.tasks.keepaway import KeepawayRules
 

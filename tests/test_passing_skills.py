@@ -11,9 +11,10 @@ import ssl_marl  # noqa: F401  (registers the ids)
 from ssl_marl.physics import BallParams, FieldGeometry, RobotParams
 from ssl_marl.physics import ball_model as bm
 from ssl_marl.skills import SkillStatus, make_skill
-from ssl_marl.skills.pass_tasks import (PassEnv, ReceiveEnv, make_task_env, pass_baseline_demos,
-                                        receive_baseline_demos, receive_feasible, skill_task_action)
+from ssl_marl.skills.pass_tasks import (PassEnv, make_task_env, pass_baseline_demos, receive_baseline_demos,
+                                        skill_task_action)
 from ssl_marl.skills.passing import LearnedPass, LearnedReceive, PassBaseline, ReceiveBaseline
+from ssl_marl.skills.receive_task import ReceiveEnv, receive_feasible
 from ssl_marl.skills.passing_features import (PASS_NAMES, RECEIVE_NAMES, expand_pass_action, pass_features,
                                               pass_kick_speed, pass_task_action, receive_features)
 

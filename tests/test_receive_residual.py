@@ -11,8 +11,9 @@ from ssl_marl.physics import BallParams, FieldGeometry, RobotParams
 from ssl_marl.skills import make_skill
 from ssl_marl.skills.checkpoint import save_actor
 from ssl_marl.skills.networks import Actor
-from ssl_marl.skills.pass_tasks import ReceiveEnv, receive_baseline_demos, skill_task_action
+from ssl_marl.skills.pass_tasks import receive_baseline_demos, skill_task_action
 from ssl_marl.skills.passing import LearnedReceive, ReceiveBaseline
+from ssl_marl.skills.receive_task import ReceiveEnv
 from ssl_marl.skills.passing_features import (RECEIVE_RESIDUAL_SCALE, RECEIVE_SPEC, RECEIVE_SPEC_RESIDUAL,
                                               receive_residual_action, receive_residual_of)
 from ssl_marl.skills.registry import get_task

@@ -153,3 +153,40 @@ def test_a_training_config_can_name_the_traffic():
     assert (moved > 0.02).any()
     with pytest.raises(ValueError, match="opponent_policy"):
         GoToBallEnv(opponent_policy="teleport")
+
+
+def test_a_task_places_other_robots_and_a_step_can_run_on():
+    """``Start.others`` puts named robots where the task says (team frame; the rest are
+    placed by the wrapper) and refuses a robot the env lacks; ``Judgement.run_on``
+    advances the env within one step until the task ends it (the pass task resolves
+    its pass so)."""
+    from ssl_marl.skills.robot_env import Judgement, Start
+
+    class _PlaceAndRun(GoToBallTask):
+        def __init__(self, others, ticks):
+            super().__init__()
+            self.others, self.ticks, self.seen_steps = others, ticks, 0
+
+        def sample_start(self, rng, options):
+            s = super().sample_start(rng, options)
+            return Start(s.robot_pose, s.ball_pos, others=self.others)
+
+        def begin_step(self, seen, robot):
+            self.seen_steps += 1
+
+        def judge(self, truth, robot, events, t):
+            j = super().judge(truth, robot, events, t)
+            self.ticks -= 1
+            return Judgement(j.terms, j.terminated, j.truncated, j.success, j.failure_reason, run_on=self.ticks > 0)
+
+    env = parallel_env(n_blue=1, n_yellow=2, field="div_b", task="free_play")
+    pose = np.array([1.0, -2.0, 0.5])
+    task = _PlaceAndRun({"yellow_1": pose}, ticks=5)
+    wrapped = RobotSkillEnv(env, "blue_0", task)
+    wrapped.reset(seed=0)
+    truth = env.world_state()
+    np.testing.assert_allclose(truth.yellow.pos[1], pose[:2], atol=1e-6)
+    _, _, _, _, info = wrapped.step(np.zeros(3, np.float32))
+    assert task.seen_steps == 1 and info["t"] == pytest.approx(5 * env.config.dt)
+    with pytest.raises(ValueError, match="not another robot"):
+        RobotSkillEnv(env, "blue_0", _PlaceAndRun({"yellow_5": pose}, 1)).reset(seed=0)

@@ -357,5 +357,45 @@ def test_skill_task_env_trains_through_the_tracker():
     np.testing.assert_allclose(obs, go_to_ball_features(env.env.vision_state("blue"), 0, env.field), rtol=1e-6)
     raw = go_to_ball_features(env.env.env.vision_state("blue"), 0, env.field)
     assert not np.allclose(obs, raw)  # the raw frame is older: the tracker predicts ahead
-    with pytest.raises(ValueError, match="tracker must be True or False"):
+    with pytest.raises(ValueError, match="tracker: expected one of"):
         GoToBallEnv(tracker="yes")
+    assert not isinstance(GoToBallEnv(realism="realistic").env, TrackedVisionEnv)  # skill tasks: off by default
+    assert isinstance(GoToBallEnv(realism="realistic", tracker="auto").env, TrackedVisionEnv)
+    from ssl_marl.skills.vector import SkillVectorEnv
+
+    with pytest.raises(ValueError, match="tracker: not supported by the vector env"):
+        SkillVectorEnv("go-to-ball", 2, realism="realistic", tracker="auto")
+
+
+@pytest.mark.parametrize("env_id", ["ssl_marl/Pass-v0", "ssl_marl/Receive-v0"])
+def test_passing_task_envs_take_the_tracker_option(env_id):
+    """Pass and receive take ``tracker=`` like the one-robot tasks: on, the robot's features
+    come from the tracker's estimate; "auto" follows the realism preset."""
+    import gymnasium as gym
+
+    import ssl_marl  # noqa: F401  (registers the ids)
+
+    env = gym.make(env_id, realism="realistic", tracker="on").unwrapped
+    assert isinstance(env.env, TrackedVisionEnv)
+    obs, _ = env.reset(seed=5)
+    for _ in range(20):
+        obs, _, term, trunc, _ = env.step(np.zeros(3, np.float32))
+        if term or trunc:
+            break
+    np.testing.assert_allclose(obs, env.task.observe(env.env.vision_state("blue"), 0), rtol=1e-6)
+    assert not isinstance(gym.make(env_id, tracker="auto").unwrapped.env, TrackedVisionEnv)
+
+
+def test_decision_tasks_read_the_tracker_under_realism():
+    """Decision task envs: ``tracker`` "auto" (default) runs the tracker exactly when
+    realism is on; "off" keeps the raw vision."""
+    from ssl_marl.decisions import make_decision_env
+
+    for task in ("keepaway", "attack-3v2"):
+        assert not isinstance(make_decision_env(task).engine, TrackedVisionEnv)
+        assert isinstance(make_decision_env(task, realism="realistic").engine, TrackedVisionEnv)
+        assert not isinstance(make_decision_env(task, realism="realistic", tracker="off").engine, TrackedVisionEnv)
+    env = make_decision_env("keepaway", realism="realistic")
+    obs, infos = env.reset(seed=1)
+    obs, *_ = env.step({a: 0 for a, i in infos.items() if i["decision"]})
+    assert env.engine.env._observations is dict  # the keepaway env builds its own observations

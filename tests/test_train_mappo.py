@@ -293,7 +293,8 @@ def test_warm_start_loads_the_actor_and_warmup_trains_only_the_critic(tmp_path: 
 def test_behaviour_cloning_imitates_a_benchmark_policy(tmp_path: Path) -> None:
     """train.mappo.bc: demonstrations of keepaway's always-hold keepers are fitted exactly, and
     the written actor plays them back greedily."""
-    from ssl_marl.decisions.keepaway import HOLD, KeepawayEnv
+    from ssl_marl.decisions.keepaway.env import KeepawayEnv
+    from ssl_marl.decisions.keepaway.params import HOLD
     from ssl_marl.decisions.learned import LearnedDecisionPolicy
     from train.mappo.bc import collect_demonstrations, fit_actor, save_bc_actor
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from .options import FIELDS, add_backend, positive_int, workers
+from .options import FIELDS, add_backend, add_tracker_option, positive_int, workers
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -35,6 +35,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                    help="output folder for results.json and duration_hist.png, created if missing (default: none)")
     add_backend(k, "the episodes")
     k.add_argument("--quiet", action="store_true", help="no progress bar")
+    add_tracker_option(k)
     k.set_defaults(handler=run)
 
 
@@ -47,7 +48,7 @@ def run(args: argparse.Namespace) -> int:
         prepare_output_dir(args.out, "--out")
     s = evaluate_task(args.task, args.policy, episodes=args.episodes, seed=args.seed, workers=workers(args),
                       realism=args.realism, field=args.field, actor=args.actor, out=args.out,
-                      progress=not args.quiet, backend=args.backend, address=args.address)
+                      progress=not args.quiet, backend=args.backend, address=args.address, tracker=args.tracker)
     oc = ", ".join(f"{k} {v}" for k, v in s["outcomes"].items())
     if "mean_duration_s" in s:
         lo, hi = s["mean_duration_ci95"]

@@ -1,4 +1,4 @@
-"""Decision-level multi-agent tasks (issue 12): option-level PettingZoo ParallelEnvs over
+"""Decision-level multi-agent tasks: option-level PettingZoo ParallelEnvs over
 the engine (:mod:`.base`), their benchmark policies (:mod:`.policies`) and registries.
 
 Layer: beside the runners. It uses envs, skills and plays; plays never import it.
@@ -6,7 +6,7 @@ Layer: beside the runners. It uses envs, skills and plays; plays never import it
 Registries (names used by ``ssl-marl eval-task`` and the trainers):
 
 * :data:`DECISION_TASKS`: task name -> factory ``(**kwargs) -> DecisionEnv``
-  ("keepaway": :class:`~ssl_marl.decisions.keepaway.KeepawayEnv`; "attack-3v2":
+  ("keepaway": :class:`~ssl_marl.decisions.keepaway.env.KeepawayEnv`; "attack-3v2":
   ``ssl_marl.decisions.attack:Attack3v2Env``).
 * :data:`HANDCODED_POLICIES`: task name -> the task's hand-coded benchmark policy class
   ("keepaway": ``HandcodedKeepawayPolicy``; "attack-3v2":
@@ -28,12 +28,12 @@ from typing import Any, Callable
 
 #: task name -> "module:DecisionEnv subclass"
 _TASK_SPECS: dict[str, str] = {
-    "keepaway": "ssl_marl.decisions.keepaway:KeepawayEnv",
+    "keepaway": "ssl_marl.decisions.keepaway.env:KeepawayEnv",
     "attack-3v2": "ssl_marl.decisions.attack:Attack3v2Env",
 }
 #: task name -> "module:hand-coded benchmark policy class" (constructor takes no required arguments)
 _HANDCODED_SPECS: dict[str, str] = {
-    "keepaway": "ssl_marl.decisions.keepaway:HandcodedKeepawayPolicy",
+    "keepaway": "ssl_marl.decisions.keepaway.policies:HandcodedKeepawayPolicy",
     "attack-3v2": "ssl_marl.decisions.attack:HandcodedAttackPolicy",
 }
 
@@ -84,7 +84,7 @@ def _always_hold(task: str, seed: int = 0, actor: str | None = None) -> Any:
     _check_task(task)
     if task != "keepaway":
         raise ValueError(f"policy 'always-hold' is a keepaway benchmark; task {task!r} has no hold option")
-    from .keepaway import AlwaysHoldPolicy
+    from .keepaway.policies import AlwaysHoldPolicy
 
     return AlwaysHoldPolicy()
 

@@ -1,4 +1,4 @@
-"""Attack 3v2 (issue 12): the ball carrier's shoot / pass / dribble decision as a PettingZoo task.
+"""Attack 3v2: the ball carrier's shoot / pass / dribble decision as a PettingZoo task.
 
 :class:`Attack3v2Env` is a :class:`~ssl_marl.decisions.base.DecisionEnv` over the
 engine with :class:`~ssl_marl.envs.tasks.attack.AttackTask` (scene and judge: spawn

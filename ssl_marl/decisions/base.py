@@ -8,7 +8,7 @@ discrete options (``option_names``) at explicit decision points, and everything 
 between (running the chosen option's tactics, the teammates' fixed behaviours, the
 opponents' hand-coded policy) is simulated at the engine's 60 Hz control rate.
 
-Step semantics (the interface of ``/work/notes/decision-interface.md``):
+Step semantics:
 
 * ``reset(seed, options) -> (obs, infos)``; ``step(actions) -> (obs, rewards,
   terminations, truncations, infos)``. All agents live for the whole episode.
@@ -40,6 +40,12 @@ replaced by the env's documented ``default_option`` (``illegal_option="default"`
 An action that is not an integer in ``[0, n_options)`` (NaN, out of range, wrong
 type) or an unknown agent name always raises ``ValueError`` naming the agent.
 
+Vision: the options' tactics, the fixed behaviours and the observations read
+``self.engine.vision_state(team)``; with ``tracker`` on (default "auto": on unless
+realism is "none", :func:`~ssl_marl.envs.tracking.resolve_tracker`) that is the vision
+tracker's estimate (:class:`~ssl_marl.envs.tracking.TrackedVisionEnv` around the
+engine), as in matches. Judges and global states read the ground truth.
+
 Seeding: ``reset(seed=s)`` seeds the engine (scene draws, realism noise) and the
 env's own generator ``self.np_random`` (for subclasses' random choices); equal seeds
 and actions give equal episodes.
@@ -61,6 +67,7 @@ from pettingzoo import ParallelEnv
 
 from ..envs.ssl_env import SSLParallelEnv
 from ..envs.tasks import Task
+from ..envs.tracking import with_tracker
 
 ILLEGAL_OPTION_MODES = ("raise", "default")
 
@@ -75,10 +82,15 @@ class DecisionEnv(ParallelEnv):
         max_interval_s: longest simulated time one step may span (s) without a decision.
         illegal_option: "raise" or "default" (see the module docstring).
         render_mode: None or "rgb_array" (the engine's renderer).
+        tracker: "auto" (default; on unless realism is "none"), "on" / True or
+            "off" / False: the vision tracker between the engine's vision and everything
+            that reads ``self.engine.vision_state`` (module docstring).
 
     Class attributes a subclass sets: ``task_name`` (registry name),
     ``option_names``, ``agent_prefix`` (agents are ``f"{agent_prefix}_{i}"``),
-    ``n_agents``, ``team`` (the learning team's colour), ``default_option``.
+    ``n_agents``, ``team`` (the learning team's colour), ``default_option``;
+    ``engine_observations`` False when the subclass builds its observations from
+    ``vision_state`` alone (the engine then skips its per-robot observation vectors).
     """
 
     metadata = {"name": "ssl_marl_decision_v0", "render_modes": ["rgb_array"], "is_parallelizable": True}
@@ -89,9 +101,10 @@ class DecisionEnv(ParallelEnv):
     n_agents: ClassVar[int] = 1
     team: ClassVar[str] = "blue"
     default_option: ClassVar[int] = 0
+    engine_observations: ClassVar[bool] = True
 
     def __init__(self, field: Any = "div_b", realism: Any = "none", max_interval_s: float = 4.0,
-                 illegal_option: str = "raise", render_mode: str | None = None) -> None:
+                 illegal_option: str = "raise", render_mode: str | None = None, tracker: Any = "auto") -> None:
         if not (isinstance(max_interval_s, (int, float)) and math.isfinite(max_interval_s) and max_interval_s > 0):
             raise ValueError(f"max_interval_s must be a positive number of seconds, got {max_interval_s!r}")
         if illegal_option not in ILLEGAL_OPTION_MODES:
@@ -105,7 +118,10 @@ class DecisionEnv(ParallelEnv):
         kwargs = dict(field=field, realism=realism, referee=False, task=self.task, render_mode=render_mode,
                       obs_max_teammates=0, obs_max_opponents=0, max_time_s=1e9)
         kwargs.update(self.engine_kwargs())
-        self.engine = SSLParallelEnv(**kwargs)
+        sim = SSLParallelEnv(**kwargs)
+        if not self.engine_observations:
+            sim._observations = dict  # ~10 % of a tick spared
+        self.engine = with_tracker(sim, tracker)
         self.field = self.engine.field
         self.dt = float(self.engine.config.dt)
         self.possible_agents = [f"{self.agent_prefix}_{i}" for i in range(self.n_agents)]

@@ -8,7 +8,7 @@ agents and returns its summary.
 
 Built in here: :class:`RandomPolicy` (uniform over the legal options). The keepaway
 benchmarks (:class:`AlwaysHoldPolicy`, :class:`HandcodedKeepawayPolicy`) live in
-:mod:`ssl_marl.decisions.keepaway` and are re-exported here; the attack benchmark
+:mod:`ssl_marl.decisions.keepaway.policies`; the attack benchmark
 ``HandcodedAttackPolicy`` lives in :mod:`ssl_marl.decisions.attack`.
 """
 
@@ -103,12 +103,4 @@ def run_episode(env: Any, policy: DecisionPolicy, seed: int | None = None, optio
     return out
 
 
-def __getattr__(name: str):  # the keepaway benchmarks, without importing keepaway eagerly
-    if name in ("AlwaysHoldPolicy", "HandcodedKeepawayPolicy", "HandcodedKeepawayParams"):
-        from . import keepaway
-
-        return getattr(keepaway, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-__all__ = ["DecisionPolicy", "RandomPolicy", "run_episode", "AlwaysHoldPolicy", "HandcodedKeepawayPolicy"]
+__all__ = ["DecisionPolicy", "RandomPolicy", "run_episode"]

@@ -58,14 +58,8 @@ def _run_episodes(args: tuple) -> list[dict]:
     from ..skills import make_skill
     from ..skills.registry import get_task
 
-    env_kwargs = dict(env_kwargs)
-    tracked = env_kwargs.pop("tracker", False)
-    env = _make_env(task, env_kwargs)
+    env = _make_env(task, env_kwargs)  # tracker=True: the skill reads tracked, latency-compensated vision
     task_def = get_task(task)
-    if tracked:  # the skill reads tracked, latency-compensated vision (env.seen() -> inner vision_state)
-        from ..envs.tracking import TrackedVisionEnv
-
-        env.env = TrackedVisionEnv(env.env)
     skill = make_skill(_skill_name(task), kind, env.field, env.robot_params, env.ball_params, checkpoint=checkpoint)
     out = []
     for i in indices:

@@ -58,28 +58,29 @@ def t_interval(values: list[float], conf: float = 0.95) -> tuple[float, float]:
     return (m - half, m + half)
 
 
-def _env_and_policy(task: str, policy: str, actor: str | None, realism: str, field: str):
+def _env_and_policy(task: str, policy: str, actor: str | None, realism: str, field: str, tracker: Any):
     from ..decisions import make_decision_env, make_decision_policy
 
-    key = (task, policy, actor, realism, field)
+    key = (task, policy, actor, realism, field, tracker)
     got = _CACHE.get(key)
     if got is None:
         if policy == "learned":
             import torch
 
             torch.set_num_threads(1)
-        env = make_decision_env(task, field=field, realism=realism)
+        env = make_decision_env(task, field=field, realism=realism, tracker=tracker)
         pol = make_decision_policy(policy, task, seed=0, actor=actor)
         got = _CACHE[key] = (env, pol)
     return got
 
 
 def run_task_episode(index: int, seed: int, task: str, policy: str, actor: str | None = None,
-                     realism: str = "none", field: str = "div_b") -> dict:
-    """Episode ``index`` (reset seed ``seed + index``); returns its summary (deterministic)."""
+                     realism: str = "none", field: str = "div_b", tracker: Any = "auto") -> dict:
+    """Episode ``index`` (reset seed ``seed + index``); returns its summary (deterministic).
+    ``tracker``: see :func:`~ssl_marl.envs.tracking.resolve_tracker`."""
     from ..decisions.policies import run_episode
 
-    env, pol = _env_and_policy(task, policy, actor, realism, field)
+    env, pol = _env_and_policy(task, policy, actor, realism, field, tracker)
     t0 = time.perf_counter()
     r = run_episode(env, pol, seed=seed + index)
     wall = time.perf_counter() - t0
@@ -160,7 +161,7 @@ def write_task_results(results: dict, out: str | os.PathLike) -> None:
 def evaluate_task(task: str, policy: str, episodes: int = 1000, seed: int | None = None, workers: int | None = 1,
                   realism: str = "none", field: str = "div_b", actor: str | None = None,
                   out: str | os.PathLike | None = None, progress: bool = True, backend: str = "local",
-                  address: str | None = None) -> dict:
+                  address: str | None = None, tracker: Any = "auto") -> dict:
     """Evaluate ``policy`` on ``task`` (module docstring); returns the results dict (also
     written to ``out/results.json`` with ``out/duration_hist.png`` when ``out`` is given).
 
@@ -174,6 +175,9 @@ def evaluate_task(task: str, policy: str, episodes: int = 1000, seed: int | None
         field: "div_b" or "div_a".
         actor: a learned decision actor file (policy "learned"; default the shipped one).
         backend, address: see :mod:`ssl_marl.runners.pool`.
+        tracker: "auto" (on unless realism is "none"), "on" or "off": the options'
+            tactics, the fixed behaviours and the observations read
+            :class:`~ssl_marl.envs.tracking.TrackedVisionEnv`'s tracked state.
     """
     from ..decisions import DECISION_POLICIES, DECISION_TASKS, make_decision_policy
 
@@ -193,9 +197,13 @@ def evaluate_task(task: str, policy: str, episodes: int = 1000, seed: int | None
         raise ValueError(f"field must be 'div_a' or 'div_b', got {field!r}")
     seed = DEFAULT_SEEDS[task] if seed is None else int(seed)
     validate_backend(backend, workers, address)
+    from ..envs.tracking import resolve_tracker
+
+    use_tracker = resolve_tracker(tracker, realism)
     make_decision_policy(policy, task, seed=0, actor=actor)  # fail here (missing module / actor), not in workers
     t0 = time.perf_counter()
-    jobs = [(chunk, seed, task, policy, actor, realism, field) for chunk in chunk_indices(episodes, workers)]
+    jobs = [(chunk, seed, task, policy, actor, realism, field, use_tracker)
+            for chunk in chunk_indices(episodes, workers)]
     res = [r for chunk in run_pool(_chunk_worker, jobs, workers, f"eval-task {task} ({policy})", progress,
                                    unit="ep", backend=backend, address=address, size=len, total=episodes)
            for r in chunk]
@@ -210,7 +218,8 @@ def evaluate_task(task: str, policy: str, episodes: int = 1000, seed: int | None
                   "ticks_per_s": sum(r["ticks"] for r in res) / worker_wall if worker_wall > 0 else None,
                   "note": "per worker process (episode wall time summed over workers); not deterministic"}
     results = task_results(task, policy, eps, seed=seed, actor=actor, throughput=throughput,
-                           config={"realism": realism, "field": field, "workers": workers, "backend": backend})
+                           config={"realism": realism, "tracker": use_tracker, "field": field, "workers": workers,
+                                   "backend": backend})
     if out is not None:
         write_task_results(results, out)
     return results

@@ -1,6 +1,6 @@
 """State vectors, action mappings and rewards of the pass and receive skills, as pure
-functions shared by the Gymnasium tasks (:mod:`ssl_marl.skills.pass_tasks`) and the
-deployed skills (:mod:`ssl_marl.skills.passing`).
+functions shared by the Gymnasium tasks (:mod:`ssl_marl.skills.pass_tasks`,
+:mod:`ssl_marl.skills.receive_task`) and the deployed skills (:mod:`ssl_marl.skills.passing`).
 
 Conventions as in :mod:`ssl_marl.skills.features`: a :class:`WorldState` in the robot's
 team frame and the robot's index in that team; metres, seconds, radians; *robot

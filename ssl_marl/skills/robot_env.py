@@ -13,7 +13,10 @@ and ``act(env) -> {agent: (5,) action}`` (:class:`StaticDriver`,
 robot are ignored, robots nobody drives stand still.
 
 ``ssl_marl/GoToBall-v0`` and ``ssl_marl/AimToShoot-v0`` are this wrapper over a
-one-robot env (:mod:`ssl_marl.skills.wrappers`).
+one-robot env (:mod:`ssl_marl.skills.wrappers`); ``ssl_marl/Pass-v0`` and
+``ssl_marl/Receive-v0`` over the passing tasks' env, the pass's receiver a driver
+(:mod:`ssl_marl.skills.pass_tasks`, :mod:`ssl_marl.skills.receive_task`). The vision
+tracker comes with the env (``tracker=``, :func:`~ssl_marl.envs.tracking.with_tracker`).
 
 A :class:`SkillTask` says where an episode starts (robot pose and ball, team frame),
 what the robot observes, how the task's action becomes an env action, and judges
@@ -35,6 +38,7 @@ from gymnasium.utils import EzPickle
 
 from ..envs.observation import clip_to_bounds
 from ..envs.ssl_env import SSLParallelEnv
+from ..envs.tracking import with_tracker
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState, to_team_frame, wrap_angle
@@ -104,16 +108,24 @@ class SkillDriver:
 @dataclass(frozen=True)
 class Start:
     """An episode's start in the controlled robot's team frame: pose (x, y m, heading
-    rad), ball position (m) and velocity (m/s)."""
+    rad), ball position (m) and velocity (m/s), and the poses of other robots the task
+    places itself (agent name -> (x, y, heading), team frame; the wrapper places the
+    rest)."""
 
     robot_pose: np.ndarray
     ball_pos: np.ndarray
     ball_vel: np.ndarray = field(default_factory=lambda: np.zeros(2))
+    others: dict[str, np.ndarray] = field(default_factory=dict)
 
 
 @dataclass
 class Judgement:
-    """One step's verdict: named reward terms, episode end and outcome, extra info."""
+    """One step's verdict: named reward terms, episode end and outcome, extra info.
+
+    ``run_on``: the step is not over yet: the wrapper advances the env once more (the
+    drivers' actions and the task's ``env_action`` of the same task action) and judges
+    again, until a judgement without ``run_on`` or an episode end; the step returns the
+    last judgement (e.g. a pass resolved within its kick step)."""
 
     terms: dict[str, float]
     terminated: bool = False
@@ -121,6 +133,7 @@ class Judgement:
     success: bool = False
     failure_reason: str | None = None
     info: dict[str, Any] = field(default_factory=dict)
+    run_on: bool = False
 
 
 class SkillTask:
@@ -143,6 +156,9 @@ class SkillTask:
 
     def begin(self) -> None:
         """A new episode starts (clear per-episode state)."""
+
+    def begin_step(self, seen: WorldState, robot: int) -> None:
+        """A step starts: what the robot sees before its action is applied (team frame)."""
 
     def observe(self, seen: WorldState, robot: int) -> np.ndarray:
         raise NotImplementedError
@@ -180,7 +196,8 @@ class RobotSkillEnv(gymnasium.Env):
         others_placement: "free": every other robot at a uniformly random free spot
             (0.2 m inside the lines, 0.3 m from the robot, the ball and each other) with a
             random heading, drawn after the task's start; "env": where the env's own task
-            puts them on reset (e.g. the match's kickoff formation).
+            puts them on reset (e.g. the match's kickoff formation). Robots in the
+            start's ``others`` stand where the task puts them either way.
     """
 
     metadata = {"render_modes": ["rgb_array", "human"], "render_fps": 60}
@@ -236,9 +253,14 @@ class RobotSkillEnv(gymnasium.Env):
         super().reset(seed=seed)
         start = self.task.sample_start(self.np_random, dict(options or {}))
         robots = {self.agent: tuple(team_to_field_pose(start.robot_pose, self.team))}
+        for other, pose in start.others.items():
+            if other not in self.others:
+                raise ValueError(f"start: {other!r} is not another robot of the env (others: {self.others})")
+            robots[other] = tuple(team_to_field_pose(pose, self.team))
         if self.others_placement == "free":
             taken = [np.asarray(start.robot_pose[:2]), np.asarray(start.ball_pos)]
-            for other in self.others:
+            taken += [np.asarray(pose[:2]) for pose in start.others.values()]
+            for other in (o for o in self.others if o not in start.others):
                 p = self.field.random_free_point(self.np_random, 0.2, taken, 0.3)
                 taken.append(p)
                 pose = (p[0], p[1], self.np_random.uniform(-math.pi, math.pi))
@@ -254,16 +276,21 @@ class RobotSkillEnv(gymnasium.Env):
 
     def step(self, action):
         a = check_action(action, self.action_space.shape[0])
-        acts = {}
-        for d in self.drivers:
-            acts.update(d.act(self.env))
-        acts[self.agent] = self.task.env_action(a)
-        acts = {k: v for k, v in acts.items() if k in self.env.agents}
-        _, _, term, trunc, infos = self.env.step(acts)
-        events = infos[self.agent]["events"]
-        j = self.task.judge(self.truth(), self.robot, events, self.t)
+        self.task.begin_step(self.seen(), self.robot)
+        while True:
+            acts = {}
+            for d in self.drivers:
+                acts.update(d.act(self.env))
+            acts[self.agent] = self.task.env_action(a)
+            acts = {k: v for k, v in acts.items() if k in self.env.agents}
+            _, _, term, trunc, infos = self.env.step(acts)
+            events = infos[self.agent]["events"]
+            j = self.task.judge(self.truth(), self.robot, events, self.t)
+            env_ended = term[self.agent] or trunc[self.agent]
+            if not j.run_on or j.terminated or j.truncated or env_ended:
+                break
         terminated, truncated, success, reason = j.terminated, j.truncated, j.success, j.failure_reason
-        if not (terminated or truncated) and (term[self.agent] or trunc[self.agent]):
+        if not (terminated or truncated) and env_ended:
             truncated, reason = True, "env_ended"  # the surrounding env's episode ended first
         info: dict[str, Any] = {"reward_terms": j.terms, "t": self.t, **j.info}
         if terminated or truncated:
@@ -295,26 +322,23 @@ class OneRobotSkillEnv(RobotSkillEnv, EzPickle):
     go-to-ball, and ``traffic="module:function"`` adds drivers built by
     ``function(env)`` (e.g. ``"ssl_marl.plays.team:stp_traffic"``: STP teams).
 
-    ``tracker=True``: the robot reads tracked, latency-compensated vision
+    ``tracker``: "on" / True: the robot reads tracked, latency-compensated vision
     (:class:`~ssl_marl.envs.tracking.TrackedVisionEnv` around the env), as deployed skills
     do under realism; so a skill can be trained through the tracker it will run behind
-    (with ``realism="randomized"``: through its estimates under randomised conditions)."""
+    (with ``realism="randomized"``: through its estimates under randomised conditions).
+    "off" / False (default): raw vision; "auto": on unless realism is "none"
+    (:func:`~ssl_marl.envs.tracking.resolve_tracker`)."""
 
     def __init__(self, task: SkillTask, field: str = "div_b", n_opponents: int = 0, opponent_policy: str = "static",
                  n_teammates: int = 0, traffic: str | None = None, realism: Any = "none", realtime: bool = False,
-                 render_mode: str | None = None, tracker: bool = False, **env_kwargs: Any) -> None:
+                 render_mode: str | None = None, tracker: Any = False, **env_kwargs: Any) -> None:
         if opponent_policy not in ("static", "chase"):
             raise ValueError(f"opponent_policy must be 'static' or 'chase', got {opponent_policy!r}")
         env = SSLParallelEnv(n_blue=1 + n_teammates, n_yellow=n_opponents, field=field, realism=realism,
                              realtime=realtime, task="free_play", render_mode=render_mode,
                              obs_max_teammates=max(n_teammates, 0), obs_max_opponents=max(n_opponents, 0),
                              **env_kwargs)
-        if not isinstance(tracker, bool):
-            raise ValueError(f"tracker must be True or False, got {tracker!r}")
-        if tracker:
-            from ..envs.tracking import TrackedVisionEnv
-
-            env = TrackedVisionEnv(env)
+        env = with_tracker(env, tracker)
         drivers: list[RobotDriver] = []
         if n_opponents and opponent_policy == "chase":
             from .baseline import GoToBallBaseline

@@ -31,6 +31,7 @@ from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
 from ..envs.batched_env import BatchedSSLEnv
+from ..envs.tracking import resolve_tracker
 from .batched_features import (aim_to_shoot_features_batch, aim_to_shoot_reward_batch, dribbler_ball_distance_batch,
                                go_to_ball_features_batch, go_to_ball_reward_batch)
 from .features import aim_to_shoot_features, go_to_ball_features
@@ -55,6 +56,8 @@ class SkillVectorEnv(VectorEnv):
         for name in ("realtime", "render_mode"):
             if task_kwargs.get(name):
                 raise ValueError(f"{name}: not supported by the vector env (use the single task env)")
+        if resolve_tracker(task_kwargs.get("tracker", False), task_kwargs.get("realism", "none")):
+            raise ValueError("tracker: not supported by the vector env (use the single task env)")
         if task_kwargs.get("opponent_policy", "static") != "static":
             raise ValueError("opponent_policy: only 'static' opponents are supported by the vector env")
         self.task = task

@@ -34,29 +34,6 @@ from ..actions import ACTION_DIM
 from .params import TrackerParams
 from .tracker import VisionTracker
 
-TRACKER_MODES = ("auto", "on", "off")
-
-
-def resolve_tracker(mode: Any, realism: Any) -> bool:
-    """Whether to run the tracker: ``mode`` "on", "off", True/False, or "auto"/None =
-    on whenever the realism preset is not "none" (the tracker is off only when realism
-    is off and it is asked to be)."""
-    if isinstance(mode, bool):
-        return mode
-    if mode is None or mode == "auto":
-        from ..config import RealismConfig
-
-        if isinstance(realism, RealismConfig):
-            return realism.enabled
-        if isinstance(realism, str):
-            return RealismConfig.preset(realism).enabled
-        return RealismConfig(**dict(realism)).enabled
-    if mode == "on":
-        return True
-    if mode == "off":
-        return False
-    raise ValueError(f"tracker: expected one of {TRACKER_MODES} or a bool, got {mode!r}")
-
 
 class TrackedVisionEnv:
     """An SSL env whose ``vision_state(team)`` is tracked and latency-compensated.
@@ -162,8 +139,3 @@ def _to_field(ws: WorldState) -> WorldState:
     flipped = to_team_frame(replace(ws, frame="field"), "yellow")
     return replace(flipped, frame="field")
 
-
-def with_tracker(env: Any, mode: Any = "auto", params: TrackerParams | None = None) -> Any:
-    """``env`` wrapped in :class:`TrackedVisionEnv` if :func:`resolve_tracker` says so
-    for ``mode`` and the env's realism, else ``env`` itself."""
-    return TrackedVisionEnv(env, params) if resolve_tracker(mode, env.config.realism) else env

@@ -1,5 +1,5 @@
 """receive: intercept a moving ball and bring it under control on the dribbler, held
-for 0.5 s (issue 11).
+for 0.5 s.
 
 Two action forms (registry action mappings, same 11-value state): ``direct``
 (``receive/v1``: the actor's (vx, vy, omega) is the action) and ``residual``
@@ -40,7 +40,7 @@ SKILL = register(SkillDef(
     actor=_ACTOR if _ACTOR.exists() else None,
     task=SkillTaskDef(
         env_id="ssl_marl/Receive-v0",
-        entry_point="ssl_marl.skills.pass_tasks:ReceiveEnv",
+        entry_point="ssl_marl.skills.receive_task:ReceiveEnv",
         features=receive_features,  # (world, robot, robot_params, ball_params)
         feature_names=RECEIVE_NAMES,
         action_names=("vx", "vy", "omega"),
@@ -54,5 +54,5 @@ SKILL = register(SkillDef(
         drive=_drive,
     ),
     reference={"learned": 0.95},
-    reference_source="issue 11 target (success rate over 1000 episodes); no paper figure",
+    reference_source="the project's target (success rate over 1000 episodes); no paper figure",
 ))
