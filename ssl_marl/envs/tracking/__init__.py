@@ -1,6 +1,6 @@
 """Vision tracking: Kalman filters per robot and for the ball, latency compensation
 through the sent commands, ball-on-dribbler inference and outlier gates, as SSL
-teams run between their vision and their AI (``shared/reference/tracking.md``).
+teams run between their vision and their AI (docs/references.md, "Vision and tracking").
 
 * :class:`TrackerParams`: every parameter with its source.
 * :class:`VisionTracker`: one team's tracker over vision frames and sent commands.

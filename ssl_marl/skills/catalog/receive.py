@@ -1,5 +1,5 @@
 """receive: intercept a moving ball and bring it under control on the dribbler, held
-for 0.5 s (issue 11).
+for 0.5 s.
 
 Two action forms (registry action mappings, same 11-value state): ``direct``
 (``receive/v1``: the actor's (vx, vy, omega) is the action) and ``residual``
@@ -54,5 +54,5 @@ SKILL = register(SkillDef(
         drive=_drive,
     ),
     reference={"learned": 0.95},
-    reference_source="issue 11 target (success rate over 1000 episodes); no paper figure",
+    reference_source="ssl_marl's target for a learned receive (success rate over 1000 episodes, docs/RESULTS.md); the paper has no receive skill",
 ))
