@@ -3,8 +3,9 @@
     python examples/train_skill_curve.py [--out runs/example_gtb] [--samples 3000]
 
 A deliberately tiny run (small networks, a few thousand samples: under a minute on
-one CPU core) to show the workflow; the shipped actor took 500,000 samples
-(``ssl-marl train go-to-ball --seed 0 --out runs/gtb``, see docs/RESULTS.md). The
+one CPU core) to show the workflow; the shipped actor took 380,006 samples
+(``ssl-marl train go-to-ball --config train/configs/go_to_ball_both.json --seed 0``,
+see ``ssl_marl/skills/pretrained/MANIFEST.md``). The
 same run from the command line::
 
     ssl-marl train go-to-ball --seed 0 --out runs/example_gtb --samples 3000 \\

@@ -1,5 +1,7 @@
 """ssl_marl: RoboCup Small Size League full-field simulator (Box2D, PettingZoo),
-the paper's skills as Gymnasium tasks, learned and hand-coded skills, and STP.
+the skills of *Learning Skills for Small Size League RoboCup* (D. Schwab, Y. Zhu and
+M. Veloso, RoboCup 2018; "the paper") as Gymnasium tasks, learned and hand-coded
+skills, STP plays and learned team decisions. Sources: docs/references.md.
 
 Importing the package registers the task of every registered skill with Gymnasium
 (``ssl_marl/GoToBall-v0``, ``ssl_marl/AimToShoot-v0``; see :mod:`ssl_marl.skills.registry`).

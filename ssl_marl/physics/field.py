@@ -4,8 +4,8 @@ Frame: the *field frame* has its origin at the centre mark, +x towards the
 goal that the blue team attacks (yellow's goal is at +x, blue's own goal at -x),
 +y to the left when looking along +x. All lengths in metres.
 
-Sources: SSL rules 2025 (playing area, goal, defense area, boundary), see
-``shared/reference/ssl_facts.md``.
+Sources: SSL rules, "Playing Environment" > "Field Setup" (playing area, goal, defense
+area, boundary); docs/references.md, "SSL rules".
 """
 
 from __future__ import annotations

@@ -1,16 +1,18 @@
 """Robot and ball physical parameters (SI units), one frozen dataclass each.
 
-Defaults and their sources (``shared/reference/ssl_facts.md``):
+Defaults and their sources (docs/references.md, "SSL rules", "Robot and ball figures",
+"Ball motion models"):
 
-* Robot radius 0.09 m with a flat front face 0.08 m from the centre (rules: fits
-  a 0.18 m cylinder; typical dribbler face ~0.08 m wide at ~0.08 m).
+* Robot radius 0.09 m with a flat front face 0.08 m from the centre (SSL rules,
+  "Robots" > "Shape": fits a 0.18 m cylinder; typical dribbler face ~0.08 m wide
+  at ~0.08 m).
 * Mass 2.4 kg (rSim 2.4; range 1.5-2.8 across grSim / Sumatra / ER-Force).
 * Top speed 3.0 m/s (real teams 2.2-3.2, simulators 3-5); acceleration
   3.0 m/s^2, braking 6.0 m/s^2 (ranges 1.5-4 and up to 6).
 * Angular speed 10 rad/s (simulators 10-40: we take the low end, so that the
   dribbler can be lost by spinning at full rate, as the paper reports),
   angular acceleration 50 rad/s^2.
-* Kick cap 6.5 m/s (SSL rule cap on ball speed); recharge 0.5 s (our choice;
+* Kick cap 6.5 m/s (SSL rules, "Ball Speed"); recharge 0.5 s (our choice;
   real kicker capacitors recharge in ~0.5-3 s, grSim has none).
 * Ball: radius 0.0215 m, 0.046 kg (golf ball); two-phase deceleration from
   ER-Force's simulator: sliding -3.9 m/s^2 until the speed falls to 0.69 of

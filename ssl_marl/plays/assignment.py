@@ -2,8 +2,8 @@
 
 Solver: ``scipy.optimize.linear_sum_assignment`` (the Hungarian-family optimal
 solver every scientific Python install has; scipy is the standard, well-tested
-implementation, already a project dependency). Modern SSL teams solve the role
-assignment optimally per priority tier (docs/references.md, "Role assignment").
+implementation, a project dependency). SSL teams solve the role assignment
+optimally per priority tier (docs/references.md, "Role assignment").
 
 Rules of :func:`assign`:
 
@@ -24,8 +24,9 @@ Rules of :func:`assign`:
    when the tier has more roles than free robots (then it drops the roles whose
    emptiness costs least).
 5. **Stickiness**: the previous holder of a role (``previous``) gets its cost
-   lowered by ``stickiness`` (hysteresis; CMDragons used ~0.3 s), so near-ties do not
-   make roles flap between robots.
+   lowered by ``stickiness`` (hysteresis; the CMDragons used ~0.3 s:
+   docs/references.md, "Role assignment"), so near-ties do not make roles flap
+   between robots.
 
 Surplus robots (more robots than roles) are returned in ``unassigned``.
 """

@@ -1,5 +1,9 @@
 """The paper's skill state vectors and rewards as pure functions.
 
+The paper: D. Schwab, Y. Zhu and M. Veloso, *Learning Skills for Small Size League
+RoboCup*, RoboCup 2018 (LNCS 11374), section 4.3 (states, actions, rewards,
+terminations of go-to-ball and aim-to-shoot).
+
 Shared by the Gymnasium training wrappers and the deployed skills, so training
 and deployment can never disagree. Every function takes a :class:`WorldState`
 in the robot's *team frame* (``world.frame`` is the team; opponent goal at +x)

@@ -5,7 +5,7 @@
   body-frame velocity rotated by the heading, capped at ``max_speed``, reached with
   at most ``max_accel`` (speeding up) or ``max_brake`` (slowing down) per second;
   omega with at most ``max_alpha``). Returned as the acceleration the command
-  implies: ER-Force's control input (``tracking.md`` section 1).
+  implies: ER-Force's control input (docs/references.md, "Vision and tracking").
 * :func:`ball_deceleration`: the two-phase (slide, then roll) deceleration of
   :class:`ssl_marl.physics.params.BallParams`.
 * :func:`face_geometry`: where a ball lies relative to robots' dribbler faces.

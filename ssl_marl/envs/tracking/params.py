@@ -1,6 +1,6 @@
 """Tracker parameters: one frozen dataclass, every number with its source.
 
-Sources (``shared/reference/tracking.md``, figures read in public team code):
+Sources (docs/references.md, "Vision and tracking", which names each repository and file):
 [S] TIGERs Mannheim's Sumatra vision filter, [E] ER-Force's ``amun`` tracking,
 [R] RoboTeam Twente's observer, [U] UBC Thunderbots' ball filter. "(env)" marks a
 number taken from this project's simulator so that the tracker's models match it.

@@ -8,7 +8,7 @@ time) and the commands the team sent (normalised (n, 5) actions, see
 execute it). What it produces: a :class:`~ssl_marl.physics.state.WorldState` of the
 same type and frame, predicted to the time the next command will start to act.
 
-How (``shared/reference/tracking.md``; parameters in :class:`.TrackerParams`):
+How (docs/references.md, "Vision and tracking"; parameters in :class:`.TrackerParams`):
 
 * one filter per robot, [x, y, vx, vy] and [theta, omega] (TIGERs' split), with the
   acceleration implied by the sent commands as control input for the team's own

@@ -40,7 +40,7 @@ SKILL = register(SkillDef(
     actor=_ACTOR if _ACTOR.exists() else None,
     task=SkillTaskDef(
         env_id="ssl_marl/Receive-v0",
-        entry_point="ssl_marl.skills.receive_task:ReceiveEnv",
+        entry_point="ssl_marl.skills.pass_tasks:ReceiveEnv",
         features=receive_features,  # (world, robot, robot_params, ball_params)
         feature_names=RECEIVE_NAMES,
         action_names=("vx", "vy", "omega"),
@@ -54,5 +54,5 @@ SKILL = register(SkillDef(
         drive=_drive,
     ),
     reference={"learned": 0.95},
-    reference_source="the project's target (success rate over 1000 episodes); no paper figure",
+    reference_source="ssl_marl's target for a learned receive (success rate over 1000 episodes, docs/RESULTS.md); the paper has no receive skill",
 ))
