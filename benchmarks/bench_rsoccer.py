@@ -6,7 +6,7 @@ rSoccer (``rsoccer-gym``, with its rSim/ODE simulator ``rc-robosim``) installs o
 Python 3.10; run this script with such a venv (see docs/BENCHMARKS.md, "rSoccer
 comparison"). Without rSoccer it measures ssl_marl alone and says so.
 
-Three configurations, as in issue 14, each alternating round by round between the
+Three configurations, each alternating round by round between the
 systems (median over rounds reported):
 
 ==========  ====================================================  ==========================

@@ -63,7 +63,7 @@ WALL = ("wall_time_s", "act_time_ms", "wall_time_s_total")
 
 
 def _has_tracker_option() -> bool:
-    """True when this checkout's CLI has ``--tracker`` (issue 13): realistic runs are then
+    """True when this checkout's CLI has ``--tracker``: realistic runs are then
     recorded with ``--tracker off``, the behaviour of checkouts without a tracker."""
     helptext = subprocess.run([sys.executable, "-m", "ssl_marl.cli", "eval-skill", "--help"], check=True,
                               capture_output=True, text=True).stdout

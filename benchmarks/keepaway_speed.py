@@ -1,4 +1,4 @@
-"""Per-CPU throughput of the keepaway decision env (issue 12): control ticks, simulated
+"""Per-CPU throughput of the keepaway decision env: control ticks, simulated
 seconds and decisions per CPU-second (``time.process_time``, so a shared machine's load
 does not enter), hand-coded keepers, and the engine alone for comparison.
 

@@ -1,4 +1,4 @@
-"""Attack 3v2 (issue 12): the task's judge on constructed scenes, decision points, the hand-coded
+"""Attack 3v2: the task's judge on constructed scenes, decision points, the hand-coded
 policy, determinism, the shared features, the passing play's decider hook and the CLI's
 --blue-decision errors."""
 

@@ -1,4 +1,4 @@
-"""Training across env variants (issue 13: one go-to-ball actor for both divisions):
+"""Training across env variants (one go-to-ball actor for both divisions):
 the concatenated vector env and the trainer's ``env_variants``."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Domain randomisation (issue 13): draws within the documented ranges, reproducible under
+"""Domain randomisation: draws within the documented ranges, reproducible under
 the env seed, different across episodes, and applied by the env (measured)."""
 
 import math
@@ -35,7 +35,7 @@ def test_draws_lie_in_the_documented_ranges_and_cover_them():
 
 
 def test_documented_ranges_match_the_sources():
-    # the numbers the module docstring cites (ssl_facts.md / tracking.md)
+    # the numbers the module docstring cites (docs/references.md, "Domain randomisation")
     assert R.max_speed == (2.2, 3.2) and R.max_accel == (1.5, 4.0)
     assert R.slide_decel[0] <= 2.79 and R.slide_decel[1] >= 3.9  # ER-Force real field .. simulator
     assert R.roll_decel[0] <= 0.26 and R.roll_decel[1] >= 0.35  # TIGERs .. ER-Force

@@ -168,7 +168,7 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
     stats = MatchStats()
     from ..plays.stats import MatchStatsTracker
 
-    pass_stats = MatchStatsTracker(geom, env.config.ball)  # passes, interceptions, shots (issue 11)
+    pass_stats = MatchStatsTracker(geom, env.config.ball)  # passes, interceptions, shots
     bar = None
     if progress:
         from tqdm.auto import tqdm
