@@ -42,7 +42,8 @@ from ssl_marl.envs import SSLParallelEnv  # noqa: E402
 from ssl_marl.envs.batched_env import BatchedSSLEnv  # noqa: E402
 from ssl_marl.io import atomic_write_json  # noqa: E402
 from ssl_marl.physics import body_memory as bm  # noqa: E402
-from ssl_marl.physics.world import POS_ITERS, SCALE, VEL_ITERS, PhysicsWorld  # noqa: E402
+from ssl_marl.physics.units import POS_ITERS, SCALE, VEL_ITERS  # noqa: E402
+from ssl_marl.physics.world import PhysicsWorld  # noqa: E402
 
 CONFIGS = {"1v0_div_b": dict(n_blue=1, n_yellow=0, field="div_b"),
            "6v6_div_b": dict(n_blue=6, n_yellow=6, field="div_b"),

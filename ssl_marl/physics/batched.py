@@ -36,7 +36,8 @@ from . import body_memory as bm
 from .field import FieldGeometry
 from .params import BallParams, RobotParams
 from .state import TeamState, WorldState, wrap_angle
-from .world import _FACE_PENETRATION_TOL, POS_ITERS, SCALE, VEL_ITERS, PhysicsWorld, cap_velocities
+from .units import _FACE_PENETRATION_TOL, POS_ITERS, SCALE, VEL_ITERS
+from .world import PhysicsWorld, cap_velocities
 
 
 _R19 = np.arange(19)

@@ -43,22 +43,12 @@ import math
 import Box2D
 import numpy as np
 
-from . import ball_flight
 from .field import FieldGeometry
 from .params import BallParams, RobotParams
 from .state import TeamState, WorldState, wrap_angle
 
-SCALE = 10.0  # Box2D units per metre
-VEL_ITERS = 8
-POS_ITERS = 3
-
-# Each physics sub-step the ball's distance to a face must be at least this far
-# "inside" to count as touching (the polygon skin and solver slop are ~1 mm).
-_FACE_PENETRATION_TOL = 0.01
-
-# Box2D collision categories: the ball in flight above the robots collides with walls only.
-CAT_WALL, CAT_ROBOT, CAT_BALL = 0x0001, 0x0002, 0x0004
-MASK_ALL, MASK_WALLS = 0xFFFF, CAT_WALL
+from .units import _FACE_PENETRATION_TOL, CAT_BALL, CAT_ROBOT, POS_ITERS, SCALE, VEL_ITERS
+from .world_ball import BallMechanics
 
 
 def cap_velocities(vel: np.ndarray, omega: np.ndarray | None, v_cap: float, w_cap: float = math.inf):
@@ -83,7 +73,7 @@ def cap_velocities(vel: np.ndarray, omega: np.ndarray | None, v_cap: float, w_ca
     return vel, omega, changed
 
 
-class PhysicsWorld:
+class PhysicsWorld(BallMechanics):
     """Box2D simulation of one SSL field with robots and one ball.
 
     Robots are indexed 0..n_blue-1 (blue) then n_blue..n_blue+n_yellow-1 (yellow).
@@ -320,135 +310,6 @@ class PhysicsWorld:
         if self.ball_max_height > 0.0 and (self.on_dribbler.any() or self._ball_touches_robot()):
             self.ball_max_height = self.ball_z
 
-    def _fire_kick(self, i: int, strength: float, heading: float, chip_angle: float) -> None:
-        """Robot i kicks: 3-D ball speed strength * kick_speed_max (strength capped at 1)
-        along ``heading`` (rad), lifted by ``chip_angle`` (rad, clipped to
-        [0, chip_angle_max]; 0 = flat)."""
-        rp, S = self.robot, SCALE
-        speed = min(strength, 1.0) * rp.kick_speed_max
-        h = heading
-        angle = min(max(chip_angle, 0.0), rp.chip_angle_max)
-        if angle > 0.0:
-            vh, vv = ball_flight.launch(np.array([speed]), np.array([angle]))
-            self._ball_body.linearVelocity = (float(vh[0]) * math.cos(h) * S, float(vh[0]) * math.sin(h) * S)
-            self._slide_until = math.inf
-            self._set_flight(0.0, float(vv[0]))
-        else:
-            self._ball_body.linearVelocity = (speed * math.cos(h) * S, speed * math.sin(h) * S)
-            self._launch_ball(speed)
-            if self.ball_z > 0.0 or self.ball_vz != 0.0:
-                self._set_flight(0.0, 0.0)
-        self.ball_max_height = 0.0
-        self.kick_cooldown[i] = rp.kick_recharge_s
-        self.kicks_this_step.append((i, speed))
-
-    def _armed_contact(self, armed: list[int]) -> int:
-        """The first armed robot (index order) with the ball on its face now (Box2D's
-        current positions, raw angles), or -1; never while the ball is above the bar."""
-        if self.ball_z > self.ball_params.radius:
-            return -1
-        S = SCALE
-        bp = self._ball_body.position
-        ball = np.array((bp[0] / S, bp[1] / S))
-        pos = np.array([(b.position[0] / S, b.position[1] / S) for b in (self._robot_bodies[i] for i in armed)])
-        hd = np.array([self._robot_bodies[i].angle for i in armed])
-        hit = np.flatnonzero(self.ball_on_face(pos, hd, ball))
-        return armed[int(hit[0])] if hit.size else -1
-
-    # ------------------------------------------------------------ ball in the air
-    def _set_flight(self, z: float, vz: float) -> None:
-        """Put the ball at height z (m) with vertical speed vz (m/s), a new flight."""
-        self.ball_z, self.ball_vz, self.ball_bounces = float(z), float(vz), 0
-        self.ball_max_height = max(self.ball_max_height, self.ball_z)
-        self._update_ball_filter()
-
-    def _update_ball_filter(self) -> None:
-        """The ball's fixture ignores robots exactly while it is above their height."""
-        over = self.ball_z > self.robot.height
-        if over != self._ball_over_robots and self._ball_body is not None:
-            fix = self._ball_body.fixtures[0]
-            fd = fix.filterData
-            fd.maskBits = MASK_WALLS if over else MASK_ALL
-            fix.filterData = fd
-        self._ball_over_robots = over
-
-    def _flight_substep(self) -> None:
-        """One physics sub-step of a ball in the air: height in closed form, horizontal
-        motion by Box2D without ground friction, the bounce's horizontal damping applied
-        from the touchdown on."""
-        bp, S, dt = self.ball_params, SCALE, self.sub_dt
-        fs = ball_flight.advance(np.array([self.ball_z]), np.array([self.ball_vz]), np.array([self.ball_bounces]), dt,
-                                 bp.gravity, bp.bounce_damping_z, bp.bounce_damping_xy_first,
-                                 bp.bounce_damping_xy_later, bp.min_hop_height)
-        self.ball_max_height = max(self.ball_max_height, float(fs.apex[0]))
-        self._update_ball_filter()
-        if not fs.bounced[0]:
-            self.world.Step(dt, VEL_ITERS, POS_ITERS)
-            self.ball_z, self.ball_vz = float(fs.z[0]), float(fs.vz[0])
-            self._update_ball_filter()
-            return
-        ball = self._ball_body
-        v, p = ball.linearVelocity, ball.position
-        vx, vy = v[0], v[1]
-        tt = float(fs.t_touch[0])
-        self.touchdowns.append(((p[0] + vx * tt) / S, (p[1] + vy * tt) / S))
-        eff = float(ball_flight.effective_xy_scale(fs, dt)[0])
-        ball.linearVelocity = (vx * eff, vy * eff)
-        self.world.Step(dt, VEL_ITERS, POS_ITERS)
-        v = ball.linearVelocity
-        k = float(fs.xy_factor[0]) / eff
-        ball.linearVelocity = (v[0] * k, v[1] * k)
-        self.ball_bounces += 1
-        self.ball_z, self.ball_vz = float(fs.z[0]), float(fs.vz[0])
-        if fs.landed[0]:
-            self.ball_bounces = 0
-            self._slide_until = math.inf  # after its hops the ball rolls
-        self._update_ball_filter()
-
-    def _ball_touches_robot(self) -> bool:
-        """A Box2D contact between the ball and a robot body is touching now."""
-        for edge in self._ball_body.contacts:
-            if edge.other is not self._walls_body and edge.contact.touching:
-                return True
-        return False
-
-    # ----------------------------------------------------------------- helpers
-    def _apply_dribblers(self, idx: list[int]) -> None:
-        rp, S, dt = self.robot, SCALE, self.sub_dt
-        ball = self._ball_body
-        bp = ball.position
-        bx, by = bp[0] / S, bp[1] / S
-        bv = ball.linearVelocity
-        vbx, vby = bv[0] / S, bv[1] / S
-        hw = rp.dribbler_half_width
-        for i in idx:
-            b = self._robot_bodies[i]
-            p = b.position
-            rx, ry, h = p[0] / S, p[1] / S, b.angle
-            c, s = math.cos(h), math.sin(h)
-            dx, dy = bx - rx, by - ry
-            lx, ly = c * dx + s * dy, -s * dx + c * dy  # ball in robot frame
-            gap = lx - rp.front_distance - self.ball_params.radius
-            if not (-_FACE_PENETRATION_TOL <= gap <= rp.dribbler_tolerance and abs(ly) <= hw):
-                continue
-            v = b.linearVelocity
-            w = b.angularVelocity
-            # velocity of the face point under the ball + pull-in + centring (robot frame -> field)
-            tx = v[0] / S - w * dy
-            ty = v[1] / S + w * dx
-            pull_l = -rp.dribbler_pull_speed
-            cent_l = -2.0 * ly
-            tx += c * pull_l - s * cent_l
-            ty += s * pull_l + c * cent_l
-            ddx, ddy = tx - vbx, ty - vby
-            dn = math.sqrt(ddx * ddx + ddy * ddy)
-            lim = rp.dribbler_max_accel * dt
-            if dn > lim:
-                ddx, ddy = ddx * lim / dn, ddy * lim / dn
-            vbx, vby = vbx + ddx, vby + ddy
-            ball.linearVelocity = (vbx * S, vby * S)
-            break  # one dribbler holds the ball at a time
-
     def _mark_touches(self, idx: list[int], touched: np.ndarray) -> None:
         S = SCALE
         bp = self._ball_body.position
@@ -456,27 +317,6 @@ class PhysicsWorld:
         pos = np.array([(b.position[0] / S, b.position[1] / S) for b in (self._robot_bodies[i] for i in idx)])
         hd = np.array([self._robot_bodies[i].angle for i in idx])
         touched[idx] |= self.ball_on_face(pos, hd, ball)
-
-    def _launch_ball(self, speed: float) -> None:
-        """A ball set moving at ``speed`` (m/s) by a kick or a placement slides until it
-        has slowed to ``slide_to_roll_ratio`` of that speed; a ball at rest rolls."""
-        self._slide_until = self.ball_params.slide_to_roll_ratio * speed if speed > 0 else math.inf
-
-    def _apply_ball_friction(self) -> None:
-        bp, S = self.ball_params, SCALE
-        v = self._ball_body.linearVelocity
-        vx, vy = v[0] / S, v[1] / S
-        sp = math.sqrt(vx * vx + vy * vy)
-        if sp <= 0.0:
-            return
-        if sp > self._slide_until:
-            dec = bp.slide_decel
-        else:
-            dec = bp.roll_decel
-            self._slide_until = math.inf
-        new = max(sp - dec * self.sub_dt, 0.0)
-        k = new / sp * S
-        self._ball_body.linearVelocity = (vx * k, vy * k)
 
     def _read_state(self, caps: bool = False) -> None:
         """Read every body into the cached arrays; with ``caps``, first enforce the hard

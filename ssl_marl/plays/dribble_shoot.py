@@ -60,7 +60,7 @@ import numpy as np
 
 from ..physics.field import FieldGeometry
 from ..physics.state import WorldState, wrap_angle
-from ..skills.base import SkillStatus, make_action
+from ..skills.base import SkillStatus
 from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance
 from ..skills.motion import velocity_command
 from .shoot import govern_approach
