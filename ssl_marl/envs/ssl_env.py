@@ -63,7 +63,8 @@ from pettingzoo import ParallelEnv
 from ..physics.state import WorldState, to_team_frame
 from ..physics.world import PhysicsWorld
 from .actions import action_dim, chip_angles, scale_actions, validate_actions
-from .config import EnvConfig, make_config
+from .camera import CameraRig
+from .config import EnvConfig, RealismConfig, make_config
 from .deadline import ControlDeadline
 from .observation import (
     all_observations,
@@ -118,7 +119,7 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         self.state_space = gymnasium.spaces.Box(self._state_low, self._state_high, (state_dim(self.n),), np.float32)
         self.physics = PhysicsWorld(cfg.field, cfg.robot, cfg.ball, cfg.n_blue, cfg.n_yellow, cfg.dt,
                                     cfg.physics_substeps)
-        self.vision = Vision(cfg.realism)
+        self.vision = self._vision(cfg.realism)
         self.radio = Radio(cfg.realism, self.n, self.action_dim)
         #: this episode's domain-randomised conditions (None without randomisation)
         self.conditions = None
@@ -185,9 +186,15 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         robot simply cannot follow a fast one)."""
         cfg = self.config
         self.conditions = self.randomization.draw(rng, cfg.robot, cfg.ball)
-        self.vision = Vision(self.conditions.realism)
+        self.vision = self._vision(self.conditions.realism)
         self.radio = Radio(self.conditions.realism, self.n, self.action_dim)
         self.physics.set_params(robot=self.conditions.robot, ball=self.conditions.ball)
+
+    def _vision(self, realism: RealismConfig) -> Vision:
+        """The vision pipeline of ``realism``: with realism on, the cameras report a ball
+        in the air as SSL-Vision does (:mod:`ssl_marl.envs.camera`)."""
+        camera = CameraRig(self.field, self.config.ball.radius) if realism.enabled else None
+        return Vision(realism, camera=camera)
 
     # -------------------------------------------------------------------- step
     def _action_array(self, actions: dict) -> np.ndarray:
