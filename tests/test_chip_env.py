@@ -232,3 +232,44 @@ def test_observations_stay_inside_the_bounds_through_a_chip():
         obs, *_ = e.step(a)
         a = {"blue_0": _idle(6), "yellow_0": _idle(6)}
         assert all(space.contains(o) for o in obs.values())
+
+
+def test_camera_reports_a_ball_in_the_air_projected_onto_the_ground_plane():
+    from ssl_marl.envs.camera import CAMERA_HEIGHT_M, CameraRig
+
+    f, r = FieldGeometry.div_b(), BallParams().radius
+    rig = CameraRig(f, r)
+    np.testing.assert_array_equal(rig.camera_over(np.array([1.0, -0.5])), (f.half_length / 2, -f.half_width / 2))
+    p = np.array([0.25, 0.4])
+    assert rig.seen_position(p, 0.0) is not None and np.array_equal(rig.seen_position(p, 0.0), p)
+    cam = rig.camera_over(p)
+    z = 0.5
+    seen = rig.seen_position(p, z)
+    # on the ray from the camera through the ball's centre, at the ground-ball plane
+    np.testing.assert_allclose((seen - cam) * (CAMERA_HEIGHT_M - r - z), (p - cam) * (CAMERA_HEIGHT_M - r))
+    assert np.hypot(*(seen - cam)) > np.hypot(*(p - cam))  # displaced away from the camera
+
+
+def test_realism_vision_reports_no_height_and_the_camera_position():
+    from ssl_marl.envs.camera import CameraRig
+
+    # realism on (a tiny heading noise), no ball noise, no latency: the ball as the camera sees it
+    e = parallel_env(chip_kicks=True, n_blue=1, n_yellow=0, task="free_play", realism={"robot_angle_sigma": 1e-6})
+    e.reset(seed=0, options=_on_face(-2.0))
+    obs, *_ = e.step({"blue_0": _kick(1.0)})
+    rig = CameraRig(e.field, e.config.ball.radius)
+    flying = 0
+    for _ in range(40):
+        obs, *_ = e.step({"blue_0": _idle(6)})
+        truth, seen = e.world_state(), e.vision_state()
+        assert seen.ball_height == 0.0 and seen.ball_vz == 0.0
+        assert obs["blue_0"][-2:].tolist() == [0.0, 0.0]
+        np.testing.assert_array_equal(seen.ball_pos, rig.seen_position(truth.ball_pos, truth.ball_height))
+        flying += truth.ball_height > 0.3
+    assert flying > 10
+    # without realism the observation holds the true height
+    e = parallel_env(chip_kicks=True, n_blue=1, n_yellow=0, task="free_play")
+    e.reset(seed=0, options=_on_face(-2.0))
+    e.step({"blue_0": _kick(1.0)})
+    obs, *_ = e.step({"blue_0": _idle(6)})
+    assert obs["blue_0"][-2] == np.float32(e.world_state().ball_height) > 0.0
