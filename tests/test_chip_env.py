@@ -273,3 +273,28 @@ def test_realism_vision_reports_no_height_and_the_camera_position():
     e.step({"blue_0": _kick(1.0)})
     obs, *_ = e.step({"blue_0": _idle(6)})
     assert obs["blue_0"][-2] == np.float32(e.world_state().ball_height) > 0.0
+
+
+@pytest.mark.parametrize("chip", [0.1, 0.3, 0.5, 0.75, 1.0])
+def test_chip_through_the_env_flies_as_the_drag_free_projectile(chip):
+    """Five launch angles through the env's action: the first touchdown and the apex
+    within 2 % of the drag-free projectile (speed 4 m/s, elevation chip x 60 deg)."""
+    from ssl_marl.physics.ball_flight import projectile_reference
+
+    e = parallel_env(chip_kicks=True, n_blue=1, n_yellow=0, task="free_play")
+    e.reset(seed=0, options=_on_face(-4.0))
+    start = np.array(e.world_state().ball_pos)
+    speed = 4.0
+    e.step({"blue_0": _kick(chip, kick=speed / e.config.robot.kick_speed_max)})
+    touchdown = None
+    apex = 0.0
+    for _ in range(120):
+        apex = max(apex, e.world_state().ball_max_height)
+        if e.physics.touchdowns:
+            touchdown = np.array(e.physics.touchdowns[0])
+            break
+        e.step({"blue_0": _idle(6)})
+    assert touchdown is not None
+    dist_ref, apex_ref = projectile_reference(speed, chip * e.config.robot.chip_angle_max, e.config.ball.gravity)
+    assert np.hypot(*(touchdown - start)) == pytest.approx(dist_ref, rel=0.02)
+    assert apex == pytest.approx(apex_ref, rel=0.02)
