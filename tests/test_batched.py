@@ -1,4 +1,4 @@
-"""Batched worlds (issue 14): each world of the batched physics / env / vector env
+"""Batched worlds: each world of the batched physics / env / vector env
 behaves exactly as the single env under the same seed and actions."""
 
 from __future__ import annotations
