@@ -15,9 +15,11 @@ from ssl_marl.physics.params import BallParams, RobotParams
 from ssl_marl.physics.world import PhysicsWorld
 
 
-def _chase_actions(rng: np.random.Generator, pos, heading, ball_pos, kick_p: float = 0.05) -> np.ndarray:
+def _chase_actions(rng: np.random.Generator, pos, heading, ball_pos, kick_p: float = 0.05,
+                   chip: bool = False) -> np.ndarray:
     """(K, n, 5) actions: drive at the ball with the dribbler on, random jitter and kicks
-    (so that robots collide, dribble and kick)."""
+    (so that robots collide, dribble and kick); with ``chip`` (K, n, 6), the chip entry
+    random in [-0.5, 1] (a third of the kicks flat)."""
     K, n = heading.shape
     d = ball_pos[:, None, :] - pos
     ang = np.angle(np.exp(1j * (np.arctan2(d[..., 1], d[..., 0]) - heading)))
@@ -27,6 +29,8 @@ def _chase_actions(rng: np.random.Generator, pos, heading, ball_pos, kick_p: flo
     a[..., 2] += np.clip(ang, -1, 1)
     a[..., 3] = 1.0
     a[..., 4] = np.where(rng.random((K, n)) < kick_p, rng.uniform(0.2, 1.0, (K, n)), -1.0)
+    if chip:
+        a = np.concatenate([a, rng.uniform(-0.5, 1.0, (K, n, 1))], axis=2)
     return a
 
 
@@ -80,10 +84,11 @@ def _run_pair(config: dict, K: int, steps: int, seed: int, options=None, kick_p=
         obs, _ = env.reset(seed=seed + k, options=opts[k])
         np.testing.assert_array_equal(np.stack([obs[a] for a in env.possible_agents]), obs_b[k])
     rng = np.random.default_rng(seed)
-    stats = {"kicks": 0, "goals": 0, "outs": 0, "ends": 0, "autoresets": 0}
+    chip = bool(config.get("chip_kicks", False))
+    stats = {"kicks": 0, "goals": 0, "outs": 0, "ends": 0, "autoresets": 0, "airborne": 0}
     for step in range(steps):
         ph = batched.physics
-        a = _chase_actions(rng, ph.pos, ph.heading, ph.ball_pos, kick_p).astype(np.float32)
+        a = _chase_actions(rng, ph.pos, ph.heading, ph.ball_pos, kick_p, chip).astype(np.float32)
         obs_b, rew_b, term_b, trunc_b, info = batched.step(a)
         for k, env in enumerate(singles):
             if info["autoreset"][k]:
@@ -106,6 +111,10 @@ def _run_pair(config: dict, K: int, steps: int, seed: int, options=None, kick_p=
             ws = env.world_state()
             np.testing.assert_array_equal(ws.blue.pos, batched.physics.pos[k, :env.config.n_blue], err_msg=msg)
             np.testing.assert_array_equal(ws.ball_pos, batched.physics.ball_pos[k], err_msg=msg)
+            wb = batched.world_state(k)
+            assert (ws.ball_height, ws.ball_vz, ws.ball_max_height) == \
+                (wb.ball_height, wb.ball_vz, wb.ball_max_height), msg
+            stats["airborne"] += int(ws.ball_height > 0.0)
             stats["ends"] += int(term_b[k] or trunc_b[k])
     return stats
 
@@ -127,6 +136,24 @@ def test_batched_env_matches_single_env_terminate_after_goal_and_realism():
                   realism="realistic")
     shot = {"robots": {"blue_0": (3.9, 0.0, 0.0)}, "ball": {"pos": (4.0015, 0.0)}}
     _run_pair(config, 2, 150, seed=5, options=[shot, None], kick_p=0.3)
+
+
+def test_batched_env_matches_single_env_with_chip_kicks():
+    """The v1 layout (chip kicks): world k bit-equal to a single env through chips,
+    flights, bounces, the goal rule (a chip into the goal is ball out) and autoresets."""
+    config = dict(n_blue=3, n_yellow=3, field="div_b", max_time_s=1.5, randomize_reset=True, chip_kicks=True,
+                  reward_scales={"goal": 1.0, "ball_progress": 1.0, "possession": 0.5})
+    shot = {"robots": {"blue_0": (3.9, 0.0, 0.0)}, "ball": {"pos": (4.0015, 0.0)}}
+    chip_shot = {"robots": {"blue_0": (3.0, 0.0, 0.0)}, "ball": {"pos": (3.1015, 0.0)}}
+    stats = _run_pair(config, 3, 250, seed=11, options=[None, shot, chip_shot], kick_p=0.15)
+    assert stats["kicks"] >= 3 and stats["airborne"] >= 20 and stats["autoresets"] >= 3
+    assert stats["goals"] + stats["outs"] >= 1
+
+
+def test_batched_env_chip_kicks_with_realism_matches_single_env():
+    config = dict(n_blue=2, n_yellow=1, field="div_b", max_time_s=1.0, randomize_reset=True, chip_kicks=True,
+                  realism="realistic")
+    _run_pair(config, 2, 120, seed=5, kick_p=0.3)
 
 
 def test_batched_env_11v11_div_a_matches_single_env():
@@ -300,10 +327,12 @@ def test_skill_vector_env_api_and_bad_inputs():
     env.close()
 
 
-def test_sharded_env_matches_one_batched_env():
+@pytest.mark.parametrize("chip_kicks", [False, True], ids=["v0", "chip-kicks"])
+def test_sharded_env_matches_one_batched_env(chip_kicks):
     from ssl_marl.envs.sharded import ShardedBatchedEnv
 
-    config = dict(n_blue=2, n_yellow=2, max_time_s=0.5, randomize_reset=True)
+    config = dict(n_blue=2, n_yellow=2, max_time_s=0.5, randomize_reset=True, chip_kicks=chip_kicks)
+    dim = 6 if chip_kicks else 5
     sharded = ShardedBatchedEnv(2, 2, **config)
     try:
         ref = BatchedSSLEnv(4, **config)
@@ -312,7 +341,7 @@ def test_sharded_env_matches_one_batched_env():
         np.testing.assert_array_equal(o1, o2)
         rng = np.random.default_rng(0)
         for _ in range(80):  # 30 steps per episode: autoresets included
-            a = rng.uniform(-1, 1, (4, 4, 5))
+            a = rng.uniform(-1, 1, (4, 4, dim))
             r1, r2 = sharded.step(a), ref.step(a)
             for x, y in zip(r1[:4], r2[:4]):
                 np.testing.assert_array_equal(x, y)

@@ -279,6 +279,29 @@ def test_vectorised_observations_match_per_team_reference(nb, ny, k, m):
     np.testing.assert_array_equal(all_observations(ws, e.field, k, m), ref)
 
 
+def test_chip_observations_append_the_ball_in_air_to_the_v0_layout():
+    """v1 (chip kicks): the v0 entries unchanged, then ball height and vertical velocity;
+    the vectorised pass equals the per-team reference with the ball in the air."""
+    from ssl_marl.envs.observation import all_observations, team_observations
+
+    e = parallel_env(n_blue=2, n_yellow=3, chip_kicks=True, task="free_play")
+    e.reset(seed=1, options={"robots": {"blue_0": (0.0, 0.0, 0.0)}, "ball": {"pos": (0.1015, 0.0)}})
+    obs, *_ = e.step({"blue_0": np.array([0, 0, 0, -1, 1.0, 0.7])})
+    for _ in range(5):
+        obs, *_ = e.step({})
+    ws = e.world_state()
+    assert ws.ball_height > 0.1
+    d = e.observation_space("blue_0").shape[0]
+    for team in ("blue", "yellow"):
+        ref = team_observations(ws, team, e.field, 10, 11, ball_air=True)
+        np.testing.assert_array_equal(ref[:, :d - 2], team_observations(ws, team, e.field, 10, 11))
+        np.testing.assert_array_equal(ref[:, d - 2:], np.float32([[ws.ball_height, ws.ball_vz]] * len(ref)))
+    full = all_observations(ws, e.field, 10, 11, ball_air=True)
+    np.testing.assert_array_equal(full[:, :d - 2], all_observations(ws, e.field, 10, 11))
+    np.testing.assert_array_equal(full[:, d - 2:], np.float32([[ws.ball_height, ws.ball_vz]] * len(full)))
+    np.testing.assert_array_equal(np.stack([obs[a] for a in e.possible_agents]), full)
+
+
 def test_observation_slots_sorted_and_masked():
     e = parallel_env(n_blue=3, n_yellow=1)
     obs, _ = e.reset(options={"robots": {"blue_0": (0.0, 0.0, 0.0), "blue_1": (2.0, 0.0, 0.0),

@@ -18,8 +18,11 @@ from ssl_marl.physics.field import FieldGeometry
 from ssl_marl.physics.params import RobotParams
 
 
-def test_env_spaces_are_finite_and_hold_every_observation():
-    env = parallel_env(n_blue=3, n_yellow=3, field="div_b", realism="realistic", max_time_s=5.0)
+@pytest.mark.parametrize("realism", ["realistic", "none"])
+@pytest.mark.parametrize("chip_kicks", [False, True], ids=["v0", "chip-kicks"])
+def test_env_spaces_are_finite_and_hold_every_observation(chip_kicks, realism):
+    env = parallel_env(n_blue=3, n_yellow=3, field="div_b", realism=realism, max_time_s=5.0, chip_kicks=chip_kicks)
+    env.action_space("blue_0").seed(0)
     obs, _ = env.reset(seed=1)
     space = env.observation_space("blue_0")
     assert np.all(np.isfinite(space.low)) and np.all(np.isfinite(space.high))

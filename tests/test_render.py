@@ -135,6 +135,22 @@ def test_ball_is_orange(field):
     assert px(hidden, r, 0.3, 0.2) != BALL_ORANGE  # hollow marker only
 
 
+def test_ball_in_the_air_casts_a_shadow_and_is_drawn_higher_and_larger():
+    from dataclasses import replace
+
+    r = renderer("div_b")
+    ground = world(ball=(0.3, 0.2))
+    air = replace(ground, ball_height=0.5, ball_vz=1.0)
+    fg, fa = r.draw(ground), r.draw(air)
+    assert not np.array_equal(fg, fa)
+    assert px(fa, r, 0.3, 0.2) == style.BALL_SHADOW  # shadow at the ground position
+    lifted = 0.2 + 0.5 * style.BALL_LIFT_PER_M
+    assert px(fa, r, 0.3, lifted) == BALL_ORANGE and px(fg, r, 0.3, lifted) != BALL_ORANGE
+    assert (fa == BALL_ORANGE).all(axis=2).sum() > (fg == BALL_ORANGE).all(axis=2).sum()  # drawn larger
+    # a team-frame snapshot keeps the height
+    assert np.array_equal(r.draw(to_team_frame(air, "yellow")), fa)
+
+
 def test_trails_mark_the_path_and_reset():
     r = renderer("div_b", trails=True, trail_length=50, show_ids=False)
     xs = np.linspace(-3.0, -1.0, 21)

@@ -2,6 +2,12 @@
 
 ``parallel_env(**config)`` returns the :class:`~ssl_marl.envs.ssl_env.SSLParallelEnv`
 (ParallelEnv); ``env(**config)`` its AEC form. Options: :func:`~ssl_marl.envs.config.make_config`.
+
+Versions: v0 (the default) has a (5,) action and a 168-entry observation.
+``parallel_env(chip_kicks=True)`` (or ``env(chip_kicks=True)``) is v1, with the ball in
+the air: a sixth action entry, the chip (kick elevation), and the ball's height and
+vertical velocity appended to the observation (see
+:class:`~ssl_marl.envs.config.EnvConfig`).
 """
 
 from __future__ import annotations

@@ -18,11 +18,16 @@ terminations; tested).
 Arrays (K worlds, n = n_blue + n_yellow agents in ``possible_agents`` order):
 
 * ``reset(seed=None, options=None) -> obs (K, n, D) float32, info``
-* ``step(actions (K, n, 5)) -> obs, rewards (K, n) float64, terminated (K,) bool,
+* ``step(actions (K, n, A)) -> obs, rewards (K, n) float64, terminated (K,) bool,
   truncated (K,) bool, info`` (a dict of arrays: ``goal`` (K,) +1 blue scored /
   -1 yellow scored / 0, ``ball_out`` (K,), ``no_progress`` (K,) (the referee's
   no-progress restart), ``kicker`` (K,) index of the robot whose kick fired (-1 none), ``kick_speed`` (K,) m/s, ``score`` (K, 2) blue/yellow,
   ``t`` (K,) s, ``reward_terms`` {term: (K, n)}, ``autoreset`` (K,)).
+
+A = 5, or 6 with chip kicks (``chip_kicks=True``, the env's v1 layout: the chip entry
+appended to the action, the ball's height and vertical velocity to the observation,
+D + 2; see :class:`~ssl_marl.envs.config.EnvConfig`). A goal counts only if the ball
+was never higher than 0.15 m since the last touch, as in the single env.
 
 Autoreset: Gymnasium's "next step" mode. A world whose episode ended in the last
 ``step`` is reset at the start of the next one (its actions are ignored; it
@@ -45,11 +50,11 @@ from pettingzoo import ParallelEnv
 
 from ..physics.batched import BatchedPhysics
 from ..physics.state import WorldState, to_team_frame
-from .actions import ACTION_DIM, scale_actions
+from .actions import chip_angles, scale_actions
 from .batched_obs import batched_observations
 from .config import EnvConfig, MatchRules, make_config
 from .observation import all_observations, state_vector
-from .referee import NoProgressWatch, clear_robots_from, kickoff_poses, placement_point
+from .referee import GOAL_MAX_HEIGHT_M, NoProgressWatch, clear_robots_from, kickoff_poses, placement_point
 from .ssl_env import SSLParallelEnv
 from .tasks import FreePlayTask, MatchTask
 
@@ -112,6 +117,8 @@ class BatchedSSLEnv:
         self.single_observation_space = self.envs[0].observation_space(self.possible_agents[0])
         self.single_action_space = self.envs[0].action_space(self.possible_agents[0])
         self.obs_dim = int(self.single_observation_space.shape[0])
+        #: action length per agent (5; 6 with chip kicks)
+        self.action_dim = int(self.single_action_space.shape[0])
         self.physics = BatchedPhysics(cfg.field, cfg.robot, cfg.ball, cfg.n_blue, cfg.n_yellow, n_worlds, cfg.dt,
                                       cfg.physics_substeps, worlds=[e.physics for e in self.envs])
         K = n_worlds
@@ -165,15 +172,16 @@ class BatchedSSLEnv:
         self._was_reset[k] = True
         self._seen[k] = env._seen
         cfg = self.config
-        self.obs[k] = all_observations(env._seen, self.field, cfg.obs_max_teammates, cfg.obs_max_opponents)
+        self.obs[k] = all_observations(env._seen, self.field, cfg.obs_max_teammates, cfg.obs_max_opponents,
+                                       cfg.chip_kicks)
 
     # ------------------------------------------------------------------- step
     def check_actions(self, actions: Any, n_worlds: int | None = None) -> np.ndarray:
-        """(K, n, 5) float64 actions, or ValueError naming the world and agent."""
-        K = self.K if n_worlds is None else n_worlds
+        """(K, n, A) float64 actions (A = :attr:`action_dim`), or ValueError naming the world and agent."""
+        K, dim = self.K if n_worlds is None else n_worlds, self.action_dim
         a = np.asarray(actions, dtype=np.float64)
-        if a.shape != (K, self.n, ACTION_DIM):
-            raise ValueError(f"actions must have shape (worlds, agents, {ACTION_DIM}) = {(K, self.n, ACTION_DIM)}, "
+        if a.shape != (K, self.n, dim):
+            raise ValueError(f"actions must have shape (worlds, agents, {dim}) = {(K, self.n, dim)}, "
                              f"got {a.shape}")
         bad = ~np.isfinite(a).all(axis=2)
         if bad.any():
@@ -199,7 +207,7 @@ class BatchedSSLEnv:
         return obs, rew, term, trunc, info
 
     def _step_worlds(self, a: np.ndarray, worlds: np.ndarray | None):
-        """Step worlds ``worlds`` (None: all) with actions a (K, n, 5); others keep their
+        """Step worlds ``worlds`` (None: all) with actions a (K, n, A); others keep their
         state and report zeros. Returns full-size (K, ...) arrays."""
         cfg, ph, K, n = self.config, self.physics, self.K, self.n
         idx = np.arange(K) if worlds is None else np.asarray(worlds, np.int64)
@@ -208,9 +216,12 @@ class BatchedSSLEnv:
         cmd = a if worlds is None else a[idx]
         if self._realism:
             cmd = np.stack([self.envs[k].radio.transmit(cmd[j], self.envs[k]._noise_rng) for j, k in enumerate(idx)])
-        v, w, drib, kick = scale_actions(cmd.reshape(-1, ACTION_DIM), cfg.robot)
+        flat = cmd.reshape(-1, self.action_dim)
+        v, w, drib, kick = scale_actions(flat, cfg.robot)
         m = idx.size
-        ph.step(v.reshape(m, n, 2), w.reshape(m, n), drib.reshape(m, n), kick.reshape(m, n), worlds=worlds)
+        chip = chip_angles(flat, cfg.robot).reshape(m, n) if cfg.chip_kicks else None
+        ph.step(v.reshape(m, n, 2), w.reshape(m, n), drib.reshape(m, n), kick.reshape(m, n), worlds=worlds,
+                chip=chip)
         goal = np.zeros(K, np.int64)
         ball_out = np.zeros(K, bool)
         no_progress = np.zeros(K, bool)
@@ -271,12 +282,12 @@ class BatchedSSLEnv:
         stalled[rest] = self._watch.update(idx[rest], bp[rest], ph.t[idx[rest]])
         for j in np.flatnonzero(in_goal | out | stalled):
             k = int(idx[j])
-            if in_goal[j]:
+            if in_goal[j] and ph.worlds[k].ball_max_height <= GOAL_MAX_HEIGHT_M:
                 side = 1 if x[j] > 0 else -1
                 goal[k] = side
                 self.score[k, 0 if side > 0 else 1] += 1
                 continue
-            ball_out[k], no_progress[k] = bool(out[j]), bool(stalled[j])
+            ball_out[k], no_progress[k] = bool(out[j] or in_goal[j]), bool(stalled[j])
             place = placement_point(ph.ball_pos[k], f)
             new_pos = clear_robots_from(place, ph.pos[k], f)
             moved = np.flatnonzero(np.any(new_pos != ph.pos[k], axis=1))
@@ -302,16 +313,21 @@ class BatchedSSLEnv:
                 env = self.envs[k]
                 seen = env.vision.observe(ph.snapshot(k), env._noise_rng)
                 self._seen[k] = seen
-                self.obs[k] = all_observations(seen, self.field, cfg.obs_max_teammates, cfg.obs_max_opponents)
+                self.obs[k] = all_observations(seen, self.field, cfg.obs_max_teammates, cfg.obs_max_opponents,
+                                               cfg.chip_kicks)
             return
         full = idx.size == self.K
 
         def get(x):
             return x if full else x[idx]
 
+        air = None
+        if cfg.chip_kicks:
+            air = (np.array([ph.worlds[k].ball_z for k in idx.tolist()]),
+                   np.array([ph.worlds[k].ball_vz for k in idx.tolist()]))
         ob = batched_observations(get(ph.pos), get(ph.heading), get(ph.vel), get(ph.omega), get(ph.ball_pos),
                                   get(ph.ball_vel), get(ph.on_dribbler), get(ph.kick_cooldown) <= 0, True, self.field,
-                                  self.n_blue, self.n_yellow, cfg.obs_max_teammates, cfg.obs_max_opponents)
+                                  self.n_blue, self.n_yellow, cfg.obs_max_teammates, cfg.obs_max_opponents, air)
         if full:
             self.obs = ob
         else:
@@ -387,12 +403,13 @@ class BatchedWorldView(ParallelEnv):
         b = self.batched
         if not isinstance(actions, dict):
             raise ValueError(f"actions must be a dict agent -> action, got {type(actions).__name__}")
-        arr = np.zeros((b.K, b.n, ACTION_DIM))
+        dim = b.action_dim
+        arr = np.zeros((b.K, b.n, dim))
         for agent, act in actions.items():
             i = self._check_agent(agent)
             x = np.asarray(act, dtype=float)
-            if x.shape != (ACTION_DIM,):
-                raise ValueError(f"action for agent {agent!r} must have shape ({ACTION_DIM},), got {x.shape}")
+            if x.shape != (dim,):
+                raise ValueError(f"action for agent {agent!r} must have shape ({dim},), got {x.shape}")
             if not np.isfinite(x).all():
                 raise ValueError(f"action for agent {agent!r} contains NaN or inf: {x.tolist()}")
             arr[self.k, i] = x

@@ -11,24 +11,30 @@ from __future__ import annotations
 import numpy as np
 
 from ..physics.field import FieldGeometry
-from .observation import SELF_DIM, SLOT_DIM, _category_offset, obs_dim
+from .observation import BALL_AIR_DIM, SELF_DIM, SLOT_DIM, _category_offset, obs_dim
 
 
 def batched_observations(pos: np.ndarray, heading: np.ndarray, vel: np.ndarray, omega: np.ndarray,
                          ball_pos: np.ndarray, ball_vel: np.ndarray, on_dribbler: np.ndarray, kick_ready: np.ndarray,
                          ball_visible: np.ndarray | bool, field: FieldGeometry, n_blue: int, n_yellow: int,
-                         max_teammates: int, max_opponents: int) -> np.ndarray:
+                         max_teammates: int, max_opponents: int,
+                         ball_air: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
     """(K, n, obs_dim) float32 observations, blue robots first, each in its team frame.
 
     Args (field frame, SI units): pos (K, n, 2), heading (K, n), vel (K, n, 2),
     omega (K, n), ball_pos (K, 2), ball_vel (K, 2), on_dribbler (K, n) bool,
-    kick_ready (K, n) bool, ball_visible (K,) bool or one bool for all worlds.
+    kick_ready (K, n) bool, ball_visible (K,) bool or one bool for all worlds;
+    ball_air (chip kicks): (ball height (K,) m, vertical velocity (K,) m/s), appended
+    as the last two entries (None: the layout without them).
     """
     K, n = pos.shape[0], n_blue + n_yellow
     nb, ny = n_blue, n_yellow
     # float32 output written directly: every value is computed in float64 and rounded
     # once on assignment, as all_observations' final astype does
-    out = np.zeros((K, n, obs_dim(max_teammates, max_opponents)), dtype=np.float32)
+    out = np.zeros((K, n, obs_dim(max_teammates, max_opponents, ball_air is not None)), dtype=np.float32)
+    if ball_air is not None:
+        out[..., -BALL_AIR_DIM] = np.asarray(ball_air[0], np.float64)[:, None]
+        out[..., -1] = np.asarray(ball_air[1], np.float64)[:, None]
     sgn = np.concatenate([np.ones(nb), -np.ones(ny)])
     s2 = sgn[:, None]
     cos_h, sin_h = np.cos(heading), np.sin(heading)
@@ -74,5 +80,5 @@ def batched_observations(pos: np.ndarray, heading: np.ndarray, vel: np.ndarray, 
                 if cnt > 0:
                     blk[:, lo:hi, s0:s0 + cnt, 0] = 1.0
                     blk[:, lo:hi, s0:s0 + cnt, 1:] = g[:, lo:hi, r0:r0 + cnt]
-        out[..., SELF_DIM:] = blk.reshape(K, n, n_slots * SLOT_DIM)
+        out[..., SELF_DIM:SELF_DIM + n_slots * SLOT_DIM] = blk.reshape(K, n, n_slots * SLOT_DIM)
     return out

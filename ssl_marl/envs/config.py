@@ -175,6 +175,14 @@ class EnvConfig:
         render_width_px: frame width in pixels.
         render_team_labels: ``{"blue": text, "yellow": text}`` or None: a caption strip
             below the field says what each team is (e.g. "learned skills").
+        chip_kicks: the env's v1 layout (False: v0, the default). On: the action gains a
+            sixth entry, the chip (kick elevation = value x ``robot.chip_angle_max`` when
+            > 0, else flat; :mod:`ssl_marl.envs.actions`), the observation gains the
+            ball's height (m) and vertical velocity (m/s) at its end
+            (:mod:`ssl_marl.envs.observation`), and the robots kick on contact
+            (``robot.kick_on_contact`` is set: an armed kicker fires when the ball reaches
+            its face, as an SSL robot's kicker fires when its light barrier sees the ball;
+            needed for one-touch redirects). Off: the ball never leaves the ground.
     """
 
     n_blue: int = 6
@@ -196,8 +204,13 @@ class EnvConfig:
     render_width_px: int = 960
     render_team_labels: Mapping[str, str] | None = None
     randomization: Any = None
+    chip_kicks: bool = False
 
     def __post_init__(self) -> None:
+        if not isinstance(self.chip_kicks, bool):
+            raise ValueError(f"chip_kicks must be True or False, got {self.chip_kicks!r}")
+        if self.chip_kicks and not self.robot.kick_on_contact:
+            object.__setattr__(self, "robot", replace(self.robot, kick_on_contact=True))
         if isinstance(self.realism, str) and self.realism == "randomized" and self.randomization is None:
             object.__setattr__(self, "randomization", True)
         if self.randomization is False:

@@ -23,7 +23,14 @@ index   name                  meaning (team frame; m, m/s, rad/s)
 20      goal_half_width       goal width / 2
 21...   teammates             K slots x 7: mask, dx, dy, vx, vy, cos, sin
 ...     opponents             M slots x 7: mask, dx, dy, vx, vy, cos, sin
+D-2     ball_z                (chip kicks only) ball height above the field (m)
+D-1     ball_vz               (chip kicks only) ball vertical velocity (m/s, up +)
 ======  ====================  ===================================================
+
+With chip kicks (``EnvConfig.chip_kicks``, the env's v1 layout) the two ball-in-air
+entries are appended after the slots, so every other index stays where it is; they are
+what vision reports (the truth without realism; 0 with realism on, since SSL-Vision
+reports a ground ball, see :mod:`ssl_marl.envs.realism`).
 
 Teammate and opponent slots are sorted by distance to self (nearest first); unused
 slots are all zero (mask 0).
@@ -34,7 +41,9 @@ really stay inside. Positions: the outer walls plus :data:`POSITION_MARGIN_M` (r
 vision noise); relative positions: twice that. Velocities: :data:`SPEED_SAFETY` times
 the caps (robot ``max_speed`` / ``max_omega``; ball: kick cap + robot top speed, a ball
 kicked by a moving robot), since collisions can briefly exceed the commanded caps.
-cos/sin in [-1, 1], flags and masks in [0, 1]. In normal play clipping never binds.
+cos/sin in [-1, 1], flags and masks in [0, 1]. Ball height: [0, apex of a vertical
+kick at the kick cap] (kick_speed_max^2 / 2g); vertical velocity: +-kick_speed_max. In
+normal play clipping never binds.
 """
 
 from __future__ import annotations
@@ -42,7 +51,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..physics.field import FieldGeometry
-from ..physics.params import RobotParams
+from ..physics.params import BallParams, RobotParams
 from ..physics.state import TeamState, WorldState
 
 SELF_DIM = 21
@@ -53,6 +62,9 @@ OBS_NAMES_SELF = ("self_x", "self_y", "self_cos", "self_sin", "self_vx", "self_v
                   "opp_goal_dy", "own_goal_dx", "own_goal_dy", "field_half_length", "field_half_width",
                   "goal_half_width")
 SLOT_NAMES = ("mask", "dx", "dy", "vx", "vy", "cos", "sin")
+#: the ball-in-air entries appended with chip kicks
+BALL_AIR_NAMES = ("ball_z", "ball_vz")
+BALL_AIR_DIM = len(BALL_AIR_NAMES)
 
 POSITION_MARGIN_M = 0.5  #: m beyond the outer walls allowed in observed positions (vision noise)
 SPEED_SAFETY = 2.0  #: factor on the speed caps allowed in observed velocities (collisions)
@@ -70,9 +82,17 @@ def speed_caps(robot: RobotParams) -> tuple[float, float, float]:
             SPEED_SAFETY * (robot.kick_speed_max + robot.max_speed))
 
 
+def ball_air_bounds(robot: RobotParams, ball: BallParams) -> tuple[list[float], list[float]]:
+    """(low, high) of the ball-in-air entries: height in [0, kick_speed_max^2 / 2g] (m, the
+    apex of a vertical kick at the cap), vertical velocity within +-kick_speed_max (m/s)."""
+    v = robot.kick_speed_max
+    return [0.0, -v], [v * v / (2.0 * ball.gravity), v]
+
+
 def observation_bounds(field: FieldGeometry, robot: RobotParams, max_teammates: int,
-                       max_opponents: int) -> tuple[np.ndarray, np.ndarray]:
-    """(low, high) float32 arrays of the observation layout above (see the module docstring)."""
+                       max_opponents: int, ball: BallParams | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """(low, high) float32 arrays of the observation layout above (see the module docstring);
+    with ``ball`` (chip kicks) the ball-in-air entries' bounds are appended."""
     x, y = position_extent(field)
     v, w, vb = speed_caps(robot)
     self_hi = [x, y, 1, 1, v, v, w, 2 * x, 2 * y, vb, vb, 1, 1, 1, 2 * x, 2 * y, 2 * x, 2 * y,
@@ -81,8 +101,9 @@ def observation_bounds(field: FieldGeometry, robot: RobotParams, max_teammates: 
                0, 0, 0]
     slot_hi, slot_lo = [1, 2 * x, 2 * y, v, v, 1, 1], [0, -2 * x, -2 * y, -v, -v, -1, -1]
     n_slots = max_teammates + max_opponents
-    low = np.array(self_lo + slot_lo * n_slots, dtype=np.float32)
-    high = np.array(self_hi + slot_hi * n_slots, dtype=np.float32)
+    air_lo, air_hi = ball_air_bounds(robot, ball) if ball is not None else ([], [])
+    low = np.array(self_lo + slot_lo * n_slots + air_lo, dtype=np.float32)
+    high = np.array(self_hi + slot_hi * n_slots + air_hi, dtype=np.float32)
     return low, high
 
 
@@ -100,17 +121,18 @@ def clip_to_bounds(obs: np.ndarray, low: np.ndarray, high: np.ndarray) -> np.nda
     return np.clip(obs, low, high, out=obs)
 
 
-def obs_dim(max_teammates: int, max_opponents: int) -> int:
-    return SELF_DIM + SLOT_DIM * (max_teammates + max_opponents)
+def obs_dim(max_teammates: int, max_opponents: int, ball_air: bool = False) -> int:
+    """Observation length; ``ball_air`` (chip kicks) adds the two ball-in-air entries."""
+    return SELF_DIM + SLOT_DIM * (max_teammates + max_opponents) + (BALL_AIR_DIM if ball_air else 0)
 
 
-def obs_names(max_teammates: int, max_opponents: int) -> list[str]:
+def obs_names(max_teammates: int, max_opponents: int, ball_air: bool = False) -> list[str]:
     names = list(OBS_NAMES_SELF)
     for k in range(max_teammates):
         names += [f"mate{k}_{s}" for s in SLOT_NAMES]
     for k in range(max_opponents):
         names += [f"opp{k}_{s}" for s in SLOT_NAMES]
-    return names
+    return names + (list(BALL_AIR_NAMES) if ball_air else [])
 
 
 def _slots(pos: np.ndarray, other: TeamState, n_slots: int, exclude_self: bool, sgn: float) -> np.ndarray:
@@ -164,24 +186,27 @@ def _fill_self(out: np.ndarray, pos: np.ndarray, cos_h: np.ndarray, sin_h: np.nd
 
 
 def team_observations(ws: WorldState, team: str, field: FieldGeometry, max_teammates: int,
-                      max_opponents: int) -> np.ndarray:
+                      max_opponents: int, ball_air: bool = False) -> np.ndarray:
     """(n_team, obs_dim) float32 observations for every robot of ``team`` from a
-    field-frame snapshot ``ws``."""
+    field-frame snapshot ``ws`` (``ball_air``: with the ball-in-air entries)."""
     sgn = 1.0 if team == "blue" else -1.0
     own = ws.team(team)
     opp = ws.opponents(team)
     n = own.n
-    out = np.zeros((n, obs_dim(max_teammates, max_opponents)), dtype=np.float64)
+    out = np.zeros((n, obs_dim(max_teammates, max_opponents, ball_air)), dtype=np.float64)
     if n == 0:
         return out.astype(np.float32)
+    if ball_air:
+        out[:, -BALL_AIR_DIM:] = (ws.ball_height, ws.ball_vz)
     pos = own.pos * sgn
     h = own.heading + (0.0 if sgn > 0 else np.pi)
     _fill_self(out, pos, np.cos(h), np.sin(h), own.vel * sgn, own.omega, ws.ball_pos * sgn, ws.ball_vel * sgn,
                own.ball_on_dribbler, own.kick_ready, ws.ball_visible, field)
     a = SELF_DIM
     b = a + SLOT_DIM * max_teammates
+    c = b + SLOT_DIM * max_opponents
     out[:, a:b] = _slots(pos, own, max_teammates, True, sgn)
-    out[:, b:] = _slots(pos, opp, max_opponents, False, sgn)
+    out[:, b:c] = _slots(pos, opp, max_opponents, False, sgn)
     return out.astype(np.float32)
 
 
@@ -199,16 +224,20 @@ def _category_offset(nb: int, ny: int) -> np.ndarray:
     return _OFFSETS[key]
 
 
-def all_observations(ws: WorldState, field: FieldGeometry, max_teammates: int, max_opponents: int) -> np.ndarray:
+def all_observations(ws: WorldState, field: FieldGeometry, max_teammates: int, max_opponents: int,
+                     ball_air: bool = False) -> np.ndarray:
     """(n_blue + n_yellow, obs_dim) float32 observations of every robot (blue first),
     in one vectorised pass; row for row equal to :func:`team_observations` (the simpler
-    per-team reference that the tests compare against)."""
+    per-team reference that the tests compare against). ``ball_air`` (chip kicks): with
+    the ball-in-air entries."""
     nb, ny = ws.blue.n, ws.yellow.n
     n = nb + ny
-    d = obs_dim(max_teammates, max_opponents)
+    d = obs_dim(max_teammates, max_opponents, ball_air)
     out = np.zeros((n, d), dtype=np.float64)
     if n == 0:
         return out.astype(np.float32)
+    if ball_air:
+        out[:, -BALL_AIR_DIM:] = (ws.ball_height, ws.ball_vz)
     sgn = np.concatenate([np.ones(nb), -np.ones(ny)])
     P = np.concatenate([ws.blue.pos, ws.yellow.pos])
     V = np.concatenate([ws.blue.vel, ws.yellow.vel])

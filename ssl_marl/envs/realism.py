@@ -6,9 +6,12 @@ from the env's seeded generator, so runs stay reproducible.
 
 Two pipelines, each a list of effects applied in order:
 
-* :class:`Vision` turns the ground truth into what the teams see. Its *measurement
-  effects* (:class:`BallDropout`, :class:`VisionNoise`, ...) transform one frame
-  (``apply``); the finished measurement is then delayed by ``latency_steps``
+* :class:`Vision` turns the ground truth into what the teams see. With realism on, the
+  cameras first report a ball in the air as SSL-Vision does: projected onto the
+  ground-ball plane, no height (:class:`~ssl_marl.envs.camera.CameraRig`; the
+  observation's ball height is then 0). Its *measurement effects*
+  (:class:`BallDropout`, :class:`VisionNoise`, ...) transform that frame (``apply``);
+  the finished measurement is then delayed by ``latency_steps``
   (:class:`ObservationDelay`).
 * :class:`Radio` turns commanded actions into executed ones through *command
   effects* (:class:`CommandDelay`, :class:`CommandLoss`, ...).
@@ -28,6 +31,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..physics.state import TeamState, WorldState, make_team_state, wrap_angle
+from .camera import CameraRig
 from .config import RealismConfig
 
 
@@ -132,15 +136,17 @@ def vision_effects(cfg: RealismConfig) -> list[VisionEffect]:
 
 
 class Vision:
-    """Turns ground-truth snapshots into what the teams see: ``effects`` applied to each
-    frame in order, then ``latency_steps`` of delay. With no effects a frame is the
-    truth itself."""
+    """Turns ground-truth snapshots into what the teams see: the ``camera`` model (a
+    ball in the air reported as SSL-Vision does; None: seen where it is, with its
+    height), then ``effects`` applied to each frame in order, then ``latency_steps`` of
+    delay. With no camera and no effects a frame is the truth itself."""
 
     def __init__(self, cfg: RealismConfig | None = None, effects: list[VisionEffect] | None = None,
-                 latency_steps: int | None = None) -> None:
+                 latency_steps: int | None = None, camera: CameraRig | None = None) -> None:
         cfg = cfg or RealismConfig()
         self.effects = vision_effects(cfg) if effects is None else list(effects)
         self.delay = ObservationDelay(cfg.obs_latency_steps if latency_steps is None else latency_steps)
+        self.camera = camera
 
     def reset(self, truth: WorldState, rng: np.random.Generator) -> WorldState:
         for e in self.effects:
@@ -151,7 +157,7 @@ class Vision:
         return self.delay.push(self._measure(truth, rng, first=False))
 
     def _measure(self, truth: WorldState, rng: np.random.Generator, first: bool) -> WorldState:
-        seen = truth
+        seen = truth if self.camera is None else self.camera.observe(truth)
         for e in self.effects:
             seen = e.apply(seen, truth, rng, first)
         for e in self.effects:

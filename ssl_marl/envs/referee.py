@@ -2,7 +2,11 @@
 
 * Goal: the ball has *fully* crossed the goal line between the posts
   (|x| >= L/2 + r and |y| <= goal_width/2). The ball can only be there inside
-  the goal, since the goal walls close it.
+  the goal, since the goal walls close it. It counts only if the ball was never
+  higher than :data:`GOAL_MAX_HEIGHT_M` since a robot last touched it (SSL rules,
+  "Scoring": 150 mm; ``WorldState.ball_max_height``); a higher ball left the field
+  over the goal line: the ball-out restart. A ball that never leaves the ground
+  (no chip kicks) always scores.
 * Ball out: the ball has fully crossed a touch line (|y| >= W/2 + r) or a goal line
   outside the goal. The restart places the ball 0.2 m inside the field at the
   crossing point (out of the defense area), stopped, and moves robots that stand
@@ -30,6 +34,8 @@ RESTART_CLEARANCE = 0.5  # m between the placed ball and any robot centre
 #: m: a ball that stays within this of one spot makes no progress (the SSL rules leave
 #: "clear lack of progress" to the referee; two robots pinning the ball move it a few cm)
 NO_PROGRESS_RADIUS_M = 0.25
+#: m: a goal counts only if the ball stayed at most this high after the last touch (SSL rules)
+GOAL_MAX_HEIGHT_M = 0.15
 
 
 @dataclass(frozen=True)
@@ -44,7 +50,7 @@ class RefereeCall:
 
 def judge(ws: WorldState, field: FieldGeometry, ball_radius: float) -> RefereeCall:
     side = field.in_goal(ws.ball_pos, ball_radius)
-    if side:
+    if side and ws.ball_max_height <= GOAL_MAX_HEIGHT_M:
         return RefereeCall(goal_for="blue" if side > 0 else "yellow")
     x, y = float(ws.ball_pos[0]), float(ws.ball_pos[1])
     out_x = abs(x) >= field.half_length + ball_radius

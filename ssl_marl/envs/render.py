@@ -168,7 +168,7 @@ class FieldRenderer:
                                  ts.kick_ready)
             return WorldState(t=world.t, ball_pos=-np.asarray(world.ball_pos), ball_vel=-np.asarray(world.ball_vel),
                               blue=flip(world.blue), yellow=flip(world.yellow), ball_visible=world.ball_visible,
-                              frame="field")
+                              frame="field", ball_height=world.ball_height)
         raise ValueError(f"FieldRenderer.draw: unknown WorldState.frame {world.frame!r}")
 
     def reset_trails(self) -> None:

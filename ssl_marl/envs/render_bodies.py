@@ -3,7 +3,10 @@
 Robots are drawn as their body outline (a circle cut by the flat front chord) in the
 team colour with a darker outline, the dribbler bar along the front chord as the
 heading marker, and optionally their index; the ball as an orange disc with a dark
-rim, or a hollow ring at the last seen position when vision dropped it. Non-finite
+rim, or a hollow ring at the last seen position when vision dropped it. A ball in the
+air (``WorldState.ball_height`` > 0) casts a dark shadow at its ground position and is
+drawn :data:`~ssl_marl.envs.render_style.BALL_LIFT_PER_M` m up the picture per metre of
+height, larger by :data:`~ssl_marl.envs.render_style.BALL_GROWTH_PER_M` per metre. Non-finite
 positions are skipped; far-off ones are clipped to a safe pixel range.
 """
 
@@ -20,8 +23,8 @@ from ssl_marl.physics.params import RobotParams
 from ssl_marl.physics.state import TeamState, WorldState
 
 from .render_canvas import PixelMap, pygame
-from .render_style import (ARC_POINTS, BALL_ORANGE, COORD_LIMIT, LINE_WHITE, TEAM_COLOURS, TEAM_MARK, TEAM_OUTLINE,
-                           TRAIL_COLOURS, TRAIL_WIDTH_M, WALL_DARK)
+from .render_style import (ARC_POINTS, BALL_GROWTH_PER_M, BALL_LIFT_PER_M, BALL_ORANGE, BALL_SHADOW, COORD_LIMIT,
+                           LINE_WHITE, TEAM_COLOURS, TEAM_MARK, TEAM_OUTLINE, TRAIL_COLOURS, TRAIL_WIDTH_M, WALL_DARK)
 
 
 @dataclass(frozen=True)
@@ -99,12 +102,19 @@ def draw_team(surf: pygame.Surface, pm: PixelMap, team: str, ts: TeamState, look
 
 
 def draw_ball(surf: pygame.Surface, pm: PixelMap, world: WorldState, radius_px: int) -> None:
-    """Draw the ball: a disc with a dark rim, or a hollow ring when ``world.ball_visible`` is False."""
+    """Draw the ball: a disc with a dark rim, or a hollow ring when ``world.ball_visible``
+    is False; in the air, a shadow at its ground position and the ball lifted and larger."""
     bp = np.asarray(world.ball_pos, float)
     if not np.isfinite(bp).all():
         return
     u, v = pm.to_px(bp)
     centre = (int(round(u)), int(round(v)))
+    z = float(world.ball_height)
+    if z > 0.0 and math.isfinite(z):
+        pygame.draw.circle(surf, BALL_SHADOW, centre, radius_px)
+        v = max(v - z * BALL_LIFT_PER_M * pm.ppm, -COORD_LIMIT)
+        centre = (int(round(u)), int(round(v)))
+        radius_px = int(round(radius_px * (1.0 + BALL_GROWTH_PER_M * min(z, 10.0))))
     if world.ball_visible:
         pygame.draw.circle(surf, BALL_ORANGE, centre, radius_px)
         if radius_px >= 4:  # dark rim: the ball stands out on the carpet and on white lines

@@ -32,3 +32,6 @@ MIN_GOAL_WALL_PX = 2  # goal walls are drawn at least this thick
 MIN_ID_ROBOT_RADIUS_PX = 7.0  # with show_ids, robots are drawn at least this big so the number fits
 MIN_ROBOT_RADIUS_PX = 3.0  # without ids, robots are drawn at least this big so they stay visible
 MIN_BALL_RADIUS_PX = 4  # the ball is drawn at least this big (seen at 480 px width)
+BALL_SHADOW = (15, 55, 20)  # shadow of a ball in the air, on the carpet under it
+BALL_LIFT_PER_M = 1.0  # a ball in the air is drawn this many metres up the picture per metre of height
+BALL_GROWTH_PER_M = 0.5  # ... and 1 + this x height (m) times its radius

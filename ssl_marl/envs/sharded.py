@@ -27,34 +27,33 @@ from typing import Any
 
 import numpy as np
 
-from .actions import ACTION_DIM
-
 _STEP, _RESET, _CLOSE, _OK = b"s", b"r", b"c", b"k"
 
 
-def _layout(K: int, n: int, d: int, W: int = 1) -> dict[str, tuple[tuple[int, ...], str]]:
-    """Name -> (shape, dtype) of every shared array (W workers)."""
-    return {"cpu_s": ((W,), "f8"), "actions": ((K, n, ACTION_DIM), "f8"), "obs": ((K, n, d), "f4"), "rewards": ((K, n), "f8"),
+def _layout(K: int, n: int, d: int, W: int, a: int) -> dict[str, tuple[tuple[int, ...], str]]:
+    """Name -> (shape, dtype) of every shared array (K worlds, n agents, observation
+    length d, W workers, action length a)."""
+    return {"cpu_s": ((W,), "f8"), "actions": ((K, n, a), "f8"), "obs": ((K, n, d), "f4"), "rewards": ((K, n), "f8"),
             "terminated": ((K,), "?"), "truncated": ((K,), "?"), "goal": ((K,), "i8"), "ball_out": ((K,), "?"),
             "no_progress": ((K,), "?"),
             "kicker": ((K,), "i8"), "kick_speed": ((K,), "f8"), "t": ((K,), "f8"), "autoreset": ((K,), "?"),
             "score": ((K, 2), "i8"), "seeds": ((K,), "i8")}
 
 
-def _map(buf, K: int, n: int, d: int, W: int) -> dict[str, np.ndarray]:
+def _map(buf, K: int, n: int, d: int, W: int, a: int) -> dict[str, np.ndarray]:
     out, off = {}, 0
-    for name, (shape, dt) in _layout(K, n, d, W).items():
+    for name, (shape, dt) in _layout(K, n, d, W, a).items():
         a = np.ndarray(shape, dtype=np.dtype(dt), buffer=buf, offset=off)
         out[name] = a
         off += (a.nbytes + 63) // 64 * 64
     return out
 
 
-def _nbytes(K: int, n: int, d: int, W: int) -> int:
-    return sum((int(np.prod(s)) * np.dtype(dt).itemsize + 63) // 64 * 64 for s, dt in _layout(K, n, d, W).values())
+def _nbytes(K: int, n: int, d: int, W: int, a: int) -> int:
+    return sum((int(np.prod(s)) * np.dtype(dt).itemsize + 63) // 64 * 64 for s, dt in _layout(K, n, d, W, a).values())
 
 
-def _worker(conn, shm_name: str, K_total: int, n: int, d: int, W: int, w: int, lo: int, hi: int,
+def _worker(conn, shm_name: str, K_total: int, n: int, d: int, W: int, a: int, w: int, lo: int, hi: int,
             config: dict) -> None:
     import time
 
@@ -62,7 +61,7 @@ def _worker(conn, shm_name: str, K_total: int, n: int, d: int, W: int, w: int, l
 
     shm = shared_memory.SharedMemory(name=shm_name)
     try:
-        arr = _map(shm.buf, K_total, n, d, W)
+        arr = _map(shm.buf, K_total, n, d, W, a)
         env = BatchedSSLEnv(hi - lo, **config)
         sl = slice(lo, hi)
         conn.send_bytes(_OK)
@@ -122,29 +121,28 @@ class ShardedBatchedEnv:
 
     def __init__(self, n_workers: int, worlds_per_worker: int, **config: Any) -> None:
         from .batched_env import BatchedSSLEnv
-        from .config import make_config
-        from .observation import obs_dim
 
         for name, v in (("n_workers", n_workers), ("worlds_per_worker", worlds_per_worker)):
             if not isinstance(v, int) or isinstance(v, bool) or v < 1:
                 raise ValueError(f"{name} must be a positive integer, got {v!r}")
-        cfg = make_config(**config)  # fail here, not in the workers
-        probe = BatchedSSLEnv(1, **config)
+        probe = BatchedSSLEnv(1, **config)  # bad options fail here, not in the workers
         self.possible_agents = probe.possible_agents
         self.single_observation_space, self.single_action_space = probe.single_observation_space, \
             probe.single_action_space
         self.n = probe.n
-        d = obs_dim(cfg.obs_max_teammates, cfg.obs_max_opponents)
+        #: action length per agent (5; 6 with chip kicks)
+        self.action_dim = a = probe.action_dim
+        d = probe.obs_dim
         self.K = K = n_workers * worlds_per_worker
         self.n_workers, self.worlds_per_worker = n_workers, worlds_per_worker
-        self._shm = shared_memory.SharedMemory(create=True, size=_nbytes(K, self.n, d, n_workers))
-        self._arr = _map(self._shm.buf, K, self.n, d, n_workers)
+        self._shm = shared_memory.SharedMemory(create=True, size=_nbytes(K, self.n, d, n_workers, a))
+        self._arr = _map(self._shm.buf, K, self.n, d, n_workers, a)
         ctx = mp.get_context("spawn")
         self._conns, self._procs = [], []
         for w in range(n_workers):
             parent, child = ctx.Pipe()
             lo, hi = w * worlds_per_worker, (w + 1) * worlds_per_worker
-            p = ctx.Process(target=_worker, args=(child, self._shm.name, K, self.n, d, n_workers, w, lo, hi,
+            p = ctx.Process(target=_worker, args=(child, self._shm.name, K, self.n, d, n_workers, a, w, lo, hi,
                                                   dict(config)),
                             daemon=True, name=f"ssl_marl-shard-{w}")
             p.start()
@@ -179,10 +177,10 @@ class ShardedBatchedEnv:
         return self._arr["obs"].copy(), self._result(("t",))
 
     def step(self, actions: Any):
-        """Step every world: actions (K, n, 5); see :meth:`BatchedSSLEnv.step`."""
-        a = np.asarray(actions, dtype=np.float64)
-        if a.shape != (self.K, self.n, ACTION_DIM):
-            raise ValueError(f"actions must have shape (worlds, agents, {ACTION_DIM}) = {(self.K, self.n, ACTION_DIM)}, "
+        """Step every world: actions (K, n, A), A = :attr:`action_dim`; see :meth:`BatchedSSLEnv.step`."""
+        a, dim = np.asarray(actions, dtype=np.float64), self.action_dim
+        if a.shape != (self.K, self.n, dim):
+            raise ValueError(f"actions must have shape (worlds, agents, {dim}) = {(self.K, self.n, dim)}, "
                              f"got {a.shape}")
         bad = ~np.isfinite(a).all(axis=2)
         if bad.any():

@@ -7,7 +7,8 @@ Observation
     goal at -x). Index by index layout and the finite bounds (field walls + margin,
     speed caps x safety factor; observations are clipped into them) in
     :mod:`ssl_marl.envs.observation` (D = 21 + 7 * (obs_max_teammates +
-    obs_max_opponents) = 168 by default).
+    obs_max_opponents) = 168 by default; 170 with chip kicks: the ball's height (m)
+    and vertical velocity (m/s) appended).
     ``state()`` / ``state_space``: the whole world in the field frame (see
     :func:`ssl_marl.envs.observation.state_vector`).
 
@@ -16,7 +17,16 @@ Action
     the robot limits), dribbler (on when > 0), kick strength (kick when > 0). See
     :mod:`ssl_marl.envs.actions`. Agents missing from the action dict do nothing
     this step (zero action). NaN/inf, a wrong shape or an unknown agent raise
-    ``ValueError`` naming the agent.
+    ``ValueError`` naming the agent; finite values outside [-1, 1] are clipped.
+
+Versions
+    v0 (the default): the layouts above. v1, ``chip_kicks=True``
+    (``ssl_marl.envs.parallel_env(chip_kicks=True)``, metadata name ``ssl_marl_v1``):
+    the ball can fly. The action gains a sixth entry, the chip (kick elevation =
+    value x ``chip_angle_max`` when > 0, else flat), the observation the ball's height
+    and vertical velocity at its end, and the robots kick on contact (see
+    :class:`~ssl_marl.envs.config.EnvConfig`). A goal then counts only if the ball was
+    never higher than 0.15 m since the last touch (:mod:`ssl_marl.envs.referee`).
 
 Task
     What an episode is about (start, rules, rewards, end) is the env's task
@@ -52,8 +62,9 @@ from pettingzoo import ParallelEnv
 
 from ..physics.state import WorldState, to_team_frame
 from ..physics.world import PhysicsWorld
-from .actions import ACTION_DIM, scale_actions, validate_actions
-from .config import EnvConfig, make_config
+from .actions import action_dim, chip_angles, scale_actions, validate_actions
+from .camera import CameraRig
+from .config import EnvConfig, RealismConfig, make_config
 from .deadline import ControlDeadline
 from .observation import (
     all_observations,
@@ -92,19 +103,24 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         self.agents: list[str] = []
         self._index = {a: i for i, a in enumerate(self.possible_agents)}
         self.n = len(self.possible_agents)
-        d = obs_dim(cfg.obs_max_teammates, cfg.obs_max_opponents)
+        if cfg.chip_kicks:
+            self.metadata = {**self.metadata, "name": "ssl_marl_v1"}
+        #: action length per agent (5; 6 with chip kicks)
+        self.action_dim = action_dim(cfg.chip_kicks)
+        d = obs_dim(cfg.obs_max_teammates, cfg.obs_max_opponents, cfg.chip_kicks)
         self._obs_low, self._obs_high = observation_bounds(cfg.field, cfg.robot, cfg.obs_max_teammates,
-                                                           cfg.obs_max_opponents)
+                                                           cfg.obs_max_opponents,
+                                                           cfg.ball if cfg.chip_kicks else None)
         self._obs_space = gymnasium.spaces.Box(self._obs_low, self._obs_high, (d,), np.float32)
-        self._act_space = gymnasium.spaces.Box(-1.0, 1.0, (ACTION_DIM,), np.float32)
+        self._act_space = gymnasium.spaces.Box(-1.0, 1.0, (self.action_dim,), np.float32)
         self.observation_spaces = {a: self._obs_space for a in self.possible_agents}
         self.action_spaces = {a: self._act_space for a in self.possible_agents}
         self._state_low, self._state_high = state_bounds(cfg.field, cfg.robot, self.n)
         self.state_space = gymnasium.spaces.Box(self._state_low, self._state_high, (state_dim(self.n),), np.float32)
         self.physics = PhysicsWorld(cfg.field, cfg.robot, cfg.ball, cfg.n_blue, cfg.n_yellow, cfg.dt,
                                     cfg.physics_substeps)
-        self.vision = Vision(cfg.realism)
-        self.radio = Radio(cfg.realism, self.n, ACTION_DIM)
+        self.vision = self._vision(cfg.realism)
+        self.radio = Radio(cfg.realism, self.n, self.action_dim)
         #: this episode's domain-randomised conditions (None without randomisation)
         self.conditions = None
         self._truth: WorldState | None = None
@@ -112,7 +128,7 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         self._noise_rng = np.random.default_rng(0)
         self.np_random = np.random.default_rng()
         self.score = {"blue": 0, "yellow": 0}
-        self._prev_cmd = np.zeros((self.n, ACTION_DIM))
+        self._prev_cmd = np.zeros((self.n, self.action_dim))
         self._deadline = ControlDeadline(self.config.dt)
         self._renderer = None
         self._team_of = {a: a.split("_")[0] for a in self.possible_agents}
@@ -145,7 +161,7 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         self.physics.reset(scene.robot_pose, scene.ball_pos, scene.ball_vel)
         self.agents = list(self.possible_agents)
         self.score = {"blue": 0, "yellow": 0}
-        self._prev_cmd = np.zeros((self.n, ACTION_DIM))
+        self._prev_cmd = np.zeros((self.n, self.action_dim))
         self.radio.reset()
         self._truth = self.physics.snapshot()
         self._seen = self.vision.reset(self._truth, self._noise_rng)
@@ -170,22 +186,29 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
         robot simply cannot follow a fast one)."""
         cfg = self.config
         self.conditions = self.randomization.draw(rng, cfg.robot, cfg.ball)
-        self.vision = Vision(self.conditions.realism)
-        self.radio = Radio(self.conditions.realism, self.n, ACTION_DIM)
+        self.vision = self._vision(self.conditions.realism)
+        self.radio = Radio(self.conditions.realism, self.n, self.action_dim)
         self.physics.set_params(robot=self.conditions.robot, ball=self.conditions.ball)
+
+    def _vision(self, realism: RealismConfig) -> Vision:
+        """The vision pipeline of ``realism``: with realism on, the cameras report a ball
+        in the air as SSL-Vision does (:mod:`ssl_marl.envs.camera`)."""
+        camera = CameraRig(self.field, self.config.ball.radius) if realism.enabled else None
+        return Vision(realism, camera=camera)
 
     # -------------------------------------------------------------------- step
     def _action_array(self, actions: dict) -> np.ndarray:
         if not isinstance(actions, dict):
             raise ValueError(f"actions must be a dict agent -> action, got {type(actions).__name__}")
-        arr = np.zeros((self.n, ACTION_DIM))
+        dim = self.action_dim
+        arr = np.zeros((self.n, dim))
         for agent, act in actions.items():
             i = self._check_agent(agent)
             if agent not in self.agents:
                 raise ValueError(f"agent {agent!r} is not live (episode over: call reset())")
             a = np.asarray(act, dtype=float)
-            if a.shape != (ACTION_DIM,):
-                raise ValueError(f"action for agent {agent!r} must have shape ({ACTION_DIM},), got {a.shape}")
+            if a.shape != (dim,):
+                raise ValueError(f"action for agent {agent!r} must have shape ({dim},), got {a.shape}")
             arr[i] = a
         validate_actions(arr, self.possible_agents)
         return arr
@@ -226,7 +249,10 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
     def _physics_tick(self, cmd: np.ndarray, events: list[dict]) -> None:
         executed = self.radio.transmit(cmd, self._noise_rng)
         v, w, drib, kick = scale_actions(executed, self.config.robot)
-        self.physics.step(v, w, drib, kick)
+        if self.config.chip_kicks:
+            self.physics.step(v, w, drib, kick, chip=chip_angles(executed, self.config.robot))
+        else:
+            self.physics.step(v, w, drib, kick)
         for i, speed in self.physics.kicks_this_step:
             events.append({"type": "kick", "agent": self.possible_agents[i], "speed": speed})
         self._truth = self.physics.snapshot()
@@ -263,7 +289,7 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
     # ------------------------------------------------------------ observations
     def _observations(self) -> dict[str, np.ndarray]:
         cfg = self.config
-        ob = all_observations(self._seen, self.field, cfg.obs_max_teammates, cfg.obs_max_opponents)
+        ob = all_observations(self._seen, self.field, cfg.obs_max_teammates, cfg.obs_max_opponents, cfg.chip_kicks)
         return dict(zip(self.possible_agents, clip_to_bounds(ob, self._obs_low, self._obs_high)))
 
     def world_state(self) -> WorldState:

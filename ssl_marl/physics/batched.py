@@ -491,4 +491,5 @@ class BatchedPhysics:
         bv.setflags(write=False)
         w = self.worlds[k]
         return WorldState(t=float(self.t[k]), ball_pos=bp, ball_vel=bv, blue=TeamState(*(a[:nb] for a in arrays)),
-                          yellow=TeamState(*(a[nb:] for a in arrays)), ball_height=w.ball_z, ball_vz=w.ball_vz)
+                          yellow=TeamState(*(a[nb:] for a in arrays)), ball_height=w.ball_z, ball_vz=w.ball_vz,
+                          ball_max_height=w.ball_max_height)

@@ -62,6 +62,8 @@ class WorldState:
         ball_height: height of the ball's lowest point above the field (m; 0 on the
             ground). ball_vz: its vertical velocity (m/s, up positive). Both are the
             same in every frame.
+        ball_max_height: the highest the ball has been since a robot last touched it
+            (m; the goal rule's "at most 0.15 m", SSL rules).
     """
 
     t: float
@@ -73,6 +75,7 @@ class WorldState:
     frame: str = "field"
     ball_height: float = 0.0
     ball_vz: float = 0.0
+    ball_max_height: float = 0.0
 
     def team(self, name: str) -> TeamState:
         if name == "blue":

@@ -390,7 +390,7 @@ class PhysicsWorld(BallMechanics):
         blue = TeamState(*(a[:nb] for a in arrays))
         yellow = TeamState(*(a[nb:] for a in arrays))
         return WorldState(t=self.t, ball_pos=bp, ball_vel=bv, blue=blue, yellow=yellow, ball_height=self.ball_z,
-                          ball_vz=self.ball_vz)
+                          ball_vz=self.ball_vz, ball_max_height=self.ball_max_height)
 
     def set_ball(self, pos: np.ndarray, vel: np.ndarray | None = None, z: float = 0.0, vz: float = 0.0) -> None:
         """Teleport the ball (referee ball placement): position (m), horizontal velocity

@@ -3,9 +3,9 @@ dribbler, outlier gates.
 
 What it consumes: the team's vision frames (``env.vision_state(team)``: team frame,
 noisy, ``obs_latency`` old, the ball sometimes missing; ``frame.t`` is the capture
-time) and the commands the team sent (normalised (n, 5) actions, see
-:mod:`ssl_marl.envs.actions`, each with the control tick from which the robots
-execute it). What it produces: a :class:`~ssl_marl.physics.state.WorldState` of the
+time) and the commands the team sent (normalised (n, 5) actions, or (n, 6) with chip
+kicks, see :mod:`ssl_marl.envs.actions`, each with the control tick from which the
+robots execute it). What it produces: a :class:`~ssl_marl.physics.state.WorldState` of the
 same type and frame, predicted to the time the next command will start to act.
 
 How (docs/references.md, "Vision and tracking"; parameters in :class:`.TrackerParams`):
@@ -32,6 +32,18 @@ How (docs/references.md, "Vision and tracking"; parameters in :class:`.TrackerPa
   ball and the dribbler catching a ball the robot drives onto.
 
 Everything is deterministic (no random numbers).
+
+A ground ball only: the tracker does not model a ball in the air. Vision reports a chip
+as SSL-Vision does (:mod:`ssl_marl.envs.camera`: no height, the position projected onto
+the ground-ball plane, displaced away from the camera's foot point by up to
+z / (H - r - z) of the offset, 0.14 at a 0.5 m apex under 4 m cameras), and the filter
+treats it as a ground ball: the estimate follows that projected position (error up to
+the projection's displacement, plus the ground deceleration wrongly applied between
+measurements), each bounce's drop in speed restarts the velocity, and a chip kick's
+speed jump restarts the filter like a flat kick. The chip entry of a command is
+ignored: the prediction of a sent chip kick of a held ball is a flat kick at the full
+3-D speed until vision shows the ball. ER-Force's tracker fits chips over the camera
+rays instead. Measured figures: docs/DESIGN.md, "Ball in the air".
 """
 
 from __future__ import annotations
@@ -44,7 +56,7 @@ import numpy as np
 
 from ...physics.params import BallParams, RobotParams
 from ...physics.state import TEAMS, WorldState, make_team_state, wrap_angle
-from ..actions import ACTION_DIM, scale_actions
+from ..actions import ACTION_DIM, CHIP_ACTION_DIM, scale_actions
 from .kalman import PVFilter
 from .motion import (
     ball_deceleration,
@@ -154,11 +166,14 @@ class VisionTracker:
         self._jump_frames = max(self._jump_frames, int(frames))
 
     def record_command(self, tick: int, actions: np.ndarray) -> None:
-        """The team's robots execute ``actions`` ((n, 5) normalised, robot order) from
+        """The team's robots execute ``actions`` ((n, 5) normalised, robot order; (n, 6)
+        with chip kicks, the chip entry ignored: the tracker models a ground ball) from
         control tick ``tick`` on (tick = (time the command is executed from) / dt)."""
         a = np.asarray(actions, dtype=float)
-        if a.ndim != 2 or a.shape[1] != ACTION_DIM:
-            raise ValueError(f"VisionTracker.record_command: actions must have shape (n, {ACTION_DIM}), got {a.shape}")
+        if a.ndim != 2 or a.shape[1] not in (ACTION_DIM, CHIP_ACTION_DIM):
+            raise ValueError(f"VisionTracker.record_command: actions must have shape (n, {ACTION_DIM}) or "
+                             f"(n, {CHIP_ACTION_DIM}), got {a.shape}")
+        a = a[:, :ACTION_DIM]
         if self._n is not None and a.shape[0] != self._n[OWN]:
             raise ValueError(f"VisionTracker.record_command: {a.shape[0]} command rows for a team of "
                              f"{self._n[OWN]} robots")
