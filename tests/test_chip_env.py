@@ -298,3 +298,14 @@ def test_chip_through_the_env_flies_as_the_drag_free_projectile(chip):
     dist_ref, apex_ref = projectile_reference(speed, chip * e.config.robot.chip_angle_max, e.config.ball.gravity)
     assert np.hypot(*(touchdown - start)) == pytest.approx(dist_ref, rel=0.02)
     assert apex == pytest.approx(apex_ref, rel=0.02)
+
+
+def test_the_tracker_runs_on_the_chip_env():
+    from ssl_marl.envs import parallel_env
+    from ssl_marl.envs.tracking import with_tracker
+
+    env = with_tracker(parallel_env(n_blue=1, n_yellow=1, chip_kicks=True, realism="realistic"), "on")
+    env.reset(seed=3)
+    for _ in range(10):
+        env.step({a: np.array([0.5, 0.0, 0.0, 1.0, 0.5, 0.5], np.float32) for a in env.possible_agents})
+    assert np.isfinite(env.vision_state("blue").ball_pos).all()

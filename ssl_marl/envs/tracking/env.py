@@ -30,7 +30,6 @@ from typing import Any
 import numpy as np
 
 from ...physics.state import TEAMS, WorldState, to_team_frame
-from ..actions import ACTION_DIM
 from .params import TrackerParams
 from .tracker import VisionTracker
 
@@ -82,7 +81,7 @@ class TrackedVisionEnv:
         out = self.env.step(actions)
         tick = int(round(self.env.world_state().t / self.dt)) - 1 + self.radio_steps
         for team, tr in self.trackers.items():
-            cmd = np.zeros((len(self._agents[team]), ACTION_DIM))
+            cmd = np.zeros((len(self._agents[team]), self.env.action_dim))
             for i, agent in enumerate(self._agents[team]):
                 if agent in actions:
                     cmd[i] = np.asarray(actions[agent], dtype=float)
