@@ -243,8 +243,9 @@ class BridgeServer:
             if req.HasField("robot_control"):
                 errs += self.world.robot_control(team, req.robot_control)
             errors[team] = errs
-        frames = []
-        for _ in range(next(iter(steps.values()))):
+        k = next(iter(steps.values()))
+        frames = [] if k else self.world.detections(self.time_origin + self.world.t, self.time_origin + self.world.t)
+        for _ in range(k):
             if self.world.finished:
                 break
             frames += self.advance()
@@ -257,17 +258,22 @@ class BridgeServer:
 
     # -------------------------------------------------------------- loops
     def run(self, max_wall_s: float | None = None) -> dict:
-        """Serve until the match ends, :meth:`stop` is called or ``max_wall_s`` passes;
+        """Serve until the match ends (lock-step: and every client has hung up),
+        :meth:`stop` is called or ``max_wall_s`` passes;
         the counters (packets, errors by code, steps)."""
         start = time.monotonic()
         next_tick = start
-        while not self.stop_event.is_set() and not self.world.finished:
+        while not self.stop_event.is_set():
             now = time.monotonic()
             if max_wall_s is not None and now - start >= max_wall_s:
                 break
-            if self.config.lockstep:
+            if self.config.lockstep:  # after the end, answer until the clients hang up
+                if self.world.finished and not self.sync.conns:
+                    break
                 self.poll(0.05)
                 continue
+            if self.world.finished:
+                break
             if now < next_tick:
                 self.poll(next_tick - now)
                 continue
