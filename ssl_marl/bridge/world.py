@@ -225,6 +225,7 @@ class BridgeWorld:
         self.commands[team][rid] = action
         self.command_time[team][rid] = self.t
         self.stats["commands"] += 1
+        self.stats[f"commands:{team}"] += 1
 
     def simulator_command(self, command: sim_pb.SimulatorCommand, vision_port_setter=None) -> list[CommandError]:
         """Apply a ``SimulatorCommand`` (control, and of the config only ``vision_port``
