@@ -60,6 +60,8 @@ def _register_serve(subparsers) -> argparse.ArgumentParser:
     p.add_argument("--log", metavar="PATH", help="write SSL's standard log file of the vision and referee packets")
     p.add_argument("--replay", metavar="LOG", help="send a recorded SSL log out of the vision and referee "
                                                     "addresses instead of simulating")
+    p.add_argument("--replay-video", metavar="OUT", help="with --replay: render the log's vision to OUT "
+                                                         "(.gif or .mp4) instead of sending it")
     p.add_argument("--max-wall-s", type=float, help="stop after this many wall-clock seconds")
     p.set_defaults(handler=_run_serve)
     return p
@@ -73,6 +75,12 @@ def _run_serve(args: argparse.Namespace) -> int:
 
     vision = tuple(args.vision or (VISION_DEFAULT,))
     referee = tuple(args.referee or (REFEREE_DEFAULT,))
+    if args.replay and args.replay_video:
+        from .log_tools import log_to_video
+
+        n = log_to_video(args.replay, args.replay_video, robots=args.robots, field=args.field)
+        print(f"wrote {n} frames of {args.replay} to {args.replay_video}")
+        return 0
     if args.replay:
         v, r = UdpSender(vision), UdpSender(referee)
         try:
