@@ -19,7 +19,8 @@ from ssl_marl.bridge.world import WorldConfig
 LOOP = "127.0.0.1"
 
 
-def main() -> None:
+def main(argv: list[str] | None = None) -> dict:
+    """Run the round trip; returns what it saw (robot position mm, score, the step error)."""
     vision, referee = UdpReceiver((LOOP, 0)), UdpReceiver((LOOP, 0))
     config = ServerConfig(vision=(f"{LOOP}:{vision.port}",), referee=(f"{LOOP}:{referee.port}",), listen_host=LOOP,
                           control_port=0, blue_port=0, yellow_port=0, grsim_port=0, grsim_status_ports=(9, 9),
@@ -48,13 +49,16 @@ def main() -> None:
     print(f"referee: {ref_pb.Referee.Command.Name(last.command)}, blue {last.blue.score} - {last.yellow.score} yellow")
 
     bad = client.step(0.01)
-    print(f"sim_step 0.01 s: {bad.robot_control_response.errors[0].code}")
+    error = bad.robot_control_response.errors[0].code
+    print(f"sim_step 0.01 s: {error}")
     client.close()
     server.stop()
     thread.join()
     server.close()
     vision.close()
     referee.close()
+    return {"robot_mm": (robot.x, robot.y), "score": (last.blue.score, last.yellow.score),
+            "command": ref_pb.Referee.Command.Name(last.command), "step_error": error}
 
 
 if __name__ == "__main__":

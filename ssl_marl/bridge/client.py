@@ -1,7 +1,10 @@
 """One of our teams as a client of an SSL simulator: :class:`PlayClient`.
 
 Each new vision frame: merge the cameras (:func:`~.vision_codec.merge_frames`), update
-the world (:class:`~.perception.VisionWorld`), let the team controller decide
+the world (:class:`~.perception.VisionWorld`), track it with the project's tracker
+(:class:`~ssl_marl.envs.tracking.VisionTracker`: Kalman filters fed with the commands
+sent, the state predicted to the next control tick, when the command acts; ``tracker=False``
+uses the raw detections), let the team controller decide
 (:func:`ssl_marl.runners.controllers.make_controller`: STP with learned or hand-coded
 skills, its plays and carrier decision), and send the robot commands by the SSL
 simulation protocol (``RobotControl`` to the colour's port; the replies carry dribbler
@@ -43,10 +46,14 @@ class PlayBrain:
         team: "blue" or "yellow". kind: a team kind (:data:`~ssl_marl.runners.controllers.TEAM_KINDS`).
         robots: robots per team. field: "div_a" / "div_b". seed: the controller's seed.
         skills, decision: as :func:`~ssl_marl.runners.controllers.make_controller`.
+        dt: the simulator's control period (s). tracker: track the detections (see the
+            module docstring). latency_steps: control periods between a frame's capture
+            and the tick its command acts on (1: the next tick, as on the bridge).
     """
 
     def __init__(self, team: str, kind: str = "baseline", robots: int = 6, field: str = "div_b", seed: int = 0,
-                 skills: Any = None, decision: Any = None, dt: float = 1.0 / 60.0) -> None:
+                 skills: Any = None, decision: Any = None, dt: float = 1.0 / 60.0, tracker: bool = True,
+                 latency_steps: int = 1) -> None:
         from ..runners.controllers import STP_KINDS, make_controller
 
         if team not in ("blue", "yellow"):
@@ -60,6 +67,12 @@ class PlayBrain:
         if hasattr(self.controller, "reset"):
             self.controller.reset()
         self.vision = VisionWorld(robots, self.field, self.robot, self.ball)
+        self.dt, self.latency_steps = float(dt), int(latency_steps)
+        self.tracker = None
+        if tracker:
+            from ..envs.tracking import VisionTracker
+
+            self.tracker = VisionTracker(team, self.robot, self.ball, self.dt)
         self.halted = False
         self.score: dict[str, int] | None = None
         self.decisions = 0
@@ -88,9 +101,19 @@ class PlayBrain:
             return None
         self.decisions += 1
         if self.halted:
-            return {i: np.array([0, 0, 0, -1, -1], np.float32) for i in range(self.n)}
-        actions = self.controller.act(world)
-        return {int(name.rsplit("_", 1)[1]): np.asarray(a, np.float32) for name, a in actions.items()}
+            actions = {f"{self.team}_{i}": np.array([0, 0, 0, -1, -1], np.float32) for i in range(self.n)}
+        elif self.tracker is not None:
+            from ..physics.state import to_team_frame
+
+            self.tracker.update(to_team_frame(world, self.team))
+            actions = self.controller.act(self.tracker.predict(world.t + self.latency_steps * self.dt))
+        else:
+            actions = self.controller.act(world)
+        by_id = {int(name.rsplit("_", 1)[1]): np.asarray(a, np.float32) for name, a in actions.items()}
+        if self.tracker is not None:
+            rows = np.array([by_id.get(i, np.array([0, 0, 0, -1, -1], np.float32)) for i in range(self.n)])
+            self.tracker.record_command(self.tracker.tick_of(world.t) + self.latency_steps, rows)
+        return by_id
 
     def robot_control(self, actions: dict[int, np.ndarray]) -> sim_pb.RobotControl:
         return encode_robot_control(actions, self.robot)
