@@ -199,3 +199,27 @@ def test_serve_and_play_parsers():
     assert args.handler is serve.run and args.vision == ["127.0.0.1:1", "127.0.0.1:2"] and args.lockstep
     args = parser.parse_args(["play", "--team", "yellow", "--protocol", "grsim", "--vision", "127.0.0.1:3"])
     assert args.handler is play.run and args.team == "yellow" and args.protocol == "grsim"
+
+
+def test_tracker_stream_and_several_vision_addresses():
+    import time
+
+    from ssl_marl.bridge.proto import ssl_vision_tracked_pb2 as trk_pb
+    from ssl_marl.bridge.transport import UdpReceiver
+
+    tracker, second = UdpReceiver((LOOP, 0)), UdpReceiver((LOOP, 0))
+    server, vision, referee = loopback_server(WorldConfig(robots=2, seconds=5.0, realism="realistic", n_cameras=4,
+                                                          tracker=True), tracker=(f"{LOOP}:{tracker.port}",))
+    server.vision_out.destinations.append((LOOP, second.port))
+    try:
+        for _ in range(5):
+            server.advance()
+        time.sleep(0.1)
+        packets = [trk_pb.TrackerWrapperPacket.FromString(d) for d, _ in tracker.receive()]
+        assert len(packets) >= 5 and len(packets[-1].tracked_frame.robots) == 4
+        first, other = vision.receive(), second.receive()
+        assert len(first) == len(other) >= 5 * 4  # four cameras per period, both addresses
+    finally:
+        server.close()
+        for s in (vision, referee, tracker, second):
+            s.close()
