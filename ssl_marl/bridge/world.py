@@ -155,8 +155,9 @@ class BridgeWorld:
     def tracker(self, timestamp: float, uuid: str):
         """A tracker packet of the project's tracker (blue's tracked view: the field frame)."""
         self.tracker_frame += 1
-        return tracker_packet(self.env.vision_state("blue") if hasattr(self.env, "raw_vision_state")
-                              else self.env.world_state(), self.tracker_frame, timestamp, uuid)
+        tracked = hasattr(self.env, "raw_vision_state")  # vision_state(): blue's tracked view, field frame
+        return tracker_packet(self.env.vision_state() if tracked else self.env.world_state(), self.tracker_frame,
+                              timestamp, uuid)
 
     def feedback(self, team: str) -> list[sim_pb.RobotFeedback]:
         """Per robot of ``team``: dribbler contact (ground truth, as a light barrier reports)."""
