@@ -223,3 +223,14 @@ def test_tracker_stream_and_several_vision_addresses():
         server.close()
         for s in (vision, referee, tracker, second):
             s.close()
+
+
+def test_play_command_runs_on_loopback(capsys):
+    from ssl_marl.bridge.commands import play
+
+    parser = argparse.ArgumentParser()
+    play.register(parser.add_subparsers())
+    args = parser.parse_args(["play", "--robots", "2", "--vision", f"{LOOP}:0", "--referee", f"{LOOP}:0",
+                              "--simulator", f"{LOOP}:9", "--max-wall-s", "0.3"])
+    assert args.handler(args) == 0
+    assert "sent 0 command packets" in capsys.readouterr().out  # no simulator: nothing seen, nothing sent
