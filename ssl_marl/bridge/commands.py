@@ -12,9 +12,17 @@ from __future__ import annotations
 import argparse
 from types import SimpleNamespace
 
-from .server import REFEREE_DEFAULT, VISION_DEFAULT
+from .transport import REFEREE_DEFAULT, VISION_DEFAULT
 
 REALISM = ("none", "realistic", "randomized")
+
+
+def _require_protobuf() -> None:
+    """SystemExit with the install hint when the protobuf runtime (the ``ssl`` extra) is missing."""
+    try:
+        import google.protobuf  # noqa: F401
+    except ImportError:
+        raise SystemExit('the SSL bridge needs the protobuf runtime: pip install -e ".[ssl]"') from None
 
 
 def _register_serve(subparsers) -> argparse.ArgumentParser:
@@ -68,6 +76,7 @@ def _register_serve(subparsers) -> argparse.ArgumentParser:
 
 
 def _run_serve(args: argparse.Namespace) -> int:
+    _require_protobuf()
     from .server import BridgeServer, ServerConfig
     from .ssl_log import LogWriter, replay
     from .transport import UdpSender
@@ -146,6 +155,7 @@ def _register_play(subparsers) -> argparse.ArgumentParser:
 
 
 def _run_play(args: argparse.Namespace) -> int:
+    _require_protobuf()
     from ..runners.controllers import parse_skill_source, team_skills
     from .client import ClientConfig, PlayBrain, PlayClient
 

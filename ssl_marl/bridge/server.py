@@ -32,14 +32,9 @@ from .command_codec import CommandError
 from .lockstep import SyncEndpoint, error_response, whole_periods
 from .proto import grsim_packet_pb2 as grsim_pb
 from .proto import ssl_simulation_pb2 as sim_pb
-from .transport import UdpReceiver, UdpSender
+from .transport import REFEREE_DEFAULT, VISION_DEFAULT, UdpReceiver, UdpSender
 from .vision_codec import wrapper
 from .world import BridgeWorld, WorldConfig
-
-#: SSL's default addresses (docs/references.md, "SSL network protocols")
-VISION_DEFAULT = "224.5.23.2:10020"
-REFEREE_DEFAULT = "224.5.23.1:10003"
-TRACKER_DEFAULT = "224.5.23.2:10010"
 
 
 @dataclass(frozen=True)

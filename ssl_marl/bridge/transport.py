@@ -15,6 +15,10 @@ from typing import Iterable, Sequence
 
 Address = tuple[str, int]
 MAX_DATAGRAM = 65507  # bytes, the largest UDP payload over IPv4
+#: SSL's default addresses (docs/references.md, "SSL network protocols")
+VISION_DEFAULT = "224.5.23.2:10020"
+REFEREE_DEFAULT = "224.5.23.1:10003"
+TRACKER_DEFAULT = "224.5.23.2:10010"
 
 
 def parse_address(text: str | Address) -> Address:
