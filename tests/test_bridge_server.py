@@ -234,3 +234,24 @@ def test_play_command_runs_on_loopback(capsys):
                               "--simulator", f"{LOOP}:9", "--max-wall-s", "0.3"])
     assert args.handler(args) == 0
     assert "sent 0 command packets" in capsys.readouterr().out  # no simulator: nothing seen, nothing sent
+
+
+def test_play_command_in_lockstep_against_a_served_team(capsys):
+    from ssl_marl.bridge.commands import play
+
+    server, vision, referee = loopback_server(WorldConfig(robots=2, seconds=1.0, yellow_team="baseline"),
+                                              lockstep=True)
+    thread = server.start(max_wall_s=60)
+    parser = argparse.ArgumentParser()
+    play.register(parser.add_subparsers())
+    args = parser.parse_args(["play", "--robots", "2", "--lockstep", f"{LOOP}:{server.ports['sync_blue']}"])
+    try:
+        assert args.handler(args) == 0
+    finally:
+        server.stop()
+        thread.join(10)
+        server.close()
+        vision.close()
+        referee.close()
+    assert "played 60 lock-step periods" in capsys.readouterr().out
+    assert server.world.stats["commands:blue"] > 0 and server.world.finished

@@ -241,9 +241,9 @@ class PlayClient:
 
 def run_lockstep_match(sync_ports: dict[str, Any], brains: dict[str, PlayBrain], dt: float = 1.0 / 60.0,
                        max_steps: int | None = None) -> int:
-    """Drive both colours' brains through a lock-step server (``sync_ports``:
-    {team: "host:port"}) until the match ends (no detections come back) or
-    ``max_steps``; returns the control periods stepped."""
+    """Drive the brains (one or both colours) through a lock-step server
+    (``sync_ports``: {team: "host:port"}) until the match ends (no detections come
+    back) or ``max_steps``; returns the control periods stepped."""
     from .lockstep import LockstepClient
 
     clients = {team: LockstepClient(sync_ports[team], timeout_s=5.0) for team in brains}

@@ -149,6 +149,9 @@ def _register_play(subparsers) -> argparse.ArgumentParser:
                    help="where commands go (default 127.0.0.1 on 10301 blue / 10302 yellow, grSim 20011)")
     p.add_argument("--protocol", default="simulation", choices=("simulation", "grsim"),
                    help="command protocol (default simulation)")
+    p.add_argument("--lockstep", metavar="HOST:PORT",
+                   help="play in lock-step through this SimulationSyncRequest TCP endpoint (serve --lockstep's port "
+                        "for our colour) instead of UDP vision and commands")
     p.add_argument("--max-wall-s", type=float, help="stop after this many wall-clock seconds")
     p.set_defaults(handler=_run_play)
     return p
@@ -163,6 +166,12 @@ def _run_play(args: argparse.Namespace) -> int:
     skills = team_skills(args.kind, sources) if sources else None
     brain = PlayBrain(args.team, args.kind, args.robots, args.field, seed=args.seed, skills=skills,
                       decision=args.decision)
+    if args.lockstep:
+        from .client import run_lockstep_match
+
+        steps = run_lockstep_match({args.team: args.lockstep}, {args.team: brain})
+        print(f"played {steps} lock-step periods over {brain.decisions} frames")
+        return 0
     client = PlayClient(brain, ClientConfig(vision=args.vision, referee=args.referee, simulator=args.simulator,
                                             protocol=args.protocol))
     print(f"playing {args.team} ({args.kind}) -> {client.simulator} by {args.protocol}", flush=True)
