@@ -161,7 +161,8 @@ def test_robot_commands_move_robots_and_get_feedback(served):
         resp = sim_pb.RobotControlResponse.FromString(_udp(server.ports["blue"], control.SerializeToString()))
         time.sleep(0.01)
     assert {e.code for e in resp.errors} == {"UNKNOWN_ROBOT", "INVALID_VALUE"}
-    assert [f.id for f in resp.feedback] == [0, 1] and resp.feedback[0].HasField("dribbler_ball_contact")
+    assert [(f.id.id, f.id.team) for f in resp.feedback] == [(0, sim_pb.BLUE), (1, sim_pb.BLUE)]
+    assert resp.feedback[0].HasField("dribbler_ball_contact")
     assert float(server.world.env.world_state().blue.pos[1, 1]) > y0 + 0.05
 
 

@@ -78,6 +78,19 @@ def test_teleport_robot_and_response_decode():
     assert (tr.id.id, tr.id.team, tr.x) == (2, sim_pb.BLUE, 1.0)
     resp = sim_pb.SimulatorResponse.FromString(b"\x0a\x05\x0a\x03ABC")
     assert resp.errors[0].code == "ABC"
+    # SimulatorError: code 1, unsupported_capability 2 (enum), message 3
+    err = sim_pb.SimulatorError(code="A", unsupported_capability=sim_pb.SIMULATOR_CAPABILITY_MOVE_WHEEL_VELOCITY,
+                                message="m")
+    assert err.SerializeToString() == b"\x0a\x01A" + b"\x10\x02" + b"\x1a\x01m"
+
+
+def test_robot_feedback_bytes():
+    # RobotControlResponse{feedback [RobotFeedback{id RobotId{id 1, team YELLOW(1)}, dribbler_ball_contact true}]}
+    resp = sim_pb.RobotControlResponse()
+    fb = resp.feedback.add(dribbler_ball_contact=True)
+    fb.id.id, fb.id.team = 1, sim_pb.YELLOW
+    feedback = b"\x0a\x04\x08\x01\x10\x01" + b"\x10\x01"
+    assert resp.SerializeToString() == b"\x12\x08" + feedback
 
 
 def test_grsim_packet_bytes():

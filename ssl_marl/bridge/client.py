@@ -91,7 +91,7 @@ class PlayBrain:
 
     def on_feedback(self, feedback) -> None:
         """Dribbler contact from a ``RobotControlResponse``'s feedback list."""
-        self.vision.set_feedback(self.team, {f.id: f.dribbler_ball_contact for f in feedback
+        self.vision.set_feedback(self.team, {f.id.id: f.dribbler_ball_contact for f in feedback
                                              if f.HasField("dribbler_ball_contact")})
 
     def decide(self, det: Detections) -> dict[int, np.ndarray] | None:

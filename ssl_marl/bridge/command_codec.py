@@ -38,7 +38,10 @@ class CommandError:
     message: str
 
     def to_proto(self) -> sim_pb.SimulatorError:
-        return sim_pb.SimulatorError(code=self.code, message=self.message)
+        err = sim_pb.SimulatorError(code=self.code, message=self.message)
+        if self.code == "WHEEL_VELOCITY_UNSUPPORTED":
+            err.unsupported_capability = sim_pb.SIMULATOR_CAPABILITY_MOVE_WHEEL_VELOCITY
+        return err
 
 
 def _finite(*values: float) -> bool:

@@ -162,7 +162,9 @@ class BridgeWorld:
     def feedback(self, team: str) -> list[sim_pb.RobotFeedback]:
         """Per robot of ``team``: dribbler contact (ground truth, as a light barrier reports)."""
         held = self.env.world_state().team(team).ball_on_dribbler
-        return [sim_pb.RobotFeedback(id=i, dribbler_ball_contact=bool(held[i])) for i in range(self.n)]
+        colour = sim_pb.BLUE if team == "blue" else sim_pb.YELLOW
+        return [sim_pb.RobotFeedback(id=sim_pb.RobotId(id=i, team=colour), dribbler_ball_contact=bool(held[i]))
+                for i in range(self.n)]
 
     # ---------------------------------------------------------------- input
     def _error(self, errors: list, code: str, message: str) -> None:
