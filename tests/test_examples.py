@@ -20,7 +20,8 @@ def load(name: str):
 
 
 def test_every_example_is_tested():
-    tested = {"pettingzoo_random", "train_skill_curve", "evaluate_checkpoint", "custom_play_match"}
+    tested = {"pettingzoo_random", "train_skill_curve", "evaluate_checkpoint", "custom_play_match",
+              "bridge_round_trip"}  # bridge_round_trip: tests/test_bridge_example.py
     assert {p.stem for p in EXAMPLES.glob("*.py")} == tested
 
 
