@@ -15,8 +15,8 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGES = ("ssl_marl", "train")
-# physics -> envs -> skills -> plays -> decisions -> runners; train/ above all of them.
-LAYERS = ("physics", "envs", "skills", "plays", "decisions", "runners")
+# physics -> envs -> skills -> plays -> decisions -> runners -> bridge; train/ above all of them.
+LAYERS = ("physics", "envs", "skills", "plays", "decisions", "runners", "bridge")
 
 
 def module_files() -> dict[str, Path]:
@@ -112,7 +112,7 @@ def test_cycle_finder_finds_a_cycle():
 
 @pytest.mark.parametrize("lower", LAYERS)
 def test_lower_layers_import_nothing_above_them(lower):
-    """physics -> envs -> skills -> plays -> decisions -> runners, and ``train`` above all.
+    """physics -> envs -> skills -> plays -> decisions -> runners -> bridge, and ``train`` above all.
 
     The one allowed upward edge is the CLI's ``train`` command, which forwards to
     ``train.__main__`` lazily (importing the library never loads the trainer)."""
