@@ -63,6 +63,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     m.add_argument("--no-progress-s", type=non_negative_float("--no-progress-s"), default=10.0,
                    help="the referee restarts play when the ball stays within 0.25 m of one spot this long "
                         "(SSL force start after a lack of progress; seconds, default 10; 0 switches the call off)")
+    m.add_argument("--format", choices=("plain", "ssl"), default="plain",
+                   help="plain: one period, play restarted at once after the ball leaves the field; ssl: SSL's "
+                        "format: two halves of --seconds / 2 with ends changed at half-time, referee commands "
+                        "(STOP, kickoff, free kick to the team that did not touch the ball last), the fouls "
+                        "excessive dribbling, double touch and attacker in the defense area, and restart "
+                        "placements drawn from the match seed (use --seconds 600 for an SSL match)")
     add_tracker_option(m)
     m.set_defaults(handler=run)
 
@@ -87,7 +93,7 @@ def match_line(res) -> str:
 def run(args: argparse.Namespace) -> int:
     """Play one match (or a series) between two team controllers."""
     from ..io import atomic_write_json, prepare_output_file
-    from ..runners.match import play_match
+    from ..runners.match import format_options, play_match
     from ..runners.provenance import build_manifest
     from ..runners.result import write_series_file
     from ..runners.series import play_series
@@ -99,7 +105,7 @@ def run(args: argparse.Namespace) -> int:
     common = dict(robots=args.robots, field=args.field, seconds=args.seconds, realism=args.realism,
                   realtime=args.realtime, blue_skills=blue_skills, yellow_skills=yellow_skills,
                   tracker=args.tracker, blue_decision=args.blue_decision, yellow_decision=args.yellow_decision,
-                  env_kwargs={"no_progress_s": args.no_progress_s or None})
+                  env_kwargs={"no_progress_s": args.no_progress_s or None, **format_options(args.format, args.seconds)})
     render = None if str(args.render).lower() == "none" else args.render
     if render is not None and args.matches == 1:
         prepare_output_file(render, VIDEO_SUFFIXES, "--render")

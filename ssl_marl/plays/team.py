@@ -15,7 +15,11 @@ Each tick:
    fixed, stickiness for the previous holders);
 4. each robot's tactic (kept while its role name and factory stay the same, else
    built fresh) gets its parameters from the role's ``update`` and returns an action;
-   robots without a role stop in place.
+   robots without a role stop in place;
+5. while the referee (an env's ``task.referee_state``, :mod:`ssl_marl.envs.game_control`)
+   says STOP, or a kickoff / free kick for the other team, :func:`keep_clear` makes
+   every robot keep 0.5 m from the ball (the kicking team's robots play on, so its
+   nearest robot takes the kick).
 
 Every team outside unit tests is built by :func:`build_team` from a :class:`TeamSpec`:
 its plays (a :class:`PlaysFactory`), its skill set, and its ball carrier's decision
@@ -204,7 +208,43 @@ class TeamController:
             if role.update is not None:
                 role.update(tactic, ctx, assignment)
             actions[self.agents[i]] = tactic.act(world, i)
+        referee = getattr(getattr(env_or_world, "task", None), "referee_state", None)
+        if referee is not None and referee.must_keep_clear(self.team):
+            keep_clear(actions, self.agents, world, self.team)
         return actions
+
+
+#: m: robots keep this far from the ball when the referee says so (0.5 m, SSL rules,
+#: plus a margin for one control period of motion and the tracker's error)
+KEEP_CLEAR_M = 0.6
+
+
+def keep_clear(actions: dict[str, np.ndarray], agents: Sequence[str], world: WorldState, team: str,
+               clearance: float = KEEP_CLEAR_M) -> None:
+    """Edit ``actions`` in place so that ``team``'s robots obey STOP (SSL rules: 0.5 m
+    from the ball): within ``clearance + 0.2`` m of the ball the part of a robot's
+    commanded velocity towards the ball is removed; within ``clearance`` it moves
+    straight away at half its top speed; kicking and dribbling are switched off.
+    ``world`` is in the team's frame (m), actions are normalised body-frame (vx, vy,
+    omega, dribble, kick)."""
+    ours = world.team(team)
+    for i, name in enumerate(agents):
+        d = ours.pos[i] - world.ball_pos
+        dist = float(np.hypot(d[0], d[1]))
+        if dist >= clearance + 0.2:
+            continue
+        u = d / dist if dist > 1e-9 else np.array([-1.0, 0.0])
+        a = np.array(actions[name], dtype=np.float32, copy=True)
+        c, s_ = np.cos(ours.heading[i]), np.sin(ours.heading[i])
+        v = np.array([c * a[0] - s_ * a[1], s_ * a[0] + c * a[1]])  # body -> team frame
+        inward = float(v @ u)
+        if inward < 0.0:
+            v = v - inward * u
+        if dist < clearance:
+            v = 0.5 * u
+        a[0], a[1] = c * v[0] + s_ * v[1], -s_ * v[0] + c * v[1]  # team -> body frame
+        a[3], a[4] = -1.0, -1.0
+        actions[name] = np.clip(a, -1.0, 1.0)
 
 
 class PlaysFactory(Protocol):
@@ -271,5 +311,5 @@ def stp_traffic(env: Any, skills: SkillsSpec = "baseline") -> list[TeamControlle
             for team, n in (("blue", cfg.n_blue), ("yellow", cfg.n_yellow)) if n > 0]
 
 
-__all__ = ["TeamController", "TeamSpec", "PlaysFactory", "build_team", "standard_team_plays", "stp_traffic",
+__all__ = ["TeamController", "TeamSpec", "keep_clear", "KEEP_CLEAR_M", "PlaysFactory", "build_team", "standard_team_plays", "stp_traffic",
            "required_skills"]
