@@ -90,6 +90,15 @@ def match_line(res) -> str:
             + (f"  | missed deadlines {res.missed_deadlines}" if res.config.get("realtime") else ""))
 
 
+def series_line(st: dict) -> str:
+    """The series' intervals (:func:`~ssl_marl.runners.statistics.series_statistics`, blue's view)."""
+    return (f"  win rate {100 * st['win_rate']:.0f}% (95% {100 * st['win_rate_ci95'][0]:.0f}-"
+            f"{100 * st['win_rate_ci95'][1]:.0f}%), goal difference per match {st['goal_diff_per_match']:+.2f} "
+            f"(95% {st['goal_diff_per_match_ci95'][0]:+.2f} to {st['goal_diff_per_match_ci95'][1]:+.2f}), "
+            f"per 600 s {st['goal_diff_per_600s']:+.2f} (95% {st['goal_diff_per_600s_ci95'][0]:+.2f} to "
+            f"{st['goal_diff_per_600s_ci95'][1]:+.2f})")
+
+
 def run(args: argparse.Namespace) -> int:
     """Play one match (or a series) between two team controllers."""
     from ..io import atomic_write_json, prepare_output_file
@@ -129,11 +138,18 @@ def run(args: argparse.Namespace) -> int:
     print(f"blue ({args.blue}) vs yellow ({args.yellow}), {summary['matches']} matches: "
           f"W {summary['wins']} D {summary['draws']} L {summary['losses']}, "
           f"goals {summary['goals_for']}-{summary['goals_against']}")
+    print(series_line(summary["statistics"]))
     for team_name, st in summary.get("stats", {}).items():
         pc = "-" if st["pass_completion"] is None else f"{100 * st['pass_completion']:.0f}%"
         print(f"  {team_name}: shots {st['shots']}, passes {st['passes_completed']}/{st['passes_attempted']} completed "
               f"({pc}), intercepted {st['passes_intercepted']}, interceptions {st['interceptions']}, "
               f"goals {st['goals']}")
+    referee = {}
+    for r in results:
+        for k, v in r.stats.get("referee", {}).items():
+            referee[k] = referee.get(k, 0) + v
+    if referee:
+        print("  referee calls: " + ", ".join(f"{k} {v}" for k, v in sorted(referee.items())))
     if args.json:
         write_series_file(args.json, summary, [r.to_dict() for r in results], build_manifest(
             rules={"runner": "match", "blue": args.blue, "yellow": args.yellow, **common,

@@ -210,7 +210,7 @@ class TeamController:
             actions[self.agents[i]] = tactic.act(world, i)
         referee = getattr(getattr(env_or_world, "task", None), "referee_state", None)
         if referee is not None and referee.must_keep_clear(self.team):
-            keep_clear(actions, self.agents, world, self.team)
+            keep_clear(actions, self.agents, world, self.team, self.rp.max_speed)
         return actions
 
 
@@ -220,28 +220,32 @@ KEEP_CLEAR_M = 0.6
 
 
 def keep_clear(actions: dict[str, np.ndarray], agents: Sequence[str], world: WorldState, team: str,
-               clearance: float = KEEP_CLEAR_M) -> None:
+               max_speed: float, brake: float = 2.0, clearance: float = KEEP_CLEAR_M) -> None:
     """Edit ``actions`` in place so that ``team``'s robots obey STOP (SSL rules: 0.5 m
-    from the ball): within ``clearance + 0.2`` m of the ball the part of a robot's
-    commanded velocity towards the ball is removed; within ``clearance`` it moves
-    straight away at half its top speed; kicking and dribbling are switched off.
-    ``world`` is in the team's frame (m), actions are normalised body-frame (vx, vy,
-    omega, dribble, kick)."""
+    from the ball). A robot's commanded speed towards the ball is capped at
+    sqrt(2 ``brake`` (d - ``clearance``)) (m/s; d its distance to the ball, m), so it
+    can stop short of the ``clearance``; within it the robot moves straight away at
+    half ``max_speed``; kicking and dribbling are switched off. ``world`` is in the
+    team's frame, actions are normalised body-frame (vx, vy, omega, dribble, kick),
+    ``max_speed`` (m/s) is the speed of a normalised 1."""
     ours = world.team(team)
+    reach = clearance + max_speed ** 2 / (2 * brake)
     for i, name in enumerate(agents):
         d = ours.pos[i] - world.ball_pos
         dist = float(np.hypot(d[0], d[1]))
-        if dist >= clearance + 0.2:
+        if dist >= reach:
             continue
         u = d / dist if dist > 1e-9 else np.array([-1.0, 0.0])
         a = np.array(actions[name], dtype=np.float32, copy=True)
         c, s_ = np.cos(ours.heading[i]), np.sin(ours.heading[i])
-        v = np.array([c * a[0] - s_ * a[1], s_ * a[0] + c * a[1]])  # body -> team frame
-        inward = float(v @ u)
-        if inward < 0.0:
-            v = v - inward * u
+        v = max_speed * np.array([c * a[0] - s_ * a[1], s_ * a[0] + c * a[1]])  # body -> team frame, m/s
+        inward = -float(v @ u)
+        allowed = float(np.sqrt(2 * brake * max(dist - clearance, 0.0)))
+        if inward > allowed:
+            v = v + (inward - allowed) * u
         if dist < clearance:
-            v = 0.5 * u
+            v = 0.5 * max_speed * u
+        v = v / max_speed
         a[0], a[1] = c * v[0] + s_ * v[1], -s_ * v[0] + c * v[1]  # team -> body frame
         a[3], a[4] = -1.0, -1.0
         actions[name] = np.clip(a, -1.0, 1.0)

@@ -63,8 +63,11 @@ class MatchResult:
 
 def summarize(results: list[MatchResult]) -> dict:
     """Table summary from blue's side: wins / draws / losses, goals for / against, ...;
-    ``stats``: per-team totals of the match statistics (:func:`~ssl_marl.plays.stats.summarize_stats`)."""
+    ``statistics``: :func:`~ssl_marl.runners.statistics.series_statistics` (win rate and
+    goal difference per match and per 600 s with 95 % intervals); ``stats``: per-team
+    totals of the match statistics (:func:`~ssl_marl.plays.stats.summarize_stats`)."""
     from ..plays.stats import summarize_stats
+    from .statistics import series_statistics
 
     n = len(results)
     wins = sum(r.winner == "blue" for r in results)
@@ -83,6 +86,8 @@ def summarize(results: list[MatchResult]) -> dict:
             "missed_deadlines_blue": sum(r.missed_deadlines["blue"] for r in results),
             "missed_deadlines_yellow": sum(r.missed_deadlines["yellow"] for r in results),
             "wall_time_s_total": float(sum(r.wall_time_s for r in results)),
+            "statistics": series_statistics([r.score["blue"] for r in results], [r.score["yellow"] for r in results],
+                                            [r.sim_time_s for r in results]) if n else None,
             "stats": summarize_stats([r.stats for r in results if r.stats])}
 
 
