@@ -87,8 +87,15 @@ def summarize(results: list[MatchResult]) -> dict:
             "missed_deadlines_yellow": sum(r.missed_deadlines["yellow"] for r in results),
             "wall_time_s_total": float(sum(r.wall_time_s for r in results)),
             "statistics": series_statistics([r.score["blue"] for r in results], [r.score["yellow"] for r in results],
-                                            [r.sim_time_s for r in results]) if n else None,
+                                            [_played_s(r) for r in results]) if n else None,
             "stats": summarize_stats([r.stats for r in results if r.stats])}
+
+
+def _played_s(r: MatchResult) -> float:
+    """Seconds of play of a match: its simulated time, else its configured length, else 600 s."""
+    from .statistics import SSL_MATCH_S
+
+    return r.sim_time_s if r.sim_time_s > 0 else float(r.config.get("seconds") or SSL_MATCH_S)
 
 
 # ------------------------------------------------------------------ result records on disk
