@@ -218,3 +218,36 @@ def test_t_interval_against_scipy_and_wilson_against_hand_values():
     assert (s["wins"], s["draws"], s["losses"]) == (1, 1, 1)
     assert s["goal_diff_per_match"] == pytest.approx(0.0) and s["goal_diff_per_600s"] == pytest.approx(0.0)
     assert s["goal_diff_per_600s_ci95"][1] == pytest.approx(2 * s["goal_diff_per_match_ci95"][1])
+
+
+def _ball_world(ball_xy, ball_vel, blue_xy, t, ball_vz=0.0):
+    w = world(blue_xy, [(-4.0, 2.5)], ball_xy, t)
+    return WorldState(t=t, ball_pos=w.ball_pos, ball_vel=np.array(ball_vel, float), blue=w.blue, yellow=w.yellow,
+                      ball_vz=ball_vz, ball_height=0.05 if ball_vz > 0 else 0.0)
+
+
+def test_match_statistics_by_kind():
+    from ssl_marl.plays.stats import MatchStatsTracker
+
+    tr = MatchStatsTracker(FIELD)
+    mates = [(1.0, 0.0), (3.0, 0.0)]
+    tr.observe(_ball_world((1.1, 0.0), (0.0, 0.0), mates, 0.0))
+    # blue_0 chips a pass to blue_1: a chip pass
+    tr.observe(_ball_world((1.2, 0.0), (4.0, 0.0), mates, 1 / 60, ball_vz=2.0), [{"type": "kick", "agent": "blue_0", "speed": 4.0}])
+    for k in range(2, 9):  # blue_1 controls it: completed
+        w = _ball_world((2.9, 0.0), (0.0, 0.0), mates, k / 60)
+        tr.observe(WorldState(t=w.t, ball_pos=w.ball_pos, ball_vel=w.ball_vel,
+                              blue=make_team_state(w.blue.pos, w.blue.heading, w.blue.vel, w.blue.omega,
+                                                   [False, True], w.blue.kick_ready), yellow=w.yellow))
+    # blue_1 shoots at the goal after receiving the chip pass
+    tr.observe(_ball_world((3.1, 0.0), (5.0, 0.0), mates, 10 / 60), [{"type": "kick", "agent": "blue_1", "speed": 5.0}])
+    tr.observe(_ball_world((4.6, 0.0), (5.0, 0.0), mates, 11 / 60), [{"type": "goal", "team": "blue", "t": 11 / 60}])
+    # a redirect: the ball arrives at 3 m/s and blue_0 kicks it on at the goal
+    tr.observe(_ball_world((0.9, 0.0), (3.0, 0.0), mates, 12 / 60))
+    tr.observe(_ball_world((1.2, 0.0), (5.0, 0.0), [(1.0, 0.0), (3.0, 2.0)], 13 / 60),
+               [{"type": "kick", "agent": "blue_0", "speed": 5.0}])
+    s = tr.summary()["blue"]
+    assert (s["passes_chip_attempted"], s["passes_chip_completed"], s["passes_flat_attempted"]) == (1, 1, 0)
+    assert s["pass_completion_chip"] == 1.0 and s["pass_completion_flat"] is None
+    assert (s["shots_after_chip_pass"], s["shots_redirect"], s["shots_direct"]) == (1, 1, 0)
+    assert (s["goals"], s["goals_after_chip_pass"]) == (1, 1)
