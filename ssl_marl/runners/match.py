@@ -16,6 +16,12 @@ not paced by the wall clock (the env runs in step mode), so a match does not nee
 its simulated duration in wall time. Results then depend on machine load: only step
 mode (``realtime=False``) is reproducible.
 
+Formats (:func:`format_options`): "plain" (one period; play restarts at once after the
+ball leaves the field) or "ssl" (two halves with ends changed at half-time, referee
+commands, free kicks and fouls of :mod:`ssl_marl.envs.game_control`, restart
+placements drawn from the match seed); the referee's calls are counted in
+``MatchResult.stats["referee"]`` when any of SSL game control is on.
+
 Rendering (``render="match.mp4"`` or ``".gif"``): every k-th env frame
 (``render_fps`` frames per simulated second) is drawn with ``env.render()`` and
 streamed to disk by :class:`~ssl_marl.envs.animation.VideoSink` (constant memory).

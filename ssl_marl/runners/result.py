@@ -32,8 +32,11 @@ class MatchResult:
         seed: env seed. config: the match options.
         stats: per team, from :class:`~ssl_marl.plays.stats.MatchStatsTracker`: kicks,
             shots (kicks aimed at the goal), goals, passes attempted / completed /
-            intercepted / lost, interceptions, pass_completion; ``"events"``: the
-            tracker's log of passes (with outcomes) and shots, in time order.
+            intercepted / lost, interceptions, pass_completion, and shots, goals and
+            passes by kind (direct / redirect / after a chip pass; flat / chip);
+            ``"events"``: the tracker's log of passes (with outcomes) and shots, in
+            time order; ``"referee"`` (SSL game control on): counts of ball-out,
+            no-progress, half-time, ``foul_<name>`` and ``command_<command>`` events.
     """
 
     score: dict[str, int]
