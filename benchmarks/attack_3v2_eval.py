@@ -70,7 +70,7 @@ def summarize(rows: list[dict], args: argparse.Namespace, wall: float) -> dict:
     for r in rows:
         for k, v in r["options"].items():
             opts[k] = opts.get(k, 0) + v
-    from ssl_marl.io import wilson_interval
+    from ssl_marl.runners.statistics import wilson_interval
 
     lo, hi = wilson_interval(goals, n)
     return {"task": "attack-3v2", "policy": args.policy, "skills": args.skills, "episodes": n,

@@ -3,14 +3,13 @@
 * Files: atomic writes (bytes, JSON, matplotlib figures: a temporary file in the
   same folder, then a rename) and the one rule for output paths
   (:func:`prepare_output_file`, :func:`prepare_output_dir`), checked before long work.
-* Statistics of evaluations: the Wilson interval of a rate, summaries of times, and
-  per-episode seeds that do not depend on the number of workers.
+* Per-episode seeds that do not depend on the number of workers (the statistics of
+  evaluations are :mod:`ssl_marl.runners.statistics`).
 """
 
 from __future__ import annotations
 
 import json
-import math
 import os
 import tempfile
 from pathlib import Path
@@ -104,29 +103,6 @@ def atomic_savefig(fig, path: str | os.PathLike, **kwargs: Any) -> None:
     buf = io.BytesIO()
     fig.savefig(buf, format=path.suffix.lstrip(".") or "png", **kwargs)
     atomic_write_bytes(path, buf.getvalue())
-
-
-def wilson_interval(successes: int, n: int, z: float = 1.959964) -> tuple[float, float]:
-    """95 % Wilson score interval for a binomial proportion."""
-    if n <= 0:
-        return (0.0, 1.0)
-    p = successes / n
-    denom = 1 + z * z / n
-    centre = (p + z * z / (2 * n)) / denom
-    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / denom
-    return (max(0.0, centre - half), min(1.0, centre + half))
-
-
-def time_summary(times: list[float]) -> dict[str, float | None]:
-    """Mean, std (ddof 1), min, percentiles and max (s) of a list of times; None when empty."""
-    keys = ("mean", "std", "min", "p5", "p25", "median", "p75", "p95", "max")
-    if not times:
-        return {k: None for k in keys}
-    a = np.asarray(times, dtype=float)
-    q = np.percentile(a, [5, 25, 50, 75, 95])
-    return {"mean": float(a.mean()), "std": float(a.std(ddof=1)) if a.size > 1 else 0.0, "min": float(a.min()),
-            "p5": float(q[0]), "p25": float(q[1]), "median": float(q[2]), "p75": float(q[3]), "p95": float(q[4]),
-            "max": float(a.max())}
 
 
 def episode_seed(seed: int, index: int) -> int:

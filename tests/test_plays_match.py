@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from ssl_marl.envs import parallel_env
-from ssl_marl.io import episode_seed, wilson_interval
+from ssl_marl.io import episode_seed
+from ssl_marl.runners.statistics import wilson_interval
 from ssl_marl.runners.tactic_eval import evaluate_tactic
 from ssl_marl.runners.match import play_match
 from ssl_marl.runners.result import MatchResult, load_result, summarize

@@ -9,7 +9,8 @@ import pytest
 
 from ssl_marl.cli import main
 from ssl_marl.runners.result import load_result
-from ssl_marl.runners.task_eval import evaluate_task, t_interval
+from ssl_marl.runners.statistics import t_interval
+from ssl_marl.runners.task_eval import evaluate_task
 
 
 def _run(tmp_path, name, workers):

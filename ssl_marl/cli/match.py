@@ -63,6 +63,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     m.add_argument("--no-progress-s", type=non_negative_float("--no-progress-s"), default=10.0,
                    help="the referee restarts play when the ball stays within 0.25 m of one spot this long "
                         "(SSL force start after a lack of progress; seconds, default 10; 0 switches the call off)")
+    m.add_argument("--format", choices=("plain", "ssl"), default="plain",
+                   help="plain: one period, play restarted at once after the ball leaves the field; ssl: SSL's "
+                        "format: two halves of --seconds / 2 with ends changed at half-time, referee commands "
+                        "(STOP, kickoff, free kick to the team that did not touch the ball last), the fouls "
+                        "excessive dribbling, double touch and attacker in the defense area, and restart "
+                        "placements drawn from the match seed (use --seconds 600 for an SSL match)")
     add_tracker_option(m)
     m.set_defaults(handler=run)
 
@@ -84,10 +90,19 @@ def match_line(res) -> str:
             + (f"  | missed deadlines {res.missed_deadlines}" if res.config.get("realtime") else ""))
 
 
+def series_line(st: dict) -> str:
+    """The series' intervals (:func:`~ssl_marl.runners.statistics.series_statistics`, blue's view)."""
+    return (f"  win rate {100 * st['win_rate']:.0f}% (95% {100 * st['win_rate_ci95'][0]:.0f}-"
+            f"{100 * st['win_rate_ci95'][1]:.0f}%), goal difference per match {st['goal_diff_per_match']:+.2f} "
+            f"(95% {st['goal_diff_per_match_ci95'][0]:+.2f} to {st['goal_diff_per_match_ci95'][1]:+.2f}), "
+            f"per 600 s {st['goal_diff_per_600s']:+.2f} (95% {st['goal_diff_per_600s_ci95'][0]:+.2f} to "
+            f"{st['goal_diff_per_600s_ci95'][1]:+.2f})")
+
+
 def run(args: argparse.Namespace) -> int:
     """Play one match (or a series) between two team controllers."""
     from ..io import atomic_write_json, prepare_output_file
-    from ..runners.match import play_match
+    from ..runners.match import format_options, play_match
     from ..runners.provenance import build_manifest
     from ..runners.result import write_series_file
     from ..runners.series import play_series
@@ -99,7 +114,7 @@ def run(args: argparse.Namespace) -> int:
     common = dict(robots=args.robots, field=args.field, seconds=args.seconds, realism=args.realism,
                   realtime=args.realtime, blue_skills=blue_skills, yellow_skills=yellow_skills,
                   tracker=args.tracker, blue_decision=args.blue_decision, yellow_decision=args.yellow_decision,
-                  env_kwargs={"no_progress_s": args.no_progress_s or None})
+                  env_kwargs={"no_progress_s": args.no_progress_s or None, **format_options(args.format, args.seconds)})
     render = None if str(args.render).lower() == "none" else args.render
     if render is not None and args.matches == 1:
         prepare_output_file(render, VIDEO_SUFFIXES, "--render")
@@ -123,11 +138,18 @@ def run(args: argparse.Namespace) -> int:
     print(f"blue ({args.blue}) vs yellow ({args.yellow}), {summary['matches']} matches: "
           f"W {summary['wins']} D {summary['draws']} L {summary['losses']}, "
           f"goals {summary['goals_for']}-{summary['goals_against']}")
+    print(series_line(summary["statistics"]))
     for team_name, st in summary.get("stats", {}).items():
         pc = "-" if st["pass_completion"] is None else f"{100 * st['pass_completion']:.0f}%"
         print(f"  {team_name}: shots {st['shots']}, passes {st['passes_completed']}/{st['passes_attempted']} completed "
               f"({pc}), intercepted {st['passes_intercepted']}, interceptions {st['interceptions']}, "
               f"goals {st['goals']}")
+    referee = {}
+    for r in results:
+        for k, v in r.stats.get("referee", {}).items():
+            referee[k] = referee.get(k, 0) + v
+    if referee:
+        print("  referee calls: " + ", ".join(f"{k} {v}" for k, v in sorted(referee.items())))
     if args.json:
         write_series_file(args.json, summary, [r.to_dict() for r in results], build_manifest(
             rules={"runner": "match", "blue": args.blue, "yellow": args.yellow, **common,

@@ -68,6 +68,10 @@ def _batched_rules(env: SSLParallelEnv) -> MatchRules:
     and no end. Other tasks are refused (their logic is not vectorised)."""
     task = env.task
     if isinstance(task, MatchTask):
+        game = [k for k in ("ssl_restarts", "fouls", "restart_jitter_m", "half_time_s")
+                if getattr(task.rules, k) not in (False, 0.0, None)]
+        if game:
+            raise ValueError(f"the batched env does not run SSL game control ({', '.join(game)}): use the single env")
         return task.rules
     if isinstance(task, FreePlayTask):
         return MatchRules(referee=False, after_goal="kickoff", max_time_s=math.inf,

@@ -111,6 +111,26 @@ class MatchRules:
             out; event ``no_progress``), which breaks two robots pinning the ball
             against each other. None switches the call off (see
             :mod:`ssl_marl.envs.referee`).
+        ssl_restarts: SSL game control (:mod:`ssl_marl.envs.game_control`): kickoffs to
+            the team that conceded, a STOP of ``stop_s`` before each free kick, free
+            kicks to the team that did not touch the ball last, the referee's command
+            in ``MatchTask.referee_state`` and ``referee`` events. False (default):
+            play restarts at once, the ball placed and nearby robots moved out.
+        fouls: call excessive dribbling, double touch and an attacker touching the
+            ball in the opponent's defense area (event ``foul``; with
+            ``ssl_restarts`` a free kick for the other team, without it the ball-out
+            restart at the foul's spot). Default False.
+        restart_jitter_m: every restart's robot placement is drawn from the env's
+            seeded ``np_random``: kickoff formation positions moved by up to this
+            many m (within the legal region) and robots cleared from a placed ball
+            moved out to 0.5 m plus up to this many m at a random angle offset. 0
+            (default): the fixed formation and radial clearance.
+        stop_s: length of the STOP before a free kick (s, ``ssl_restarts``).
+        free_kick_timeout_s: a kickoff or free kick not taken within this (s) turns
+            into running play (the rules' 10 s of Division B).
+        half_time_s: None (default): one period. A number (s): half-time at this
+            simulated time: the score is kept, the teams change ends and yellow
+            kicks off the second half (see :class:`ssl_marl.envs.tasks.match.MatchTask`).
     """
 
     referee: bool = True
@@ -119,8 +139,24 @@ class MatchRules:
     reward_scales: Mapping[str, float] = dc_field(default_factory=lambda: dict(DEFAULT_REWARD_SCALES))
     randomize_reset: bool = False
     no_progress_s: float | None = 10.0
+    ssl_restarts: bool = False
+    fouls: bool = False
+    restart_jitter_m: float = 0.0
+    stop_s: float = 1.0
+    free_kick_timeout_s: float = 10.0
+    half_time_s: float | None = None
 
     def __post_init__(self) -> None:
+        for name in ("ssl_restarts", "fouls"):
+            if not isinstance(getattr(self, name), bool):
+                raise ValueError(f"{name} must be True or False, got {getattr(self, name)!r}")
+        for name, low in (("restart_jitter_m", 0.0), ("stop_s", 0.0), ("free_kick_timeout_s", 1e-9)):
+            v = getattr(self, name)
+            if not (isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and v >= low):
+                raise ValueError(f"{name} must be a finite number >= {low:g}, got {v!r}")
+        h = self.half_time_s
+        if h is not None and not (isinstance(h, (int, float)) and not isinstance(h, bool) and math.isfinite(h) and h > 0):
+            raise ValueError(f"half_time_s must be None (one period) or a positive number of seconds, got {h!r}")
         v = self.max_time_s
         if not (isinstance(v, (int, float)) and not isinstance(v, bool) and v > 0):
             raise ValueError(f"max_time_s must be a positive number of seconds (math.inf: no limit), got {v!r}")
@@ -264,7 +300,8 @@ class EnvConfig:
 def make_config(**options: Any) -> EnvConfig:
     """An :class:`EnvConfig` from the env's keyword options: :class:`EnvConfig`'s fields,
     and :class:`MatchRules`' fields (``referee``, ``after_goal``, ``max_time_s``,
-    ``reward_scales``, ``randomize_reset``, ``no_progress_s``) as single keywords, which
+    ``reward_scales``, ``randomize_reset``, ``no_progress_s``, ``ssl_restarts``, ``fouls``,
+    ``restart_jitter_m``, ``stop_s``, ``free_kick_timeout_s``, ``half_time_s``) as single keywords, which
     make up ``match`` (or ``match=`` gives them all at once; not both). An unknown
     keyword is a ValueError listing the known ones."""
     known = {f.name for f in fields(EnvConfig)} | set(MATCH_OPTIONS)

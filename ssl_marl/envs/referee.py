@@ -18,6 +18,10 @@
   :func:`clear_robots_from`), so two robots pinning the ball between them are parted.
 * After a goal: kickoff formation (both teams in their own halves, ball at the
   centre mark) or termination, per ``MatchRules.after_goal``.
+
+SSL's referee commands (STOP, kickoff, free kicks to the team that did not touch the
+ball last), its fouls and the seeded placement of restarts are
+:mod:`ssl_marl.envs.game_control`, switched on by :class:`~ssl_marl.envs.config.MatchRules`.
 """
 
 from __future__ import annotations

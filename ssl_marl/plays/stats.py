@@ -20,11 +20,24 @@ same rules:
   ``interceptions`` + 1). A goal, the ball leaving the field, the kicker itself taking
   the ball back, or ``pass_timeout_s`` without a control end it as **lost**.
 * **Goals** come from the referee's goal events.
+* **Kinds** of kicks, from what the physics reports of a kick (the kick event, the
+  ball's vertical velocity ``ball_vz`` right after it, the ball's speed the step
+  before): a **chip** when ``ball_vz > 0`` after the kick (the kick had a chip
+  angle); a **redirect** when the ball arrived at more than ``redirect_speed``
+  (1 m/s) and was not on the kicker's dribbler the step before -- a kick fired
+  on contact with a moving ball, the one-touch play; else **direct**. Passes are ``chip`` or ``flat`` (every other pass). Shots are
+  ``redirect``, ``after_chip_pass`` (the kicker received a completed chip pass
+  and kept the ball until the shot) or ``direct``. A goal takes the kind of its
+  team's last shot since the last restart (``other`` without one).
 
 Per team (:meth:`MatchStatsTracker.summary`): ``kicks``, ``shots``, ``goals``,
 ``passes_attempted``, ``passes_completed``, ``passes_intercepted`` (own passes the
 opponent took), ``passes_lost``, ``interceptions`` (opponent passes this team took),
-``pass_completion`` (completed / attempted, None without attempts).
+``pass_completion`` (completed / attempted, None without attempts); by kind:
+``shots_direct`` / ``_redirect`` / ``_after_chip_pass``, ``goals_direct`` / ``_redirect``
+/ ``_after_chip_pass`` / ``_other``, ``passes_flat_attempted`` / ``_completed``,
+``passes_chip_attempted`` / ``_completed`` and the completions ``pass_completion_flat`` /
+``pass_completion_chip``.
 """
 
 from __future__ import annotations
@@ -44,7 +57,8 @@ class StatsParams:
     """Attributes: shot_margin_m (m beyond each post that still counts as a shot),
     pass_lane_m (teammate within this of the kick's path: a pass, m), goal_lane_m (the
     same for kicks towards the goal mouth, m), min_pass_m (m),
-    control_steps (consecutive dribbler steps for control), pass_timeout_s (s)."""
+    control_steps (consecutive dribbler steps for control), pass_timeout_s (s),
+    redirect_speed (a kick of a ball arriving faster than this is a redirect, m/s)."""
 
     shot_margin_m: float = 0.25
     pass_lane_m: float = 0.5
@@ -52,6 +66,7 @@ class StatsParams:
     min_pass_m: float = 0.3
     control_steps: int = 6
     pass_timeout_s: float = 4.0
+    redirect_speed: float = 1.0
 
 
 @dataclass
@@ -64,11 +79,30 @@ class TeamStats:
     passes_intercepted: int = 0
     passes_lost: int = 0
     interceptions: int = 0
+    shots_direct: int = 0
+    shots_redirect: int = 0
+    shots_after_chip_pass: int = 0
+    goals_direct: int = 0
+    goals_redirect: int = 0
+    goals_after_chip_pass: int = 0
+    goals_other: int = 0
+    passes_flat_attempted: int = 0
+    passes_flat_completed: int = 0
+    passes_chip_attempted: int = 0
+    passes_chip_completed: int = 0
 
     def to_dict(self) -> dict:
         d = dict(self.__dict__)
-        d["pass_completion"] = (self.passes_completed / self.passes_attempted) if self.passes_attempted else None
-        return d
+        return {**d, **completions(d)}
+
+
+def completions(d: dict) -> dict:
+    """pass_completion (all), pass_completion_flat, pass_completion_chip from the counts
+    in ``d`` (None without attempts)."""
+    rate = (lambda done, tried: done / tried if tried else None)
+    return {"pass_completion": rate(d["passes_completed"], d["passes_attempted"]),
+            "pass_completion_flat": rate(d["passes_flat_completed"], d["passes_flat_attempted"]),
+            "pass_completion_chip": rate(d["passes_chip_completed"], d["passes_chip_attempted"])}
 
 
 @dataclass
@@ -76,6 +110,7 @@ class _OpenPass:
     team: str
     kicker: int
     t: float
+    kind: str = "flat"
 
 
 @dataclass
@@ -95,6 +130,9 @@ class MatchStatsTracker:
         self._open: _OpenPass | None = None
         self._held: dict[tuple[str, int], int] = {}
         self.log: list[dict] = []  # [{"t", "type", "team", ...}] of passes, shots and goals, in order
+        self._prev_speed = 0.0  # m/s, ball speed at the previous observation
+        self._chip_receiver: tuple[str, int] | None = None  # got a completed chip pass, has not kicked since
+        self._last_shot_kind: dict[str, str | None] = {t: None for t in TEAMS}
 
     # -------------------------------------------------------------- helpers
     def classify_kick(self, world: WorldState, team: str, kicker: int) -> str:
@@ -131,6 +169,9 @@ class MatchStatsTracker:
         s = self.teams[op.team]
         if outcome == "completed":
             s.passes_completed += 1
+            setattr(s, f"passes_{op.kind}_completed", getattr(s, f"passes_{op.kind}_completed") + 1)
+            if op.kind == "chip" and by is not None:
+                self._chip_receiver = by
         elif outcome == "intercepted":
             s.passes_intercepted += 1
             if by is not None:
@@ -167,20 +208,34 @@ class MatchStatsTracker:
                 s = self.teams[team]
                 s.kicks += 1
                 what = self.classify_kick(world, team, idx)
+                redirect = self._prev_speed > self.params.redirect_speed and (team, idx) not in self._held
                 if what == "shot":
                     s.shots += 1
-                    self.log.append({"t": t, "type": "shot", "team": team, "kicker": idx})
+                    shot = ("redirect" if redirect else "after_chip_pass" if self._chip_receiver == (team, idx)
+                            else "direct")
+                    setattr(s, f"shots_{shot}", getattr(s, f"shots_{shot}") + 1)
+                    self._last_shot_kind[team] = shot
+                    self.log.append({"t": t, "type": "shot", "team": team, "kicker": idx, "kind": shot})
                 elif what == "pass":
                     s.passes_attempted += 1
-                    self._open = _OpenPass(team, idx, t)
-                    self.log.append({"t": t, "type": "pass", "team": team, "kicker": idx})
+                    pk = "chip" if world.ball_vz > 0.0 else "flat"
+                    setattr(s, f"passes_{pk}_attempted", getattr(s, f"passes_{pk}_attempted") + 1)
+                    self._open = _OpenPass(team, idx, t, pk)
+                    self.log.append({"t": t, "type": "pass", "team": team, "kicker": idx, "kind": pk})
+                if self._chip_receiver == (team, idx):
+                    self._chip_receiver = None
                 self._held.clear()
             elif kind == "goal":
-                self.teams[e["team"]].goals += 1
-                self.log.append({"t": t, "type": "goal", "team": e["team"]})
+                gs = self.teams[e["team"]]
+                gs.goals += 1
+                gk = self._last_shot_kind[e["team"]] or "other"
+                setattr(gs, f"goals_{gk}", getattr(gs, f"goals_{gk}") + 1)
+                self.log.append({"t": t, "type": "goal", "team": e["team"], "kind": gk})
+                self._restarted()
                 self._close("lost", None, t)
                 self._held.clear()
-            elif kind in ("ball_out", "no_progress"):  # the referee restarts play
+            elif kind in ("ball_out", "no_progress", "foul"):  # the referee restarts play
+                self._restarted()
                 self._close("lost", None, t)
                 if kind == "no_progress":
                     self.log.append({"t": t, "type": "no_progress"})
@@ -195,6 +250,11 @@ class MatchStatsTracker:
         self._held = held
         if self._open is not None and t - self._open.t > self.params.pass_timeout_s:
             self._close("lost", None, t)
+        self._prev_speed = float(np.hypot(*world.ball_vel))
+
+    def _restarted(self) -> None:
+        self._chip_receiver = None
+        self._last_shot_kind = {t: None for t in TEAMS}
 
     def summary(self) -> dict[str, dict]:
         """{team: TeamStats as a dict with pass_completion}."""
@@ -209,7 +269,7 @@ def summarize_stats(per_match: list[dict[str, dict]]) -> dict:
     for team in TEAMS:
         keys = [k for k in TeamStats().__dict__]
         tot = {k: int(sum(m.get(team, {}).get(k, 0) for m in per_match)) for k in keys}
-        tot["pass_completion"] = (tot["passes_completed"] / tot["passes_attempted"]) if tot["passes_attempted"] else None
+        tot.update(completions(tot))
         tot["goals_per_match"] = tot["goals"] / n
         tot["passes_per_match"] = tot["passes_attempted"] / n
         out[team] = tot

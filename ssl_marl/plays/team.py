@@ -15,7 +15,11 @@ Each tick:
    fixed, stickiness for the previous holders);
 4. each robot's tactic (kept while its role name and factory stay the same, else
    built fresh) gets its parameters from the role's ``update`` and returns an action;
-   robots without a role stop in place.
+   robots without a role stop in place;
+5. while the referee (an env's ``task.referee_state``, :mod:`ssl_marl.envs.game_control`)
+   says STOP, or a kickoff / free kick for the other team, :func:`keep_clear` makes
+   every robot keep 0.5 m from the ball (the kicking team's robots play on, so its
+   nearest robot takes the kick).
 
 Every team outside unit tests is built by :func:`build_team` from a :class:`TeamSpec`:
 its plays (a :class:`PlaysFactory`), its skill set, and its ball carrier's decision
@@ -204,7 +208,47 @@ class TeamController:
             if role.update is not None:
                 role.update(tactic, ctx, assignment)
             actions[self.agents[i]] = tactic.act(world, i)
+        referee = getattr(getattr(env_or_world, "task", None), "referee_state", None)
+        if referee is not None and referee.must_keep_clear(self.team):
+            keep_clear(actions, self.agents, world, self.team, self.rp.max_speed)
         return actions
+
+
+#: m: robots keep this far from the ball when the referee says so (0.5 m, SSL rules,
+#: plus a margin for one control period of motion and the tracker's error)
+KEEP_CLEAR_M = 0.6
+
+
+def keep_clear(actions: dict[str, np.ndarray], agents: Sequence[str], world: WorldState, team: str,
+               max_speed: float, brake: float = 2.0, clearance: float = KEEP_CLEAR_M) -> None:
+    """Edit ``actions`` in place so that ``team``'s robots obey STOP (SSL rules: 0.5 m
+    from the ball). A robot's commanded speed towards the ball is capped at
+    sqrt(2 ``brake`` (d - ``clearance``)) (m/s; d its distance to the ball, m), so it
+    can stop short of the ``clearance``; within it the robot moves straight away at
+    half ``max_speed``; kicking and dribbling are switched off. ``world`` is in the
+    team's frame, actions are normalised body-frame (vx, vy, omega, dribble, kick),
+    ``max_speed`` (m/s) is the speed of a normalised 1."""
+    ours = world.team(team)
+    reach = clearance + max_speed ** 2 / (2 * brake)
+    for i, name in enumerate(agents):
+        d = ours.pos[i] - world.ball_pos
+        dist = float(np.hypot(d[0], d[1]))
+        if dist >= reach:
+            continue
+        u = d / dist if dist > 1e-9 else np.array([-1.0, 0.0])
+        a = np.array(actions[name], dtype=np.float32, copy=True)
+        c, s_ = np.cos(ours.heading[i]), np.sin(ours.heading[i])
+        v = max_speed * np.array([c * a[0] - s_ * a[1], s_ * a[0] + c * a[1]])  # body -> team frame, m/s
+        inward = -float(v @ u)
+        allowed = float(np.sqrt(2 * brake * max(dist - clearance, 0.0)))
+        if inward > allowed:
+            v = v + (inward - allowed) * u
+        if dist < clearance:
+            v = 0.5 * max_speed * u
+        v = v / max_speed
+        a[0], a[1] = c * v[0] + s_ * v[1], -s_ * v[0] + c * v[1]  # team -> body frame
+        a[3], a[4] = -1.0, -1.0
+        actions[name] = np.clip(a, -1.0, 1.0)
 
 
 class PlaysFactory(Protocol):
@@ -271,5 +315,5 @@ def stp_traffic(env: Any, skills: SkillsSpec = "baseline") -> list[TeamControlle
             for team, n in (("blue", cfg.n_blue), ("yellow", cfg.n_yellow)) if n > 0]
 
 
-__all__ = ["TeamController", "TeamSpec", "PlaysFactory", "build_team", "standard_team_plays", "stp_traffic",
+__all__ = ["TeamController", "TeamSpec", "keep_clear", "KEEP_CLEAR_M", "PlaysFactory", "build_team", "standard_team_plays", "stp_traffic",
            "required_skills"]

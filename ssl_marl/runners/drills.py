@@ -36,7 +36,8 @@ from typing import Any
 import numpy as np
 
 from ..envs.ssl_env import SSLParallelEnv
-from ..io import episode_seed, wilson_interval
+from ..io import episode_seed
+from .statistics import wilson_interval
 from ..physics.state import WorldState
 from ..skills.base import SkillStatus, make_action
 from ..skills.navigation import MoveToPoint

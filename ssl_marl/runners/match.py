@@ -16,6 +16,12 @@ not paced by the wall clock (the env runs in step mode), so a match does not nee
 its simulated duration in wall time. Results then depend on machine load: only step
 mode (``realtime=False``) is reproducible.
 
+Formats (:func:`format_options`): "plain" (one period; play restarts at once after the
+ball leaves the field) or "ssl" (two halves with ends changed at half-time, referee
+commands, free kicks and fouls of :mod:`ssl_marl.envs.game_control`, restart
+placements drawn from the match seed); the referee's calls are counted in
+``MatchResult.stats["referee"]`` when any of SSL game control is on.
+
 Rendering (``render="match.mp4"`` or ``".gif"``): every k-th env frame
 (``render_fps`` frames per simulated second) is drawn with ``env.render()`` and
 streamed to disk by :class:`~ssl_marl.envs.animation.VideoSink` (constant memory).
@@ -55,6 +61,28 @@ def start_options(env: Any, seed: int, jitter_m: float) -> dict | None:
     return {"formation": "kickoff", "robots": robots}
 
 
+#: env events counted in ``MatchResult.stats["referee"]`` when SSL game control is on
+REFEREE_CALLS = ("ball_out", "no_progress", "foul", "referee", "half_time")
+
+
+#: the :class:`~ssl_marl.envs.config.MatchRules` fields of SSL game control, recorded in a
+#: match's config when any is on
+GAME_RULES = ("ssl_restarts", "fouls", "restart_jitter_m", "stop_s", "free_kick_timeout_s", "half_time_s")
+#: env options of the SSL format (``--format ssl``): two halves of ``seconds / 2``, SSL
+#: restarts and fouls, restart placement jittered by 0.1 m
+SSL_FORMAT = {"ssl_restarts": True, "fouls": True, "restart_jitter_m": 0.1}
+
+
+def format_options(fmt: str, seconds: float) -> dict:
+    """Env options of a match format: "plain" (one period, restarts without referee
+    commands; none) or "ssl" (:data:`SSL_FORMAT` and half-time at ``seconds / 2``)."""
+    if fmt == "plain":
+        return {}
+    if fmt == "ssl":
+        return {**SSL_FORMAT, "half_time_s": float(seconds) / 2}
+    raise ValueError(f"format must be 'plain' or 'ssl', got {fmt!r}")
+
+
 class MatchStats:
     """Per-step bookkeeping of a match: kicks, goals and ball possession per team."""
 
@@ -63,6 +91,7 @@ class MatchStats:
         self.held = {"blue": 0, "yellow": 0}
         self.goals: list[dict] = []
         self.steps = 0
+        self.referee: dict[str, int] = {}  #: counts of the referee's calls (game control on)
 
     def record(self, events: list[dict], truth: Any) -> None:
         """Count one control step's env events and who holds the ball (ground truth)."""
@@ -72,6 +101,10 @@ class MatchStats:
                 self.shots[e["agent"].split("_")[0]] += 1
             elif e["type"] == "goal":
                 self.goals.append({"team": e["team"], "t": float(e["t"])})
+            if e["type"] in REFEREE_CALLS:
+                key = {"foul": lambda: f"foul_{e['foul']}", "referee": lambda: f"command_{e['command']}"}.get(
+                    e["type"], lambda: e["type"])()
+                self.referee[key] = self.referee.get(key, 0) + 1
         self.held["blue"] += bool(truth.blue.ball_on_dribbler.any())
         self.held["yellow"] += bool(truth.yellow.ball_on_dribbler.any())
 
@@ -210,6 +243,8 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
         env.close()
     wall = time.perf_counter() - t_start
     steps = stats.steps
+    rules = env.config.match
+    game_on = rules.ssl_restarts or rules.fouls or rules.half_time_s is not None or rules.restart_jitter_m > 0
     config = dict(blue=controller_label(blue, blue_skills), yellow=controller_label(yellow, yellow_skills),
                   robots=robots, field=geom.name, seconds=float(seconds), seed=seed,
                   realism=realism if isinstance(realism, str) else repr(realism), realtime=realtime,
@@ -220,11 +255,14 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
     decisions = {t: decision_label(k, d) for t, k, _, d in teams}
     if any(v not in (None, "handcoded") for v in decisions.values()):
         config["decision"] = decisions
+    if game_on:
+        config["rules"] = {k: getattr(rules, k) for k in GAME_RULES}
     return MatchResult(score=dict(env.score), goals=stats.goals, shots=stats.shots, possession=stats.possession(),
                        steps=steps, sim_time_s=steps * dt, wall_time_s=wall,
                        act_time_ms={k: 1000.0 * v / max(steps, 1) for k, v in act_time.items()},
                        missed_deadlines={team: d.missed for team, d in deadlines.items()}, seed=seed, config=config,
-                       stats={**pass_stats.summary(), "events": pass_stats.log})
+                       stats={**pass_stats.summary(), "events": pass_stats.log,
+                              **({"referee": stats.referee} if game_on else {})})
 
 
 def _json_safe(skills: Any) -> Any:

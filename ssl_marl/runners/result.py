@@ -32,8 +32,11 @@ class MatchResult:
         seed: env seed. config: the match options.
         stats: per team, from :class:`~ssl_marl.plays.stats.MatchStatsTracker`: kicks,
             shots (kicks aimed at the goal), goals, passes attempted / completed /
-            intercepted / lost, interceptions, pass_completion; ``"events"``: the
-            tracker's log of passes (with outcomes) and shots, in time order.
+            intercepted / lost, interceptions, pass_completion, and shots, goals and
+            passes by kind (direct / redirect / after a chip pass; flat / chip);
+            ``"events"``: the tracker's log of passes (with outcomes) and shots, in
+            time order; ``"referee"`` (SSL game control on): counts of ball-out,
+            no-progress, half-time, ``foul_<name>`` and ``command_<command>`` events.
     """
 
     score: dict[str, int]
@@ -63,8 +66,11 @@ class MatchResult:
 
 def summarize(results: list[MatchResult]) -> dict:
     """Table summary from blue's side: wins / draws / losses, goals for / against, ...;
-    ``stats``: per-team totals of the match statistics (:func:`~ssl_marl.plays.stats.summarize_stats`)."""
+    ``statistics``: :func:`~ssl_marl.runners.statistics.series_statistics` (win rate and
+    goal difference per match and per 600 s with 95 % intervals); ``stats``: per-team
+    totals of the match statistics (:func:`~ssl_marl.plays.stats.summarize_stats`)."""
     from ..plays.stats import summarize_stats
+    from .statistics import series_statistics
 
     n = len(results)
     wins = sum(r.winner == "blue" for r in results)
@@ -83,7 +89,16 @@ def summarize(results: list[MatchResult]) -> dict:
             "missed_deadlines_blue": sum(r.missed_deadlines["blue"] for r in results),
             "missed_deadlines_yellow": sum(r.missed_deadlines["yellow"] for r in results),
             "wall_time_s_total": float(sum(r.wall_time_s for r in results)),
+            "statistics": series_statistics([r.score["blue"] for r in results], [r.score["yellow"] for r in results],
+                                            [_played_s(r) for r in results]) if n else None,
             "stats": summarize_stats([r.stats for r in results if r.stats])}
+
+
+def _played_s(r: MatchResult) -> float:
+    """Seconds of play of a match: its simulated time, else its configured length, else 600 s."""
+    from .statistics import SSL_MATCH_S
+
+    return r.sim_time_s if r.sim_time_s > 0 else float(r.config.get("seconds") or SSL_MATCH_S)
 
 
 # ------------------------------------------------------------------ result records on disk

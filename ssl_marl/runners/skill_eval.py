@@ -15,7 +15,8 @@ from typing import Any
 
 import numpy as np
 
-from ..io import episode_seed, time_summary, wilson_interval
+from ..io import episode_seed
+from .statistics import time_summary, wilson_interval
 from .plots import write_time_histogram
 from .pool import chunk_indices, run_pool, validate_backend
 from .provenance import build_manifest

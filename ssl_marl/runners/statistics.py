@@ -4,6 +4,7 @@
   match, episode durations).
 * :func:`wilson_interval`: Wilson score interval for a rate (success, win, pass
   completion).
+* :func:`time_summary`: mean, spread and percentiles of times (s).
 * :func:`series_statistics`: a match series from one side's view: wins / draws /
   losses, goals, and the goal difference per match and per 600 s of play (SSL's
   two halves of 300 s) with its 95 % interval.
@@ -21,7 +22,7 @@ from collections.abc import Sequence
 import numpy as np
 
 SSL_MATCH_S = 600.0  #: s of play in an SSL match (two halves of 300 s)
-Z95 = 1.959963984540054  #: two-sided 95 % normal quantile
+Z95 = 1.959964  #: two-sided 95 % normal quantile (7 significant digits)
 
 
 def t_interval(values: Sequence[float], conf: float = 0.95) -> tuple[float, float]:
@@ -91,3 +92,15 @@ def series_statistics(goals_for: Sequence[int], goals_against: Sequence[int],
         "goal_diff_per_match": float(diff.mean()) if n else math.nan, "goal_diff_per_match_ci95": [lo, hi],
         "goal_diff_per_600s": float(per600.mean()) if n else math.nan, "goal_diff_per_600s_ci95": [lo6, hi6],
     }
+
+
+def time_summary(times: Sequence[float]) -> dict[str, float | None]:
+    """Mean, std (ddof 1), min, percentiles and max (s) of a list of times; None when empty."""
+    keys = ("mean", "std", "min", "p5", "p25", "median", "p75", "p95", "max")
+    if not len(times):
+        return {k: None for k in keys}
+    a = np.asarray(times, dtype=float)
+    q = np.percentile(a, [5, 25, 50, 75, 95])
+    return {"mean": float(a.mean()), "std": float(a.std(ddof=1)) if a.size > 1 else 0.0, "min": float(a.min()),
+            "p5": float(q[0]), "p25": float(q[1]), "median": float(q[2]), "p75": float(q[3]), "p95": float(q[4]),
+            "max": float(a.max())}

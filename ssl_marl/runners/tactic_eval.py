@@ -29,7 +29,8 @@ from typing import Any
 import numpy as np
 
 from ..envs.deadline import ControlDeadline
-from ..io import episode_seed, time_summary, wilson_interval
+from ..io import episode_seed
+from .statistics import time_summary, wilson_interval
 from .plots import write_time_histogram
 from .pool import chunk_indices, run_pool, validate_backend
 from .provenance import build_manifest

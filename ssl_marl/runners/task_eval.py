@@ -31,31 +31,16 @@ from typing import Any
 
 import numpy as np
 
-from ..io import time_summary, wilson_interval
 from .plots import write_time_histogram
 from .pool import chunk_indices, run_pool, validate_backend
 from .provenance import build_manifest
 from .result import write_result_folder
+from .statistics import t_interval, time_summary, wilson_interval
 
 TASK_SCORES = {"keepaway": "duration", "attack-3v2": "goal"}
 DEFAULT_SEEDS = {"keepaway": 40_000, "attack-3v2": 41_000}
 
 _CACHE: dict[tuple, Any] = {}
-
-
-def t_interval(values: list[float], conf: float = 0.95) -> tuple[float, float]:
-    """Two-sided Student-t confidence interval for the mean of ``values``."""
-    a = np.asarray(values, float)
-    n = a.size
-    if n == 0:
-        return (math.nan, math.nan)
-    m = float(a.mean())
-    if n == 1:
-        return (m, m)
-    from scipy import stats
-
-    half = float(stats.t.ppf(0.5 + conf / 2, n - 1)) * float(a.std(ddof=1)) / math.sqrt(n)
-    return (m - half, m + half)
 
 
 def _env_and_policy(task: str, policy: str, actor: str | None, realism: str, field: str, tracker: Any):
@@ -225,4 +210,4 @@ def evaluate_task(task: str, policy: str, episodes: int = 1000, seed: int | None
     return results
 
 
-__all__ = ["evaluate_task", "run_task_episode", "task_results", "write_task_results", "t_interval", "TASK_SCORES", "DEFAULT_SEEDS"]
+__all__ = ["evaluate_task", "run_task_episode", "task_results", "write_task_results", "TASK_SCORES", "DEFAULT_SEEDS"]

@@ -19,7 +19,8 @@ from typing import Any
 import numpy as np
 import torch
 
-from ssl_marl.io import atomic_write_json, wilson_interval
+from ssl_marl.io import atomic_write_json
+from ssl_marl.runners.statistics import wilson_interval
 from ssl_marl.skills.checkpoint import read_actor_file
 
 from train.mappo.algorithm import ActorNet

@@ -13,7 +13,7 @@ import math
 from pathlib import Path
 from typing import Any, Iterable
 
-from ssl_marl.io import wilson_interval
+from ssl_marl.runners.statistics import wilson_interval
 from ssl_marl.runners.result import load_result
 from train.tools.compare import markdown, summarize
 

@@ -17,6 +17,21 @@ End
     Truncation when simulated time reaches ``max_time_s``; termination after a goal if
     ``after_goal == "terminate"``, otherwise the kickoff formation is placed and play
     goes on.
+SSL game control (``ssl_restarts``, ``fouls``; :mod:`ssl_marl.envs.game_control`)
+    Referee commands (STOP, KICKOFF(team), FREE_KICK(team), RUNNING) in
+    :attr:`MatchTask.referee_state` and as ``referee`` events; free kicks after ball
+    out, no progress and fouls; fouls as ``foul`` events.
+Restart placement (``restart_jitter_m`` > 0)
+    Kickoff formations and the robots cleared from a placed ball are drawn from the
+    env's seeded ``np_random``: the same seed gives the same match, but no two restarts
+    put the robots in the same poses, so a deterministic kickoff cannot replay itself.
+Half-time (``half_time_s``)
+    At that simulated time: event ``half_time``, the score kept, the kickoff formation
+    placed, yellow kicks off. The teams change ends: the field is point-symmetric, so
+    the env keeps simulating in its field frame (blue's own goal at -x) and records
+    the swap as :attr:`MatchTask.sides_swapped`; the stadium frame of the second half
+    is the field frame turned by 180 degrees ((x, y) -> (-x, -y)). Every team frame, and
+    so every controller, is the same in both halves.
 """
 
 from __future__ import annotations
@@ -24,7 +39,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..config import MatchRules
-from ..referee import NoProgressWatch, clear_robots_from, judge, kickoff_poses, placement_point
+from ..game_control import (FREE_KICK, IN_PLAY_DISTANCE, KICKOFF, RUNNING, STOP, RefereeState, TouchWatch,
+                            jittered_clearance, jittered_kickoff, other)
+from ..referee import RESTART_CLEARANCE, NoProgressWatch, clear_robots_from, judge, kickoff_poses, placement_point
 from .base import Task
 from .engine import Engine
 from .scene import Scene, scene_from_options
@@ -44,6 +61,15 @@ class MatchTask(Task):
         self.goal_for: str | None = None  #: team that scored in the current step
         self._prev_ball_x = 0.0
         self._watch: NoProgressWatch | None = None
+        #: the referee's command to the teams (RUNNING throughout without ``ssl_restarts``)
+        self.referee_state = RefereeState()
+        self.half = 1  #: 1 or 2 (``half_time_s``)
+        self.sides_swapped = False  #: True in the second half (module docstring)
+        self._touch: TouchWatch | None = None
+        self._half_time_now = False
+        self._pending_free_kick: str | None = None
+        self._spot = np.zeros(2)
+        self._event_mark = 0
 
     def bind(self, env: Engine) -> None:
         super().bind(env)
@@ -58,6 +84,15 @@ class MatchTask(Task):
         self._prev_ball_x = float(env.world_state().ball_pos[0])
         self._watch = NoProgressWatch(1, self.rules.no_progress_s)
         self._restart_watch(env)
+        r = self.rules
+        self.half, self.sides_swapped, self._half_time_now = 1, False, False
+        self.referee_state = RefereeState(since=float(env.world_state().t))
+        self._game = r.ssl_restarts or r.fouls or r.half_time_s is not None
+        self._touch = (TouchWatch(env.config.n_blue, env.config.n_yellow, env.config.robot.radius,
+                                  env.config.ball.radius) if self._game else None)
+        if r.ssl_restarts:
+            w = env.world_state()
+            self._command(KICKOFF, "blue", w.ball_pos, w.t, None)
 
     def _restart_watch(self, env: Engine) -> None:
         w = env.world_state()
@@ -65,6 +100,7 @@ class MatchTask(Task):
 
     def begin_step(self, env: Engine) -> None:
         self.goal_for = None
+        self._event_mark = 0
 
     def after_tick(self, env: Engine, events: list[dict]) -> bool:
         if not self.rules.referee:
@@ -75,6 +111,8 @@ class MatchTask(Task):
             env.award_goal(call.goal_for, events)
             self.goal_for = call.goal_for
             return True
+        if self._game:
+            return self._game_tick(env, truth, call, events)
         if call.ball_out:
             events.append({"type": "ball_out", "t": truth.t, "placement": call.placement.tolist()})
             self._restart_play(env, call.placement)
@@ -87,7 +125,11 @@ class MatchTask(Task):
     def _restart_play(self, env: Engine, place: np.ndarray) -> None:
         """Ball at ``place`` (m, at rest), robots within 0.5 m of it moved out."""
         pose = env.robot_poses()
-        new_pos = clear_robots_from(place, pose[:, 0:2], env.field)
+        if self.rules.restart_jitter_m > 0:
+            new_pos = jittered_clearance(place, pose[:, 0:2], env.field, RESTART_CLEARANCE,
+                                         self.rules.restart_jitter_m, env.np_random)
+        else:
+            new_pos = clear_robots_from(place, pose[:, 0:2], env.field)
         moved = np.flatnonzero(np.any(new_pos != pose[:, 0:2], axis=1))
         if moved.size:
             pose[moved, 0:2] = new_pos[moved]
@@ -118,8 +160,95 @@ class MatchTask(Task):
         return terminated, truncated
 
     def after_step(self, env: Engine, terminated: bool, truncated: bool) -> None:
-        if self.goal_for is not None and not terminated:  # kickoff
-            env.place_robots(kickoff_poses(env.field, env.config.n_blue, env.config.n_yellow))
+        half_time, self._half_time_now = self._half_time_now, False
+        if (self.goal_for is not None or half_time) and not (terminated or truncated and half_time):  # kickoff
+            poses = kickoff_poses(env.field, env.config.n_blue, env.config.n_yellow)
+            if self.rules.restart_jitter_m > 0:
+                poses = jittered_kickoff(poses, env.config.n_blue, env.field, self.rules.restart_jitter_m,
+                                         env.np_random, env.config.robot.radius)
+            env.place_robots(poses)
             env.place_ball(np.zeros(2))
             self._prev_ball_x = 0.0
             self._restart_watch(env)
+            if self._touch is not None:
+                self._touch.reset()
+            if self.rules.ssl_restarts:
+                team = "yellow" if half_time else other(self.goal_for)
+                self._command(KICKOFF, team, np.zeros(2), env.world_state().t, None)
+
+    # ------------------------------------------------------------ SSL game control
+    def _command(self, command: str, team: str | None, position: np.ndarray | None, t: float,
+                 events: list[dict] | None) -> None:
+        pos = None if position is None else (float(position[0]), float(position[1]))
+        self.referee_state = RefereeState(command, team, pos, float(t))
+        if position is not None:
+            self._spot = np.array(pos)
+        if events is not None:
+            events.append({"type": "referee", **self.referee_state.to_dict(), "t": float(t)})
+
+    def _game_tick(self, env: Engine, truth, call, events: list[dict]) -> bool:
+        """One tick of :mod:`~ssl_marl.envs.game_control` (goals are judged before)."""
+        r, f = self.rules, env.field
+        kicked = [env.agent_index(e["agent"]) for e in events[self._event_mark:] if e["type"] == "kick"]
+        self._event_mark = len(events)
+        touch = self._touch.touching(truth, kicked)
+        if r.half_time_s is not None and self.half == 1 and truth.t >= r.half_time_s - 1e-9:
+            self.half, self.sides_swapped, self._half_time_now = 2, True, True
+            events.append({"type": "half_time", "t": truth.t, "score": dict(getattr(env, "score", {}))})
+            return True  # after_step places the second half's kickoff
+        st = self.referee_state
+        if call.ball_out:
+            team = self._free_kick_team(truth)
+            events.append({"type": "ball_out", "t": truth.t, "placement": call.placement.tolist(),
+                           **({"free_kick_for": team} if r.ssl_restarts else {})})
+            self._restart(env, call.placement, team, truth.t, events)
+            return False
+        if st.command == RUNNING:
+            foul = self._touch.update(truth, touch, f, r.fouls)
+            if foul is not None:
+                name, row = foul
+                offender = str(self._touch.teams[row])
+                place = placement_point(truth.ball_pos, f)
+                events.append({"type": "foul", "foul": name, "team": offender, "agent": env.possible_agents[row],
+                               "t": truth.t, "placement": place.tolist()})
+                self._restart(env, place, other(offender), truth.t, events)
+            elif self._watch.update(_WORLD, truth.ball_pos[None, :], np.array([truth.t]))[0]:
+                place = placement_point(truth.ball_pos, f)
+                team = self._free_kick_team(truth)
+                events.append({"type": "no_progress", "t": truth.t, "placement": place.tolist()})
+                self._restart(env, place, team, truth.t, events)
+            return False
+        if st.command == STOP:
+            if np.hypot(*(truth.ball_pos - self._spot)) > 0.01:
+                env.place_ball(self._spot)
+            if truth.t - st.since >= r.stop_s - 1e-9:
+                self._command(FREE_KICK, self._pending_free_kick, self._spot, truth.t, events)
+            return False
+        self._touch.update(truth, touch, f, False)  # KICKOFF / FREE_KICK: who touches, no fouls
+        taken = np.hypot(*(truth.ball_pos - self._spot)) > IN_PLAY_DISTANCE
+        if taken or truth.t - st.since >= r.free_kick_timeout_s - 1e-9:
+            taker = self._touch.last_robot if taken else None
+            self._command(RUNNING, None, None, truth.t, events)
+            self._touch.taken_by(taker)
+            self._restart_watch(env)
+        return False
+
+    def _free_kick_team(self, truth) -> str:
+        """The team that did not touch the ball last (no touch yet: the team defending
+        the half the ball is in)."""
+        last = self._touch.last_team()
+        if last is not None:
+            return other(last)
+        return "blue" if truth.ball_pos[0] < 0 else "yellow"
+
+    def _restart(self, env: Engine, place: np.ndarray, team: str, t: float, events: list[dict]) -> None:
+        """Ball placed at ``place``; with ``ssl_restarts`` a STOP, then a free kick for ``team``."""
+        self._restart_play(env, place)
+        self._touch.reset()
+        if not self.rules.ssl_restarts:
+            return
+        self._pending_free_kick = team
+        if self.rules.stop_s > 0:
+            self._command(STOP, None, place, t, events)
+        else:
+            self._command(FREE_KICK, team, place, t, events)

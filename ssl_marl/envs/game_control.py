@@ -1,0 +1,206 @@
+"""SSL game control of the match task: referee commands, free kicks and fouls.
+
+Switched on by ``MatchRules.ssl_restarts`` (commands and free kicks) and
+``MatchRules.fouls`` (the fouls below); both off, the match task restarts play as in
+:mod:`ssl_marl.envs.referee` and nothing here runs. Rules from the SSL rules
+(RoboCup-SSL/ssl-rules; docs/references.md, "SSL rules"):
+
+Commands (:class:`RefereeState`, field frame)
+    ``RUNNING``: play on. ``KICKOFF(team)``: after a goal (to the team that conceded)
+    and at the start of each half (blue first, yellow after half-time). ``STOP``: before
+    every free kick, ``stop_s`` long; all robots keep ``RESTART_CLEARANCE`` (0.5 m) from
+    the ball. ``FREE_KICK(team)``: the kicking team's robots may approach the ball, the
+    other team keeps 0.5 m. A kickoff or free kick is taken once the ball has moved
+    ``IN_PLAY_DISTANCE`` (0.05 m, the rules' "ball in play") from its spot; after
+    ``free_kick_timeout_s`` without that, play runs on (the rules' timeout for
+    taking a free kick, 10 s in Division B). While STOP holds, a ball moved by a
+    robot is put back on its spot.
+Free kick after ball out, no progress or a foul
+    To the team that did not touch the ball last. Ball placement is automatic: the
+    ball is put on the spot of :func:`~ssl_marl.envs.referee.placement_point` (where it
+    left the field, or where the foul or the stalled ball was: 0.2 m inside the
+    lines and out of both defense areas) and robots within 0.5 m are moved out to
+    0.5 m (plus up to ``restart_jitter_m``, at a seeded random angle offset).
+Touches
+    A robot touches the ball when the ball is on its dribbler face or its centre is
+    within robot radius + ball radius + ``TOUCH_MARGIN`` of the ball's centre, or when
+    it kicks. The last toucher's team decides free kicks.
+Fouls (event ``foul`` with ``foul``: the name below, ``team``: the offender's team;
+free kick for the other team at the foul's spot)
+    ``excessive_dribbling``: a robot keeps touching the ball while it has moved more
+    than ``MAX_DRIBBLE_M`` (1 m) from where the robot gained it. ``double_touch``: the
+    robot that took a kickoff or free kick touches the ball again (after letting go of
+    it) before any other robot has. ``attacker_in_defense_area``: a robot touches the
+    ball while the ball is inside the opponent's defense area.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..physics.field import FieldGeometry
+from ..physics.state import WorldState
+
+RUNNING, STOP, KICKOFF, FREE_KICK = "RUNNING", "STOP", "KICKOFF", "FREE_KICK"
+COMMANDS = (RUNNING, STOP, KICKOFF, FREE_KICK)
+IN_PLAY_DISTANCE = 0.05  #: m the ball moves from its spot for a kickoff / free kick to be taken (rules)
+MAX_DRIBBLE_M = 1.0  #: m: the rules' limit on dribbling the ball
+TOUCH_MARGIN = 0.01  #: m of slack on body contact (solver slop and one tick of motion)
+FOULS = ("excessive_dribbling", "double_touch", "attacker_in_defense_area")
+
+
+def other(team: str) -> str:
+    return "yellow" if team == "blue" else "blue"
+
+
+@dataclass(frozen=True)
+class RefereeState:
+    """What the referee tells the teams (field frame).
+
+    Attributes:
+        command: one of ``COMMANDS``.
+        team: the team a KICKOFF / FREE_KICK is for (None for RUNNING and STOP).
+        position: the designated ball position (m, field frame) of a restart, or None.
+        since: simulated time (s) the command was given.
+    """
+
+    command: str = RUNNING
+    team: str | None = None
+    position: tuple[float, float] | None = None
+    since: float = 0.0
+
+    def must_keep_clear(self, team: str) -> bool:
+        """True when ``team``'s robots must keep 0.5 m from the ball: STOP, or a
+        kickoff / free kick for the other team."""
+        return self.command == STOP or (self.command in (KICKOFF, FREE_KICK) and self.team != team)
+
+    def to_dict(self) -> dict:
+        return {"command": self.command, "team": self.team,
+                "position": None if self.position is None else list(self.position), "since": self.since}
+
+
+class TouchWatch:
+    """Who touches the ball, the last toucher, and the dribbling and double-touch
+    fouls (module docstring). One world; robots in the engine's row order (blue first)."""
+
+    def __init__(self, n_blue: int, n_yellow: int, robot_radius: float, ball_radius: float) -> None:
+        self.teams = np.array(["blue"] * n_blue + ["yellow"] * n_yellow)
+        self.reach = robot_radius + ball_radius + TOUCH_MARGIN
+        self.reset()
+
+    def reset(self) -> None:
+        """Forget every touch (after a placement)."""
+        self.last_robot: int | None = None
+        self.dribbler: int | None = None
+        self.dribble_start = np.zeros(2)
+        self.guard: int | None = None  #: the taker of the last restart, until another robot touches
+        self.guard_released = False  #: the taker has let go of the ball since taking it
+
+    def touching(self, ws: WorldState, kicked: list[int]) -> np.ndarray:
+        """(n,) bool: robots touching the ball in snapshot ``ws`` (field frame) or
+        kicking it this step (rows in ``kicked``)."""
+        pos = np.concatenate([ws.blue.pos, ws.yellow.pos])
+        d = pos - ws.ball_pos[None, :]
+        touch = (d[:, 0] ** 2 + d[:, 1] ** 2 <= self.reach ** 2) & (ws.ball_height <= 0.15)
+        touch |= np.concatenate([ws.blue.ball_on_dribbler, ws.yellow.ball_on_dribbler])
+        for i in kicked:
+            touch[i] = True
+        return touch
+
+    def last_team(self) -> str | None:
+        return None if self.last_robot is None else str(self.teams[self.last_robot])
+
+    def update(self, ws: WorldState, touch: np.ndarray, field: FieldGeometry, fouls: bool) -> tuple[str, int] | None:
+        """Record this tick's touches; returns (foul name, offending robot row) or None."""
+        idx = np.flatnonzero(touch)
+        if self.guard is not None and self.guard not in idx:
+            self.guard_released = True
+        foul = None
+        for i in idx.tolist():
+            if fouls and self._in_opponent_defense(ws.ball_pos, field, str(self.teams[i])):
+                foul = foul or ("attacker_in_defense_area", i)
+            if self.guard is not None:
+                if i != self.guard:
+                    self.guard = None
+                elif self.guard_released and fouls:
+                    foul = foul or ("double_touch", i)
+        if self.dribbler is not None and self.dribbler not in idx:
+            self.dribbler = None
+        if self.dribbler is None and idx.size == 1:
+            self.dribbler, self.dribble_start = int(idx[0]), ws.ball_pos.copy()
+        elif idx.size > 1:
+            self.dribbler = None  # a contested ball is nobody's dribble
+        if fouls and self.dribbler is not None and np.hypot(*(ws.ball_pos - self.dribble_start)) > MAX_DRIBBLE_M:
+            foul = foul or ("excessive_dribbling", self.dribbler)
+        fresh = [i for i in idx.tolist() if i != self.last_robot]
+        if fresh:  # the latest robot to come into contact is the last toucher
+            self.last_robot = int(fresh[-1])
+        return foul
+
+    def taken_by(self, robot: int | None) -> None:
+        """A kickoff / free kick was taken by ``robot`` (row): guard against its double touch."""
+        self.guard, self.guard_released = robot, False
+
+    @staticmethod
+    def _in_opponent_defense(ball_pos: np.ndarray, field: FieldGeometry, team: str) -> bool:
+        return bool(field.in_defense_area(ball_pos, 1 if team == "blue" else -1))
+
+
+def jittered_clearance(point: np.ndarray, robot_pos: np.ndarray, field: FieldGeometry, clearance: float,
+                       jitter_m: float, rng: np.random.Generator) -> np.ndarray:
+    """Robots within ``clearance`` of ``point`` moved out to ``clearance`` + U(0,
+    ``jitter_m``) m, in their own direction turned by a random angle of up to +-0.5
+    rad (seeded ``rng``); kept inside the walled area. Returns new (n, 2) positions."""
+    pos = np.array(robot_pos, dtype=float, copy=True)
+    d = pos - point[None, :]
+    dist = np.hypot(d[:, 0], d[:, 1])
+    for i in np.flatnonzero(dist < clearance):
+        a = (np.arctan2(d[i, 1], d[i, 0]) if dist[i] > 1e-9 else rng.uniform(-np.pi, np.pi)) + rng.uniform(-0.5, 0.5)
+        r = clearance + rng.uniform(0.0, jitter_m)
+        for turn in (0.0, np.pi, np.pi / 2, -np.pi / 2):
+            cand = point + r * np.array([np.cos(a + turn), np.sin(a + turn)])
+            if field.in_field(cand, margin=-field.boundary_width + 0.1):
+                break
+        pos[i] = cand
+    return pos
+
+
+def jittered_kickoff(poses: np.ndarray, n_blue: int, field: FieldGeometry, jitter_m: float,
+                     rng: np.random.Generator, robot_radius: float) -> np.ndarray:
+    """Kickoff poses (field frame, (n, 3), blue rows first) each moved by U(-j, j) m in
+    x and y and U(-0.2, 0.2) rad, then held in the legal region: the own half (at
+    least a robot radius from the half-way line), outside the centre circle, outside
+    the own defense area (the keeper, row 0 of each team, stays inside it), and
+    inside the field."""
+    out = np.array(poses, dtype=float, copy=True)
+    n = len(out)
+    out[:, 0:2] += rng.uniform(-jitter_m, jitter_m, (n, 2))
+    out[:, 2] += rng.uniform(-0.2, 0.2, n)
+    L2, W2 = field.half_length, field.half_width
+    for i in range(n):
+        side = -1.0 if i < n_blue else 1.0  # own half
+        keeper = i in (0, n_blue)
+        x, y = out[i, 0], out[i, 1]
+        x = side * min(max(side * x, robot_radius), L2 - robot_radius)
+        y = float(np.clip(y, -W2 + robot_radius, W2 - robot_radius))
+        if keeper:
+            x = side * min(max(side * x, L2 - field.defense_depth + robot_radius), L2 - robot_radius)
+            y = float(np.clip(y, -field.defense_width / 2 + robot_radius, field.defense_width / 2 - robot_radius))
+        else:
+            if field.in_defense_area(np.array([x, y]), int(side), margin=robot_radius):
+                x = side * (L2 - field.defense_depth - robot_radius - 0.01)
+            r = np.hypot(x, y)
+            keep = field.center_circle_radius + robot_radius + 0.01
+            if r < keep:
+                u = np.array([x, y]) / r if r > 1e-9 else np.array([side, 0.0])
+                if u[0] * side < 0.1:
+                    u = np.array([side, u[1]]) / np.hypot(side, u[1])
+                x, y = keep * u
+        out[i, 0], out[i, 1] = x, y
+    return out
+
+
+__all__ = ["RefereeState", "TouchWatch", "jittered_clearance", "jittered_kickoff", "COMMANDS", "FOULS", "RUNNING",
+           "STOP", "KICKOFF", "FREE_KICK", "IN_PLAY_DISTANCE", "MAX_DRIBBLE_M", "other"]

@@ -1,0 +1,253 @@
+"""SSL game control (ssl_marl.envs.game_control, the match task): fouls, free kicks,
+STOP, half-time, seeded restart placement; the statistics helper's intervals."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from ssl_marl.envs import parallel_env
+from ssl_marl.envs.actions import make_action
+from ssl_marl.envs.game_control import (FREE_KICK, KICKOFF, RUNNING, STOP, RefereeState, TouchWatch,
+                                        jittered_kickoff)
+from ssl_marl.envs.referee import kickoff_poses
+from ssl_marl.physics.field import FieldGeometry
+from ssl_marl.physics.state import WorldState, make_team_state, to_team_frame
+from ssl_marl.plays.team import keep_clear
+from ssl_marl.runners.statistics import series_statistics, t_interval, wilson_interval
+
+FIELD = FieldGeometry.from_name("div_b")
+R_ROBOT, R_BALL = 0.09, 0.0215
+
+
+def world(blue_xy, yellow_xy, ball_xy, t=0.0) -> WorldState:
+    def team(xy):
+        n = len(xy)
+        return make_team_state(np.array(xy, float).reshape(n, 2), np.zeros(n), np.zeros((n, 2)), np.zeros(n),
+                               np.zeros(n, bool), np.ones(n, bool))
+    return WorldState(t=t, ball_pos=np.array(ball_xy, float), ball_vel=np.zeros(2), blue=team(blue_xy),
+                      yellow=team(yellow_xy))
+
+
+def touch_step(watch, ws, fouls=True):
+    return watch.update(ws, watch.touching(ws, []), FIELD, fouls)
+
+
+def test_dribbling_1_2_m_is_a_foul_and_0_9_m_is_not():
+    watch = TouchWatch(1, 1, R_ROBOT, R_BALL)
+    calls = []
+    for k in range(13):  # robot and ball move together 0.1 m per tick: 1.2 m in all
+        x = -2.0 + 0.1 * k
+        calls.append(touch_step(watch, world([(x, 0.0)], [(3.0, 2.0)], (x + 0.1, 0.0))))
+    assert all(c is None for c in calls[:10])  # up to 0.9 m (and 1.0 m exactly) no foul
+    assert calls[-1] == ("excessive_dribbling", 0)
+
+
+def test_double_touch_after_a_free_kick():
+    watch = TouchWatch(2, 1, R_ROBOT, R_BALL)
+    assert touch_step(watch, world([(0.0, 0.0), (2.0, 2.0)], [(3.0, 2.0)], (0.1, 0.0))) is None
+    watch.taken_by(0)
+    assert touch_step(watch, world([(0.0, 0.0), (2.0, 2.0)], [(3.0, 2.0)], (0.5, 0.0))) is None  # let go
+    assert touch_step(watch, world([(0.4, 0.0), (2.0, 2.0)], [(3.0, 2.0)], (0.5, 0.0))) == ("double_touch", 0)
+    # another robot touching first clears the guard
+    watch = TouchWatch(2, 1, R_ROBOT, R_BALL)
+    watch.taken_by(0)
+    touch_step(watch, world([(0.0, 0.0), (2.0, 2.0)], [(3.0, 2.0)], (1.0, 0.0)))
+    touch_step(watch, world([(0.0, 0.0), (1.1, 0.0)], [(3.0, 2.0)], (1.0, 0.0)))
+    assert touch_step(watch, world([(0.9, 0.0), (2.0, 2.0)], [(3.0, 2.0)], (1.0, 0.0))) is None
+
+
+def test_attacker_touching_the_ball_in_the_opponent_defense_area():
+    watch = TouchWatch(1, 1, R_ROBOT, R_BALL)
+    inside = (FIELD.half_length - 0.3, 0.0)  # blue attacks +x: the yellow defense area
+    assert touch_step(watch, world([(inside[0] - 0.1, 0.0)], [(-3.0, 2.0)], inside)) == ("attacker_in_defense_area", 0)
+    watch = TouchWatch(1, 1, R_ROBOT, R_BALL)  # the defender in its own area: no foul
+    assert touch_step(watch, world([(-3.0, 2.0)], [(inside[0] + 0.1, 0.0)], inside)) is None
+    watch = TouchWatch(1, 1, R_ROBOT, R_BALL)  # switched off
+    assert touch_step(watch, world([(inside[0] - 0.1, 0.0)], [(-3.0, 2.0)], inside), fouls=False) is None
+
+
+def _env(**rules):
+    return parallel_env(n_blue=1, n_yellow=1, max_time_s=60.0, **rules)
+
+
+def _idle(env):
+    return {a: make_action() for a in env.agents}
+
+
+def test_free_kick_goes_to_the_team_that_did_not_touch_last_after_a_stop():
+    env = _env(ssl_restarts=True, stop_s=0.5)
+    L2, W2 = FIELD.half_length, FIELD.half_width
+    env.reset(seed=1, options={"ball": {"pos": (1.0, W2 - 0.12), "vel": (0.0, 2.0)},
+                               "robots": {"blue_0": (1.0, W2 - 0.22, math.pi / 2), "yellow_0": (-3.0, 0.0, 0.0)}})
+    events = []
+    for _ in range(90):
+        _, _, _, _, infos = env.step(_idle(env))
+        events += infos["blue_0"]["events"]
+        if env.task.referee_state.command == FREE_KICK:
+            break
+    outs = [e for e in events if e["type"] == "ball_out"]
+    assert outs and outs[0]["free_kick_for"] == "yellow"
+    commands = [e["command"] for e in events if e["type"] == "referee"]
+    assert commands[-2:] == [STOP, FREE_KICK]
+    st = env.task.referee_state
+    assert st.team == "yellow" and np.allclose(st.position, outs[0]["placement"])
+    # the free kick times out into running play
+    for _ in range(int(10.5 * 60)):
+        env.step(_idle(env))
+    assert env.task.referee_state.command == RUNNING
+
+
+def test_stop_keep_clear_moves_robots_away_and_the_kicker_plays():
+    st = RefereeState(STOP, None, (0.0, 0.0))
+    assert st.must_keep_clear("blue") and st.must_keep_clear("yellow")
+    fk = RefereeState(FREE_KICK, "blue", (0.0, 0.0))
+    assert not fk.must_keep_clear("blue") and fk.must_keep_clear("yellow")
+    ws = to_team_frame(world([(-0.3, 0.0), (-0.7, 0.0), (-2.0, 0.0)], [(2.0, 0.0)], (0.0, 0.0)), "blue")
+    actions = {f"blue_{i}": make_action(vx=1.0, kick=1.0, dribble=True) for i in range(3)}  # all drive at the ball
+    keep_clear(actions, list(actions), ws, "blue", max_speed=3.0)
+    assert actions["blue_0"][0] < 0 and actions["blue_0"][4] == -1.0  # within 0.6 m: backs off, no kick
+    assert 0 < actions["blue_1"][0] * 3.0 <= np.sqrt(2 * 2.0 * 0.1) + 1e-6  # slows down to stop at 0.6 m
+    far = {"blue_0": make_action(vx=1.0)}
+    keep_clear(far, ["blue_0"], to_team_frame(world([(-4.0, 0.0)], [(2.0, 0.0)], (0.0, 0.0)), "blue"), "blue", 3.0)
+    assert far["blue_0"][0] == 1.0  # far away: untouched
+
+
+def test_stop_is_obeyed_by_the_team_controller_in_a_match():
+    from ssl_marl.runners.controllers import make_controller
+
+    env = parallel_env(n_blue=3, n_yellow=3, max_time_s=30.0, ssl_restarts=True, fouls=True, stop_s=1.0)
+    ctrls = [make_controller("baseline", t, 3, env.field) for t in ("blue", "yellow")]
+    env.reset(seed=3)
+    worst, free_kicks = np.inf, 0
+    while env.agents:
+        actions = {}
+        for c in ctrls:
+            actions.update(c.act(env))
+        _, _, _, _, infos = env.step(actions)
+        free_kicks += sum(e["type"] == "referee" and e["command"] == FREE_KICK for e in infos["blue_0"]["events"]
+                          if "command" in e)
+        st = env.task.referee_state
+        w = env.world_state()
+        if st.command == STOP and w.t - st.since > 0.5:
+            pos = np.concatenate([w.blue.pos, w.yellow.pos])
+            worst = min(worst, float(np.min(np.hypot(*(pos - w.ball_pos).T))))
+    assert free_kicks > 0
+    if np.isfinite(worst):
+        assert worst >= 0.45
+
+
+def test_half_time_keeps_the_score_and_swaps_ends():
+    env = parallel_env(n_blue=2, n_yellow=2, max_time_s=2.0, ssl_restarts=True, half_time_s=1.0)
+    env.reset(seed=0)
+    env.score["blue"] = 2
+    events = []
+    while env.agents:
+        _, _, _, _, infos = env.step(_idle(env))
+        events += infos["blue_0"]["events"]
+        if any(e["type"] == "half_time" for e in events) and env.task.half == 2:
+            break
+    ht = [e for e in events if e["type"] == "half_time"]
+    assert len(ht) == 1 and abs(ht[0]["t"] - 1.0) < 0.02 and ht[0]["score"]["blue"] == 2
+    assert env.score == {"blue": 2, "yellow": 0} and env.task.sides_swapped
+    st = env.task.referee_state
+    assert st.command == KICKOFF and st.team == "yellow"
+    w = env.world_state()
+    assert np.allclose(w.ball_pos, 0.0)
+    for team in ("blue", "yellow"):  # each team's own goal at -x of its frame in both halves
+        assert np.all(to_team_frame(w, team).team(team).pos[:, 0] < 0)
+
+
+def _forced_goal_kickoffs(seed, jitter, goals=6):
+    env = parallel_env(n_blue=3, n_yellow=3, max_time_s=600.0, restart_jitter_m=jitter, ssl_restarts=jitter > 0)
+    env.reset(seed=seed)
+    poses = [env.robot_poses()]
+    while len(poses) <= goals:
+        env.place_ball(np.array([FIELD.half_length + 0.1, 0.0]))  # the ball into yellow's goal: a goal
+        env.step(_idle(env))
+        poses.append(env.robot_poses())
+        for _ in range(30):  # play on a little
+            env.step(_idle(env))
+    assert env.score["blue"] == goals
+    return np.array(poses)
+
+
+def test_no_restart_repeats_an_earlier_world_state():
+    a = _forced_goal_kickoffs(5, 0.1)
+    for i in range(1, len(a)):
+        for j in range(i):
+            assert not np.allclose(a[i], a[j], atol=1e-3), (i, j)
+    assert np.array_equal(a, _forced_goal_kickoffs(5, 0.1))  # same seed, same match
+    fixed = _forced_goal_kickoffs(5, 0.0, goals=3)  # without jitter every kickoff is the same formation
+    assert np.allclose(fixed[1], fixed[2]) and np.allclose(fixed[2], fixed[3])
+
+
+def test_jittered_kickoff_stays_legal():
+    rng = np.random.default_rng(0)
+    base = kickoff_poses(FIELD, 6, 6)
+    for _ in range(200):
+        p = jittered_kickoff(base, 6, FIELD, 0.5, rng, R_ROBOT)
+        for i, (x, y, _) in enumerate(p):
+            side = -1 if i < 6 else 1
+            assert side * x > 0 and abs(y) <= FIELD.half_width
+            if i not in (0, 6):
+                assert np.hypot(x, y) >= FIELD.center_circle_radius + R_ROBOT
+                assert not FIELD.in_defense_area(np.array([x, y]), side)
+
+
+def test_batched_env_refuses_game_control():
+    from ssl_marl.envs.batched_env import BatchedSSLEnv
+
+    with pytest.raises(ValueError, match="game control"):
+        BatchedSSLEnv(2, n_blue=1, n_yellow=1, fouls=True)
+
+
+def test_t_interval_against_scipy_and_wilson_against_hand_values():
+    from scipy import stats
+
+    vals = [1.0, -2.0, 0.0, 3.0, 1.0]
+    lo, hi = t_interval(vals)
+    ref = stats.t.interval(0.95, len(vals) - 1, loc=np.mean(vals), scale=stats.sem(vals))
+    assert lo == pytest.approx(ref[0]) and hi == pytest.approx(ref[1])
+    assert t_interval([1.0, 2.0, 3.0]) == pytest.approx((-0.4841377, 4.4841377))
+    assert wilson_interval(755, 1000) == pytest.approx((0.7274, 0.7806), abs=1e-4)  # by hand, z = 1.96
+    assert wilson_interval(0, 0) == (0.0, 1.0)
+    s = series_statistics([2, 0, 1], [0, 0, 3], seconds=300.0)
+    assert (s["wins"], s["draws"], s["losses"]) == (1, 1, 1)
+    assert s["goal_diff_per_match"] == pytest.approx(0.0) and s["goal_diff_per_600s"] == pytest.approx(0.0)
+    assert s["goal_diff_per_600s_ci95"][1] == pytest.approx(2 * s["goal_diff_per_match_ci95"][1])
+
+
+def _ball_world(ball_xy, ball_vel, blue_xy, t, ball_vz=0.0):
+    w = world(blue_xy, [(-4.0, 2.5)], ball_xy, t)
+    return WorldState(t=t, ball_pos=w.ball_pos, ball_vel=np.array(ball_vel, float), blue=w.blue, yellow=w.yellow,
+                      ball_vz=ball_vz, ball_height=0.05 if ball_vz > 0 else 0.0)
+
+
+def test_match_statistics_by_kind():
+    from ssl_marl.plays.stats import MatchStatsTracker
+
+    tr = MatchStatsTracker(FIELD)
+    mates = [(1.0, 0.0), (3.0, 0.0)]
+    tr.observe(_ball_world((1.1, 0.0), (0.0, 0.0), mates, 0.0))
+    # blue_0 chips a pass to blue_1: a chip pass
+    tr.observe(_ball_world((1.2, 0.0), (4.0, 0.0), mates, 1 / 60, ball_vz=2.0), [{"type": "kick", "agent": "blue_0", "speed": 4.0}])
+    for k in range(2, 9):  # blue_1 controls it: completed
+        w = _ball_world((2.9, 0.0), (0.0, 0.0), mates, k / 60)
+        tr.observe(WorldState(t=w.t, ball_pos=w.ball_pos, ball_vel=w.ball_vel,
+                              blue=make_team_state(w.blue.pos, w.blue.heading, w.blue.vel, w.blue.omega,
+                                                   [False, True], w.blue.kick_ready), yellow=w.yellow))
+    # blue_1 shoots at the goal after receiving the chip pass
+    tr.observe(_ball_world((3.1, 0.0), (5.0, 0.0), mates, 10 / 60), [{"type": "kick", "agent": "blue_1", "speed": 5.0}])
+    tr.observe(_ball_world((4.6, 0.0), (5.0, 0.0), mates, 11 / 60), [{"type": "goal", "team": "blue", "t": 11 / 60}])
+    # a redirect: the ball arrives at 3 m/s and blue_0 kicks it on at the goal
+    tr.observe(_ball_world((0.9, 0.0), (3.0, 0.0), mates, 12 / 60))
+    tr.observe(_ball_world((1.2, 0.0), (5.0, 0.0), [(1.0, 0.0), (3.0, 2.0)], 13 / 60),
+               [{"type": "kick", "agent": "blue_0", "speed": 5.0}])
+    s = tr.summary()["blue"]
+    assert (s["passes_chip_attempted"], s["passes_chip_completed"], s["passes_flat_attempted"]) == (1, 1, 0)
+    assert s["pass_completion_chip"] == 1.0 and s["pass_completion_flat"] is None
+    assert (s["shots_after_chip_pass"], s["shots_redirect"], s["shots_direct"]) == (1, 1, 0)
+    assert (s["goals"], s["goals_after_chip_pass"]) == (1, 1)
