@@ -54,3 +54,15 @@ def test_serve_writes_an_ssl_log_that_replays_and_renders(tmp_path):
     gif = tmp_path / "replay.gif"
     args = _serve_args("--replay", str(log), "--replay-video", str(gif), "--robots", "2")
     assert args.handler(args) == 0 and gif.stat().st_size > 0
+
+
+def test_match_command_writes_an_ssl_log(tmp_path, capsys):
+    from ssl_marl.cli import main
+
+    out = tmp_path / "m.log"
+    assert main(["match", "--seconds", "2", "--robots", "2", "--render", "none", "--quiet",
+                 "--ssl-log", str(out)]) == 0
+    assert out.read_bytes()[:12] == b"SSL_LOG_FILE"
+    assert "SSL log ->" in capsys.readouterr().out
+    assert main(["match", "--seconds", "2", "--matches", "2", "--render", "none", "--quiet",
+                 "--ssl-log", str(tmp_path / "x.log")]) == 2  # series are not recorded

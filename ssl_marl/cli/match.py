@@ -60,6 +60,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     m.add_argument("--json", default=None, metavar="PATH",
                    help="also write the result as JSON to PATH (missing folders are created)")
     m.add_argument("--quiet", action="store_true", help="no progress bar")
+    m.add_argument("--ssl-log", default=None, metavar="PATH",
+                   help="also write the match as an SSL log file (the SSL log recorder's format: vision and "
+                        "referee packets, readable by SSL log players): the bridge plays the same seeded match "
+                        "again and records it; single plain-format matches of named teams without --skill or "
+                        "--*-decision options (needs the ssl extra)")
     m.add_argument("--no-progress-s", type=non_negative_float("--no-progress-s"), default=10.0,
                    help="the referee restarts play when the ball stays within 0.25 m of one spot this long "
                         "(SSL force start after a lack of progress; seconds, default 10; 0 switches the call off)")
@@ -120,6 +125,12 @@ def run(args: argparse.Namespace) -> int:
         prepare_output_file(render, VIDEO_SUFFIXES, "--render")
     if args.json:
         prepare_output_file(args.json, None, "--json")
+    if args.ssl_log:
+        if args.matches != 1 or args.format != "plain" or blue_skills or yellow_skills or args.blue_decision \
+                or args.yellow_decision or args.realtime or args.no_progress_s != 10.0:
+            raise ValueError("--ssl-log records single plain-format matches of named teams (no --matches > 1, "
+                             "--format ssl, --skill, --*-decision, --realtime or --no-progress-s)")
+        prepare_output_file(args.ssl_log, None, "--ssl-log")
     if args.matches == 1:
         res = play_match(blue=blue, yellow=yellow, seed=args.seed, render=render,
                          render_fps=args.render_fps, render_width_px=args.render_width, progress=not args.quiet,
@@ -127,6 +138,8 @@ def run(args: argparse.Namespace) -> int:
         print(match_line(res) + (f"  | video -> {render}" if render else ""))
         if args.json:
             atomic_write_json(args.json, res.to_dict())
+        if args.ssl_log:
+            _write_ssl_log(args, res)
         return 0
     results, summary = play_series(blue=blue, yellow=yellow, matches=args.matches, workers=workers(args),
                                    seed=args.seed, progress=not args.quiet, backend=args.backend,
@@ -156,3 +169,15 @@ def run(args: argparse.Namespace) -> int:
                    "no_progress_s": common["env_kwargs"]["no_progress_s"]},
             seeds={"seed": args.seed, "matches": args.matches}))
     return 0
+
+
+def _write_ssl_log(args: argparse.Namespace, res) -> None:
+    """Record the match just played as an SSL log (the bridge's world replays the same
+    seeded match) and check that it ended with the same score."""
+    from ..bridge.log_tools import record_match_log
+
+    score = record_match_log(args.ssl_log, blue=args.blue, yellow=args.yellow, robots=args.robots, field=args.field,
+                             seconds=args.seconds, seed=args.seed, realism=args.realism)
+    same = score == dict(res.score)
+    print(f"SSL log -> {args.ssl_log} (score {score['blue']}:{score['yellow']}"
+          + ("" if same else f"; the recorded replay differs from the match played, {res.score}") + ")")
