@@ -367,21 +367,8 @@ class BatchedPhysics:
         robot touching the ball now, the first such robot fires through the world's own
         ``_fire_kick``; the batch's arrays take its result. Returns the worlds that fired."""
         wj, ri = np.nonzero(armed)
-        S, n = SCALE, self.n
-        if self._fast:
-            mem, slot = self._span()
-            ks = idx[wj]
-            r = mem[slot[ks, ri][:, None] + _R19[[3, 4, bm.ANGLE]]].astype(np.float64)
-            q = mem[slot[ks, n][:, None] + _R19[[3, 4]]].astype(np.float64)
-            rows = np.concatenate([r, q], axis=1)
-        else:
-            rows = np.empty((wj.size, 5))
-            for m, (j, i) in enumerate(zip(wj.tolist(), ri.tolist())):
-                w = self.worlds[int(idx[j])]
-                b, ball = w._robot_bodies[i], w._ball_body
-                p, q = b.position, ball.position
-                rows[m] = p[0], p[1], b.angle, q[0], q[1]
-        hit = self.ball_on_face(rows[:, 0:2] / S, rows[:, 2], rows[:, 3:5] / S)
+        rows = self._pair_rows(idx, wj, ri)
+        hit = self.ball_on_face(rows[:, 0:2] / SCALE, rows[:, 2], rows[:, 3:5] / SCALE)
         fired: set[int] = set()
         for m in np.flatnonzero(hit).tolist():
             j, i = int(wj[m]), int(ri[m])
@@ -443,25 +430,30 @@ class BatchedPhysics:
         for j in bj.tolist():
             self.worlds[int(idx[j])]._ball_body.linearVelocity = (float(raw[j, n, 16]), float(raw[j, n, 17]))
 
-    def _mark_touches(self, idx: np.ndarray, near_pairs: tuple[np.ndarray, np.ndarray], touched: np.ndarray) -> None:
-        """touched[j, i] |= ball on robot i's face now, for the near (j, i) pairs
-        (PhysicsWorld._mark_touches: the raw, unwrapped Box2D angle)."""
-        wj, ri = near_pairs
-        S, n = SCALE, self.n
+    def _pair_rows(self, idx: np.ndarray, wj: np.ndarray, ri: np.ndarray) -> np.ndarray:
+        """(len(wj), 5) Box2D x, y, raw angle of robot ri[m] and the ball's x, y, in world
+        idx[wj[m]] (Box2D units, float32 values as float64)."""
+        n = self.n
         if self._fast:
             mem, slot = self._span()
             ks = idx[wj]
             r = mem[slot[ks, ri][:, None] + _R19[[3, 4, bm.ANGLE]]].astype(np.float64)
             q = mem[slot[ks, n][:, None] + _R19[[3, 4]]].astype(np.float64)
-            rows = np.concatenate([r, q], axis=1)
-        else:
-            rows = np.empty((wj.size, 5))
-            for m, (j, i) in enumerate(zip(wj.tolist(), ri.tolist())):
-                w = self.worlds[int(idx[j])]
-                b, ball = w._robot_bodies[i], w._ball_body
-                p, q = b.position, ball.position
-                rows[m] = p[0], p[1], b.angle, q[0], q[1]
-        hit = self.ball_on_face(rows[:, 0:2] / S, rows[:, 2], rows[:, 3:5] / S)
+            return np.concatenate([r, q], axis=1)
+        rows = np.empty((wj.size, 5))
+        for m, (j, i) in enumerate(zip(wj.tolist(), ri.tolist())):
+            w = self.worlds[int(idx[j])]
+            b, ball = w._robot_bodies[i], w._ball_body
+            p, q = b.position, ball.position
+            rows[m] = p[0], p[1], b.angle, q[0], q[1]
+        return rows
+
+    def _mark_touches(self, idx: np.ndarray, near_pairs: tuple[np.ndarray, np.ndarray], touched: np.ndarray) -> None:
+        """touched[j, i] |= ball on robot i's face now, for the near (j, i) pairs
+        (PhysicsWorld._mark_touches: the raw, unwrapped Box2D angle)."""
+        wj, ri = near_pairs
+        rows = self._pair_rows(idx, wj, ri)
+        hit = self.ball_on_face(rows[:, 0:2] / SCALE, rows[:, 2], rows[:, 3:5] / SCALE)
         touched[wj, ri] |= hit
 
     def ball_on_face(self, pos: np.ndarray, heading: np.ndarray, ball_pos: np.ndarray) -> np.ndarray:
