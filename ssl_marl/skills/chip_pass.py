@@ -129,21 +129,20 @@ def chip_pass_episode(seed: int, chip: bool = True, realism: Any = "none", track
     strength = (kick.speed if kick else flat_speed) / rp.kick_speed_max
     receive = ReceiveBaseline(f, rp, bp, hold_s=hold_s)
     physics: PhysicsWorld = env.unwrapped.physics if hasattr(env, "unwrapped") else env.physics
-    held_since, max_h, t, blocked = None, 0.0, 0.0, False
+    held_since, max_h, t, blocked, kicked = None, 0.0, 0.0, False, False
+    if kick is not None:  # the chip rides on the physics step until the passer's kick fires (radio delays, losses)
+        chip_angles = np.zeros(env.n)
+        chip_angles[0] = kick.angle
+        physics.step = functools.partial(PhysicsWorld.step, physics, chip=chip_angles)
     for step in range(int(max_time_s / env.config.dt)):
-        acts = {"yellow_0": make_action()}
-        if step == 0:
-            acts["blue_0"] = make_action(kick=strength)
-            if kick is not None:
-                chip_angles = np.zeros(env.n)
-                chip_angles[0] = kick.angle
-                physics.step = functools.partial(PhysicsWorld.step, physics, chip=chip_angles)
-        else:
-            acts["blue_0"] = make_action()
+        acts = {"yellow_0": make_action(), "blue_0": make_action() if kicked else make_action(kick=strength)}
+        if step > 0:
             acts["blue_1"] = receive.act(env.vision_state("blue"), 1)
-        env.step(acts)
-        if step == 0 and kick is not None:
-            del physics.step
+        _, _, _, _, infos = env.step(acts)
+        if not kicked and any(ev["type"] == "kick" and ev["agent"] == "blue_0" for ev in infos["blue_0"]["events"]):
+            kicked = True
+            if kick is not None:
+                del physics.step
         truth = env.world_state()
         max_h = max(max_h, float(truth.ball_height))
         if float(truth.ball_height) <= rp.height and \
@@ -153,12 +152,16 @@ def chip_pass_episode(seed: int, chip: bool = True, realism: Any = "none", track
         if bool(truth.blue.ball_on_dribbler[1]):
             held_since = t if held_since is None else held_since
             if t - held_since >= hold_s - 1e-9:
+                if not kicked and kick is not None:
+                    del physics.step
                 env.close()
                 return {"completed": not blocked, "blocked": blocked, "time_s": t, "chip": kick, "max_height": max_h}
         else:
             held_since = None
         if not bool(f.in_field(truth.ball_pos, -bp.radius)):
             break
+    if not kicked and kick is not None:
+        del physics.step
     env.close()
     return {"completed": False, "blocked": blocked, "time_s": t, "chip": kick, "max_height": max_h}
 

@@ -81,7 +81,7 @@ def keeper_position(world: WorldState, field: FieldGeometry) -> np.ndarray:
 
 
 def open_goal_target(from_xy: np.ndarray, world: WorldState, field: FieldGeometry, rp: RobotParams,
-                     bp: BallParams, post_margin: float = 0.08, n: int = 21) -> np.ndarray:
+                     bp: BallParams, post_margin: float = 0.04, n: int = 21) -> np.ndarray:
     """The point of the opponent goal mouth (team frame, x = half_length) whose shot
     line from ``from_xy`` passes farthest from the keeper (:func:`keeper_position`);
     candidates ``n`` points between the posts, ``post_margin`` (m) inside them."""
