@@ -1,0 +1,55 @@
+"""redirect: meet a moving ball and kick it on into the open part of the goal past the
+defending goalie, without stopping it (one touch).
+
+Two action forms (registry action mappings, same 14-value state): ``direct``
+(``redirect/v1``: the actor's (vx, vy, omega) is the action) and ``residual``
+(``redirect/v2``: a bounded correction added to the hand-coded redirect's action). The
+kicker is always armed; robots kick on contact."""
+
+from __future__ import annotations
+
+from ..redirect import (REDIRECT_ACTION_FORMS, REDIRECT_ACTIONS, REDIRECT_NAMES, RedirectBaseline,
+                        expand_redirect_action, redirect_features, redirect_task_action)
+from ..registry import PRETRAINED_DIR, SkillDef, SkillTaskDef, register
+
+_ACTOR = PRETRAINED_DIR / "redirect.pt"
+
+
+def _to_env(action3, mapping: str | None = None):
+    if mapping == "residual":
+        raise ValueError("a residual redirect action (redirect/v2) is a correction of the hand-coded redirect's "
+                         "action and needs the world state: use LearnedRedirect or RedirectEnv(action_form='residual')")
+    return expand_redirect_action(action3)
+
+
+def _drive(env, skill):
+    from ..redirect_task import redirect_skill_action
+
+    return redirect_skill_action(env, skill)
+
+
+SKILL = register(SkillDef(
+    name="redirect",
+    summary="meet a moving ball and kick it on into the open part of the goal (one touch)",
+    baseline=RedirectBaseline,
+    learned="ssl_marl.skills.redirect:LearnedRedirect",
+    # shipped only if it is at least as good as the hand-coded redirect on the held-out seed
+    actor=_ACTOR if _ACTOR.exists() else None,
+    task=SkillTaskDef(
+        env_id="ssl_marl/Redirect-v0",
+        entry_point="ssl_marl.skills.redirect_task:RedirectEnv",
+        features=redirect_features,  # (world, robot, field, robot_params, ball_params)
+        feature_names=REDIRECT_NAMES,
+        action_names=REDIRECT_ACTIONS,
+        to_task_action=redirect_task_action,
+        to_env_action=_to_env,
+        # "direct" first: the task env's default (what eval-skill drives); training uses
+        # action_form="residual" (train/configs/redirect.json)
+        spec_versions=dict(REDIRECT_ACTION_FORMS),
+        demo_fn="ssl_marl.skills.redirect_task:redirect_baseline_demos",
+        train_config="redirect",
+        drive=_drive,
+    ),
+    reference={"learned": 0.85},
+    reference_source="the project's target (success rate against the goalie over 1000 episodes); no paper figure",
+))
