@@ -64,14 +64,6 @@ def test_open_goal_gives_a_shot():
     assert d.choice is AttackChoice.SHOOT
 
 
-def test_pressed_carrier_without_options_shoots_and_free_one_dribbles():
-    mates = np.array([[-4.0, 0.0], [-1.0, 0.0]])
-    far = decide_attack(np.array([-0.9, 0.0]), 1, mates, np.array([[4.4, 0.0], [3.0, 0.0], [3.0, 0.3]]), F)
-    assert far.choice is AttackChoice.DRIBBLE
-    pressed = decide_attack(np.array([-0.9, 0.0]), 1, mates, np.array([[4.4, 0.0], [-0.6, 0.0]]), F)
-    assert pressed.choice is AttackChoice.SHOOT
-
-
 def test_params_are_checked():
     with pytest.raises(ValueError):
         AttackParams(chip_angles=(2.0,))
