@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from ssl_marl.physics import FieldGeometry
-from ssl_marl.physics.params import BallParams, RobotParams
+from ssl_marl.physics.params import BallParams
 from ssl_marl.plays.attack_decision import chip_kick
 from ssl_marl.plays.chip_pass_tactic import ChipPass
 from ssl_marl.plays.pass_tactic import PassState

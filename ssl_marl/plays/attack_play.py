@@ -27,7 +27,7 @@ runner builds one when a team needs it and pads 5-entry actions with a flat chip
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -54,7 +54,8 @@ ATTACK_PASSING = PassingParams(abort_margin_s=-math.inf)
 @dataclass
 class AttackCounters:
     """Decisions taken (for tests, reports and debugging): shots, flat passes, chips,
-    redirects, dribbles, and redirects that left the receiver towards the goal."""
+    redirects, dribbles, and passes into a redirect whose receiver ended CONTROLLED
+    (it kicked the ball on, or fetched a ball that stopped short)."""
 
     shoot: int = 0
     pass_: int = 0
