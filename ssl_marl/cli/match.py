@@ -19,7 +19,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                    help="blue team: learned (STP with the shipped DDPG actors), baseline (STP with hand-coded "
                         "skills), passing-learned / passing-baseline (the passing plays: shoot, pass or keep by "
                         "cost, set plays with passes, with those skills), passing-learned-decision (passing-learned "
-                        "whose ball carrier uses the learned Attack 3v2 decision), random, idle, or a JSON team file "
+                        "whose ball carrier uses the learned Attack 3v2 decision), attack-learned / "
+                        "attack-baseline (the attacking plays: shot, flat pass, chip pass, pass into a one-touch "
+                        "redirect or dribble by cost, supports on rated spots; the match then runs with chip kicks), "
+                        "random, idle, or a JSON team file "
                         "{\"kind\": ..., \"skills\": {SKILL: SOURCE}} (default learned)")
     m.add_argument("--yellow", type=team, default="baseline", metavar="TEAM",
                    help="yellow team, as --blue (default baseline)")

@@ -11,6 +11,10 @@ A team is one of :data:`TEAM_KINDS`:
   with the learned Attack 3v2 decision (:mod:`ssl_marl.decisions.match_decider`,
   the shipped actor ``ssl_marl/decisions/pretrained/attack_3v2.pt``) instead of the cost
   decision;
+* ``"attack-learned"`` / ``"attack-baseline"``: the attacking plays
+  (:mod:`ssl_marl.plays.attack_play`: shot, flat pass, chip pass, pass into a redirect
+  or dribble by cost, supports on rated spots) with those skills; they chip, so they
+  play only in an env with chip kicks (:data:`CHIP_KINDS`; the match runner builds one);
 * ``"random"``: uniform random actions (seeded); ``"idle"``: zero actions.
 
 A passing team's carrier decision can also be chosen per team (``decision=``,
@@ -47,9 +51,13 @@ if TYPE_CHECKING:
     from ..plays.team import TeamController, TeamSpec
 
 TEAM_KINDS = ("learned", "baseline", "random", "idle", "passing-learned", "passing-baseline",
-              "passing-learned-decision")
-STP_KINDS = ("learned", "baseline", "passing-learned", "passing-baseline", "passing-learned-decision")
+              "passing-learned-decision", "attack-learned", "attack-baseline")
+STP_KINDS = ("learned", "baseline", "passing-learned", "passing-baseline", "passing-learned-decision",
+             "attack-learned", "attack-baseline")
 PASSING_KINDS = ("passing-learned", "passing-baseline", "passing-learned-decision")
+#: team kinds with the attacking plays; they chip, so they need an env with ``chip_kicks=True``
+ATTACK_KINDS = ("attack-learned", "attack-baseline")
+CHIP_KINDS = ATTACK_KINDS
 #: team kinds whose carrier decision is learned by default
 LEARNED_DECISION_KINDS = ("passing-learned-decision",)
 TEAM_FILE_KEYS = ("kind", "skills")
@@ -95,7 +103,7 @@ def team_skills(kind: str, sources: Mapping[str, Any] | None = None, where: str 
         return kind
     if kind not in STP_KINDS:
         raise ValueError(f"{where}: skill sources need an STP team ({' or '.join(STP_KINDS)}), not {kind!r}")
-    spec: dict[str, Any] = (dict(kind_skills(kind)) if kind in PASSING_KINDS
+    spec: dict[str, Any] = (dict(kind_skills(kind)) if kind in PASSING_KINDS + ATTACK_KINDS
                             else team_skill_set(kind, CORE_SKILLS, where=where))
     for name, source in sources.items():
         key = name.replace("-", "_") if isinstance(name, str) else name
@@ -214,6 +222,10 @@ def team_spec(kind: str, skills: Any = None, decision: Any = None, where: str = 
         raise ValueError(f"{where}: a team spec needs an STP team ({' or '.join(STP_KINDS)}), not {kind!r}")
     decision = decision_spec(kind, decision, where=where)
     team_set = kind_skills(kind) if skills is None else skills
+    if kind in ATTACK_KINDS:
+        from ..plays.attack_play import attack_plays
+
+        return TeamSpec(plays=attack_plays, skills=team_set)
     if kind not in PASSING_KINDS:
         return TeamSpec(skills=team_set)
     from ..plays.passing_play import passing_plays
@@ -260,9 +272,9 @@ def make_controller(kind: Any, team: str, n_robots: int, field: Any = "div_b", s
 
 def kind_skills(kind: str) -> Any:
     """The skill set of STP team ``kind``: the kind itself ("learned" / "baseline"), or
-    for a passing team :func:`~ssl_marl.plays.skillset.team_skill_set` of its skill kind."""
+    for a passing or attacking team :func:`~ssl_marl.plays.skillset.team_skill_set` of its skill kind."""
     from ..plays.skillset import team_skill_set
 
-    if kind in PASSING_KINDS:
+    if kind in PASSING_KINDS + ATTACK_KINDS:
         return team_skill_set(kind.split("-")[1], where=kind)
     return kind

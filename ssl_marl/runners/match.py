@@ -37,7 +37,8 @@ from typing import Any
 import numpy as np
 
 from ..envs.deadline import ControlDeadline
-from .controllers import STP_KINDS, TEAM_KINDS, controller_label, decision_label, decision_spec, make_controller
+from .controllers import (CHIP_KINDS, STP_KINDS, TEAM_KINDS, controller_label, decision_label, decision_spec,
+                          make_controller)
 from .result import MatchResult
 from ..envs.animation import VideoSink
 
@@ -112,6 +113,13 @@ class MatchStats:
         return {k: v / max(self.steps, 1) for k, v in self.held.items()}
 
 
+def fit_action(action: np.ndarray, dim: int) -> np.ndarray:
+    """``action`` with ``dim`` entries: a 5-entry action in a chip env (``dim`` 6) gets a
+    flat chip entry (0); an action of ``dim`` entries is returned as it is."""
+    a = np.asarray(action, np.float32)
+    return a if a.shape[-1] == dim else np.append(a, np.zeros(dim - a.shape[-1], np.float32))
+
+
 def validate_match_args(blue: Any, yellow: Any, seconds: Any) -> None:
     """Clear errors for bad team names and match lengths (before anything is built)."""
     for name, kind in (("blue", blue), ("yellow", yellow)):
@@ -172,6 +180,8 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
         env_opts.update(render_mode="rgb_array", render_width_px=int(render_width_px),  # caption: who is who
                         render_team_labels={t: f"{k} skills" if k in ("learned", "baseline") else str(k)
                                             for t, k in (("blue", blue), ("yellow", yellow)) if isinstance(k, str)})
+    if any(isinstance(k, str) and k in CHIP_KINDS for k in (blue, yellow)):
+        env_opts["chip_kicks"] = True  # a team that chips; the other team's 5-entry actions get a flat chip entry
     env_opts.update(env_kwargs or {})
     from ..envs.tracking import with_tracker
 
@@ -197,6 +207,7 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
     t_start = time.perf_counter()
     env.reset(seed=seed, options=start_options(env, seed, start_jitter_m))
     prev = {team: {a: np.zeros(5, np.float32) for a in c.agents} for team, c in ctrls.items()}
+    chip_dim = 6 if env_opts.get("chip_kicks") else 5
     act_time = {"blue": 0.0, "yellow": 0.0}
     stats = MatchStats()
     from ..plays.stats import MatchStatsTracker
@@ -222,7 +233,7 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
                     elapsed = time.perf_counter() - t0
                 act_time[team] += elapsed
                 prev[team] = a
-                actions.update(a)
+                actions.update(a if chip_dim == 5 else {k: fit_action(v, chip_dim) for k, v in a.items()})
             _, _, _, _, infos = env.step(actions)
             events = next(iter(infos.values()))["events"] if infos else []
             truth = env.world_state()

@@ -1,0 +1,245 @@
+"""The attacking plays: shot, flat pass, chip pass, pass into a redirect, or dribble, and
+supports on rated spots.
+
+:func:`attack_plays` builds what :func:`~ssl_marl.plays.passing_play.passing_plays`
+builds (a shared :class:`~ssl_marl.plays.pass_coordinator.PassCoordinator` with its
+pass/receive handshake; restart, offense and defense plays) with three changes:
+
+* the carrier decides with :class:`AttackDecider` (the cost functions of
+  :mod:`~ssl_marl.plays.attack_decision`); a flat, chip or redirect pass opens the
+  coordinator's pass plan, the kind and its kick are remembered for the roles;
+* the ``passer`` role runs :class:`~ssl_marl.plays.chip_pass_tactic.ChipPass` (chip
+  angle and speed of the chosen chip, 0 for a flat pass) and the ``receiver`` role
+  :class:`~ssl_marl.plays.redirect_tactic.Redirect` (with the redirect's aim point for a
+  pass into a redirect, else an ordinary reception);
+* the supports stand on spots rated by :mod:`~ssl_marl.plays.spot_rating` (re-rated
+  every ``rate_every`` ticks, one spot per support role, greedy so that no two share a
+  spot or a lane) with :class:`~ssl_marl.plays.spot_support_tactic.SpotSupport`.
+
+The coordinator's setup check of the flat lane is off (``abort_margin_s = -inf``): a
+chip is chosen exactly when the flat lane is blocked.
+
+The tactics emit the env's 6-entry chip actions (index 5 the chip), the inherited ones
+5 entries; the team plays only in an env built with ``chip_kicks=True`` (the match
+runner builds one when a team needs it and pads 5-entry actions with a flat chip entry).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..physics.params import BallParams
+from .assignment import Assignment
+from .attack_decision import AttackChoice, AttackDecision, AttackOption, AttackParams, decide_attack
+from .chip_pass_tactic import ChipPass
+from .pass_coordinator import CarrierDecider, CarrierRequest, PassCoordinator, PassingParams, PassPhase
+from .pass_decision import Choice, Decision, PassOption
+from .passing_play import restart_applicable
+from .passing_roles import PROHIBITIVE_COST, passing_attacker_role
+from .play import (OPTIONAL_ROLE_UNFILLED_COST, Play, PlayContext, RoleDef, defender_role, defense_play, goalie_role,
+                   mark_role, offense_applicable)
+from .receive_tactic import ReceiveState
+from .redirect_tactic import Redirect
+from .spot_rating import SpotParams, assign_spots, candidate_grid
+from .spot_support_tactic import SpotSupport
+from .tactic_base import Tactic
+
+#: the attacking team's pass plan: no setup abort on the flat lane (chips go over it)
+ATTACK_PASSING = PassingParams(abort_margin_s=-math.inf)
+
+
+@dataclass
+class AttackCounters:
+    """Decisions taken (for tests, reports and debugging): shots, flat passes, chips,
+    redirects, dribbles, and passes into a redirect whose receiver ended CONTROLLED
+    (it kicked the ball on, or fetched a ball that stopped short)."""
+
+    shoot: int = 0
+    pass_: int = 0
+    chip: int = 0
+    redirect: int = 0
+    dribble: int = 0
+    redirected: int = 0
+
+
+class AttackDecider:
+    """:class:`~ssl_marl.plays.pass_coordinator.CarrierDecider` of the attacking plays:
+    :func:`~ssl_marl.plays.attack_decision.decide_attack` on the request, answered as a
+    :class:`~ssl_marl.plays.pass_decision.Decision` (any pass kind -> PASS, dribble ->
+    KEEP); the chosen option stays in :attr:`option` for the passer and receiver roles."""
+
+    def __init__(self, params: AttackParams | None = None) -> None:
+        self.params = params or AttackParams()
+        self.option: AttackOption | None = None
+        self.last: AttackDecision | None = None
+        self.counters = AttackCounters()
+
+    def decide(self, request: CarrierRequest) -> Decision:
+        ctx = request.ctx
+        ours = ctx.world.team(ctx.team)
+        params = AttackParams(**{**vars(self.params), "decision": request.params})
+        d = decide_attack(ctx.ball, request.carrier, ours.pos, ctx.opp_pos, ctx.field, ctx.robot, request.ball,
+                          params, candidates=request.candidates, heading=float(ours.heading[request.carrier]))
+        self.last = d
+        name = "pass_" if d.choice is AttackChoice.PASS else d.choice.value
+        setattr(self.counters, name, getattr(self.counters, name) + 1)
+        if d.best is not None and d.choice in (AttackChoice.PASS, AttackChoice.CHIP, AttackChoice.REDIRECT):
+            self.option = d.best
+            b = d.best
+            best = PassOption(b.teammate, b.point, b.kick_speed, 0.0, b.success, 0.0, b.value)
+            return Decision(Choice.PASS, d.shot, d.keep, (best,), best)
+        choice = Choice.SHOOT if d.choice is AttackChoice.SHOOT else Choice.KEEP
+        return Decision(choice, d.shot, d.keep)
+
+
+class SpotPlanner:
+    """The supports' rated spots, re-rated every ``rate_every`` ticks (module docstring)."""
+
+    def __init__(self, n_spots: int = 4, rate_every: int = 6, params: SpotParams = SpotParams(),
+                 ball: BallParams | None = None) -> None:
+        self.n_spots, self.rate_every, self.params = n_spots, rate_every, params
+        self.bp = ball or BallParams()
+        self.spots: np.ndarray | None = None
+        self._tick = 0
+
+    def update(self, ctx: PlayContext) -> None:
+        self._tick += 1
+        if self.spots is not None and self._tick % self.rate_every != 0:
+            return
+        grid = candidate_grid(ctx.field, ctx.ball, self.params)
+        self.spots = assign_spots(self.n_spots, grid, ctx.ball, ctx.opp_pos, ctx.field, ctx.robot, self.bp,
+                                  self.params)
+
+
+@dataclass(frozen=True)
+class AttackPrepare:
+    """``Play.prepare`` of the attacking plays: the coordinator's tick, then the spots."""
+
+    coordinator: PassCoordinator
+    planner: SpotPlanner
+    restart: bool = False
+
+    def __call__(self, ctx: PlayContext) -> None:
+        dec, recv = self.coordinator.decider, ctx.role_status.get("receiver")
+        o = _plan_option(self.coordinator, dec) if isinstance(dec, AttackDecider) else None
+        if o is not None and o.kind is AttackChoice.REDIRECT and recv is not None \
+                and recv.state is ReceiveState.CONTROLLED:
+            dec.counters.redirected += 1  # the receiver kicked the ball on (its last tick's state)
+        self.coordinator.prepare(ctx, restart=self.restart)
+        self.planner.update(ctx)
+
+
+def _plan_option(coord: PassCoordinator, decider: AttackDecider) -> AttackOption | None:
+    plan, o = coord.plan, decider.option
+    return o if plan is not None and o is not None and o.teammate == plan.receiver else None
+
+
+def _only(robot_of) -> callable:
+    def cost(ctx: PlayContext, target: np.ndarray) -> np.ndarray:
+        c = np.full(ctx.n, PROHIBITIVE_COST)
+        k = robot_of(ctx)
+        if k is not None and 0 <= k < ctx.n:
+            c[k] = 0.0
+        return c
+
+    return cost
+
+
+def chip_passer_role(coord: PassCoordinator, decider: AttackDecider, priority: int = 95) -> RoleDef:
+    def target(ctx: PlayContext) -> np.ndarray | None:
+        return np.asarray(ctx.ball, float) if coord.plan is not None else None
+
+    def update(t: Tactic, ctx: PlayContext, a: Assignment) -> None:
+        plan = coord.plan
+        if plan is None:
+            return
+        o = _plan_option(coord, decider)
+        chip = o is not None and o.kind is AttackChoice.CHIP
+        ready = ctx.role_status.get("receiver")
+        t.set_params(target_robot=plan.receiver, target_point=(float(plan.point[0]), float(plan.point[1])),
+                     receiver_ready=plan.urgent or (ready is not None and ready.state is ReceiveState.READY),
+                     chip_angle=o.chip_angle if chip else 0.0, chip_speed=o.kick_speed if chip else 0.0,
+                     arrival_speed=decider.params.redirect_arrive_speed
+                     if o is not None and o.kind is AttackChoice.REDIRECT else 2.0)
+
+    return RoleDef("passer", priority, ChipPass, target, update=update,
+                   cost=_only(lambda ctx: coord.plan.passer if coord.plan else None), unfilled_cost=20.0)
+
+
+def redirect_receiver_role(coord: PassCoordinator, decider: AttackDecider, priority: int = 94) -> RoleDef:
+    def target(ctx: PlayContext) -> np.ndarray | None:
+        return coord.plan.point if coord.plan is not None else None
+
+    def update(t: Tactic, ctx: PlayContext, a: Assignment) -> None:
+        plan = coord.plan
+        if plan is None:
+            return
+        o = _plan_option(coord, decider)
+        src = ctx.ball if plan.phase is PassPhase.SETUP else ctx.our_pos[plan.passer]
+        aim = o.aim if o is not None and o.kind is AttackChoice.REDIRECT else None
+        t.set_params(receive_point=(float(plan.point[0]), float(plan.point[1])),
+                     ball_from=(float(src[0]), float(src[1])),
+                     redirect_target=None if aim is None else (float(aim[0]), float(aim[1])))
+
+    return RoleDef("receiver", priority, Redirect, target, update=update,
+                   cost=_only(lambda ctx: coord.plan.receiver if coord.plan else None), unfilled_cost=20.0)
+
+
+def spot_support_role(k: int, planner: SpotPlanner, priority: int) -> RoleDef:
+    def target(ctx: PlayContext) -> np.ndarray | None:
+        if planner.spots is None or k >= len(planner.spots):
+            return None
+        return planner.spots[k]
+
+    def update(t: Tactic, ctx: PlayContext, a: Assignment) -> None:
+        if planner.spots is not None and k < len(planner.spots):
+            s = planner.spots[k]
+            t.set_params(spot=(float(s[0]), float(s[1])))
+
+    return RoleDef(f"support_{k}", priority, SpotSupport, target, update=update,
+                   unfilled_cost=OPTIONAL_ROLE_UNFILLED_COST)
+
+
+def attack_roles(coord: PassCoordinator, decider: AttackDecider, planner: SpotPlanner) -> tuple[RoleDef, ...]:
+    """The roles of the attacking plays, in priority order (as the passing plays')."""
+    return (goalie_role(100), chip_passer_role(coord, decider, 95), redirect_receiver_role(coord, decider, 94),
+            passing_attacker_role(coord, 90), defender_role(0, 80), spot_support_role(0, planner, 80),
+            spot_support_role(1, planner, 70), defender_role(1, 70), mark_role(0, 60),
+            spot_support_role(2, planner, 60), mark_role(1, 50), defender_role(2, 50),
+            spot_support_role(3, planner, 40), mark_role(2, 40))
+
+
+def attack_plays(params: PassingParams | None = None, ball: BallParams | None = None,
+                 decider: CarrierDecider | None = None, attack: AttackParams | None = None) -> tuple[Play, ...]:
+    """(restart, offense_attack, defense) sharing one coordinator (module docstring).
+    ``decider``: an :class:`AttackDecider` (default: a new one with ``attack``); the
+    coordinator runs with ``params`` (default :data:`ATTACK_PASSING`)."""
+    if decider is not None and not isinstance(decider, AttackDecider):
+        raise ValueError(f"attack_plays: the carrier decision must be an AttackDecider, got {type(decider).__name__}")
+    dec = decider or AttackDecider(attack)
+    coord = PassCoordinator(params or ATTACK_PASSING, ball, dec)
+    planner = SpotPlanner(ball=ball)
+    roles = attack_roles(coord, dec, planner)
+
+    def offense_attack_applicable(ctx: PlayContext) -> bool:
+        return coord.active or offense_applicable(ctx)
+
+    restart = Play("restart", restart_applicable, roles, priority=1, prepare=AttackPrepare(coord, planner, True))
+    offense = Play("offense_attack", offense_attack_applicable, roles, prepare=AttackPrepare(coord, planner))
+    return (restart, offense, defense_play())
+
+
+def attack_decider_of(plays) -> AttackDecider | None:
+    """The :class:`AttackDecider` of an :func:`attack_plays` tuple (None for other plays)."""
+    for p in plays:
+        c = getattr(p.prepare, "coordinator", None)
+        if c is not None and isinstance(c.decider, AttackDecider):
+            return c.decider
+    return None
+
+
+__all__ = ["ATTACK_PASSING", "AttackCounters", "AttackDecider", "SpotPlanner", "AttackPrepare", "chip_passer_role",
+           "redirect_receiver_role", "spot_support_role", "attack_roles", "attack_plays", "attack_decider_of"]
