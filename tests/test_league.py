@@ -139,3 +139,11 @@ def test_win_probabilities_from_the_matrix(fake, tmp_path):
     state = lg.play_league(config(), tmp_path, progress=False)
     assert lg.win_probabilities(state, "idle") == {"baseline": 0.0, "passing-baseline": 0.0}
     assert lg.win_probabilities(state, "baseline") == {"passing-baseline": 1.0, "idle": 1.0}
+
+
+def test_team_file_joins_the_league(fake, tmp_path):
+    snapshot = tmp_path / "snapshot.json"
+    snapshot.write_text(json.dumps({"kind": "idle"}))
+    state = lg.play_league(config(teams=("baseline", str(snapshot)), rounds=1), tmp_path / "l", progress=False)
+    assert [r["team"] for r in state["ratings"]] == ["baseline", str(snapshot)]
+    assert state["manifest"]["rules"]["team_files"] == {str(snapshot): {"kind": "idle", "skills": {}}}

@@ -26,6 +26,7 @@ Opponent sampling for training against the league (:func:`pfsp_weights`,
 from __future__ import annotations
 
 import os
+import warnings
 from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any, Sequence
@@ -95,9 +96,9 @@ def validate_config(config: LeagueConfig) -> None:
         raise ValueError(f"rounds must be a positive integer, got {config.rounds!r}")
     if config.colours not in COLOURS:
         raise ValueError(f"colours must be one of {COLOURS}, got {config.colours!r}")
-    format_options(config.match_format, config.seconds)  # raises for an unknown format
     if not (isinstance(config.seconds, (int, float)) and np.isfinite(config.seconds) and config.seconds > 0):
         raise ValueError(f"seconds must be a positive number, got {config.seconds!r}")
+    format_options(config.match_format, config.seconds)  # raises for an unknown format
 
 
 def schedule(config: LeagueConfig) -> list[dict[str, Any]]:
@@ -208,10 +209,14 @@ def play_league(config: LeagueConfig, out: str | os.PathLike, workers: int | Non
 
 def league_state(config: LeagueConfig, matches: list[dict[str, Any]], argv: list[str] | None = None) -> dict:
     """``league.json``'s content from the matches played so far (in schedule order)."""
+    from .controllers import load_team_file
     from .provenance import build_manifest
 
     matches = sorted(matches, key=lambda m: m["index"])
     rules = {k: v for k, v in config.to_json().items() if k not in ("seed", "rounds")}
+    files = {t: dict(zip(("kind", "skills"), load_team_file(t))) for t in config.teams if t.lower().endswith(".json")}
+    if files:  # the team files' kinds and skill sources (their checkpoints are hashed)
+        rules["team_files"] = files
     manifest = build_manifest(rules, {"seed": config.seed, "rounds": config.rounds,
                                       "match_seed": "ssl_marl.io.episode_seed(seed, match index)"},
                               argv=argv)
@@ -295,6 +300,7 @@ def write_matrix_plot(state: dict[str, Any], path: str | os.PathLike, dpi: int =
     from matplotlib.figure import Figure
 
     teams = [r["team"] for r in state["ratings"]]
+    labels = [Path(t).stem if t.lower().endswith(".json") else t for t in teams]  # a team file by its name
     n = len(teams)
     values = np.full((n, n), np.nan)
     for i, a in enumerate(teams):
@@ -302,7 +308,8 @@ def write_matrix_plot(state: dict[str, Any], path: str | os.PathLike, dpi: int =
             if a != b and state["matrix"][a][b]["mean_goal_diff"] is not None:
                 values[i, j] = state["matrix"][a][b]["mean_goal_diff"]
     lim = max(1.0, float(np.nanmax(np.abs(values))) if np.isfinite(values).any() else 1.0)
-    fig = Figure(figsize=(1.6 + 1.1 * n, 1.2 + 0.9 * n), dpi=dpi)
+    longest = max(len(t) for t in labels)
+    fig = Figure(figsize=(2.2 + 1.1 * n + 0.08 * longest, 1.6 + 0.9 * n + 0.05 * longest), dpi=dpi)
     FigureCanvasAgg(fig)
     ax = fig.add_subplot(1, 1, 1)
     im = ax.imshow(np.ma.masked_invalid(values), cmap="RdBu", vmin=-lim, vmax=lim)
@@ -312,12 +319,14 @@ def write_matrix_plot(state: dict[str, Any], path: str | os.PathLike, dpi: int =
                 c = state["matrix"][a][b]
                 text = f"{values[i, j]:+.1f}\n{c['wins']}-{c['draws']}-{c['losses']}" if c["matches"] else "-"
                 ax.text(j, i, text, ha="center", va="center", fontsize=8)
-    ax.set_xticks(range(n), teams, rotation=30, ha="right", fontsize=8)
-    ax.set_yticks(range(n), teams, fontsize=8)
+    ax.set_xticks(range(n), labels, rotation=30, ha="right", fontsize=8)
+    ax.set_yticks(range(n), labels, fontsize=8)
     ax.set_xlabel("opponent")
     ax.set_title(f"mean goal difference per match (row - column), W-D-L; {state['played']} matches", fontsize=9)
     fig.colorbar(im, ax=ax, label="goals per match")
-    fig.tight_layout()
+    with warnings.catch_warnings():  # a figure too small for its labels is still written
+        warnings.simplefilter("ignore", UserWarning)
+        fig.tight_layout()
     atomic_savefig(fig, path)
 
 
