@@ -1,5 +1,5 @@
-"""The ``ssl-marl`` command line: demo, match, eval-skill, eval-drill, eval-tactic, eval-task, bench, train, export-onnx,
-serve, play.
+"""The ``ssl-marl`` command line: demo, match, league, eval-skill, eval-drill, eval-tactic, eval-task, bench, train,
+export-onnx, serve, play.
 
 One module per command (:data:`COMMANDS`). A command module has
 ``register(subparsers) -> None``, which adds its subparser (help, every option with
@@ -24,12 +24,13 @@ import argparse
 import sys
 
 from ..bridge.commands import play, serve
-from . import bench, demo, eval_drill, eval_skill, eval_tactic, eval_task, export_onnx, match, train
+from . import bench, demo, eval_drill, eval_skill, eval_tactic, eval_task, export_onnx, league, match, train
 from .options import OUTPUT_RULE
 
 #: the command modules, in the order ``ssl-marl --help`` lists them (``serve`` and ``play``, the SSL network
 #: bridge, come from :mod:`ssl_marl.bridge.commands`)
-COMMANDS = (demo, match, eval_skill, eval_drill, eval_tactic, eval_task, bench, train, export_onnx, serve, play)
+COMMANDS = (demo, match, league, eval_skill, eval_drill, eval_tactic, eval_task, bench, train, export_onnx, serve,
+            play)
 
 
 def _parser_and_commands() -> tuple[argparse.ArgumentParser, dict[str, argparse.ArgumentParser]]:

@@ -1,0 +1,361 @@
+"""A league of teams: scheduled matches, ratings with uncertainty, a results matrix.
+
+:func:`play_league` plays a round-robin schedule (:func:`schedule`) among teams named
+like ``ssl-marl match`` teams (a kind of :data:`~ssl_marl.runners.controllers.TEAM_KINDS`
+or a JSON team file), through the worker pool (:func:`~ssl_marl.runners.pool.run_pool`),
+and rates every team with the Plackett-Luce model of Weng and Lin (2011), "A Bayesian
+approximation method for online ranking", JMLR 12, as implemented by the ``openskill``
+package (the ``league`` extra): each match is a two-team game whose lower score ranks
+second; equal scores are a tie. A team's rating is ``mu`` and ``sigma`` (skill units,
+25 and 25/3 before any match); ``ordinal = mu - 3 sigma`` orders the table.
+
+The output folder holds ``league.json`` (the arguments, every played match with its
+seed and score, ratings, the results matrix and a manifest), ``ratings.md`` (the table
+by ordinal) and ``matrix.png`` (mean goal difference per pair). ``league.json`` is
+rewritten atomically after each chunk of matches, so an interrupted league resumes:
+a rerun with the same arguments plays only the missing matches; other arguments on the
+same folder are an error. Ratings are recomputed from the stored matches in schedule
+order, so a resumed league rates exactly as an uninterrupted one.
+
+Opponent sampling for training against the league (:func:`pfsp_weights`,
+:func:`sample_opponent`) is prioritized fictitious self-play (Vinyals et al. 2019,
+"Grandmaster level in StarCraft II using multi-agent reinforcement learning", Nature
+575, Methods: "Prioritized fictitious self-play").
+"""
+
+from __future__ import annotations
+
+import os
+import warnings
+from dataclasses import asdict, dataclass
+from pathlib import Path
+from typing import Any, Sequence
+
+import numpy as np
+
+from ..io import atomic_savefig, atomic_write_bytes, atomic_write_json, episode_seed, prepare_output_dir
+from .match import format_options, play_match
+from .pool import run_pool, validate_backend
+
+LEAGUE_FILE = "league.json"
+RATINGS_FILE = "ratings.md"
+MATRIX_FILE = "matrix.png"
+#: colour schemes of the schedule: "alternate" (each pair once per round, colours swapped
+#: from round to round) or "both" (each ordered pair once per round: both colours)
+COLOURS = ("alternate", "both")
+PFSP_KINDS = ("hard", "even")
+
+
+@dataclass(frozen=True)
+class LeagueConfig:
+    """The arguments that define a league (a resumed league must match them).
+
+    Attributes:
+        teams: team names: kinds or JSON team files, at least two, all different.
+        rounds: round-robin rounds.
+        colours: "alternate" or "both" (:data:`COLOURS`).
+        seed: league seed; match i uses ``ssl_marl.io.episode_seed(seed, i)``.
+        seconds: simulated match length (s).
+        robots: robots per team.
+        field: "div_a" or "div_b".
+        realism: "none" or "realistic".
+        match_format: "ssl" (two halves, referee commands, fouls) or "plain".
+    """
+
+    teams: tuple[str, ...]
+    rounds: int = 1
+    colours: str = "alternate"
+    seed: int = 0
+    seconds: float = 600.0
+    robots: int = 6
+    field: str = "div_b"
+    realism: str = "none"
+    match_format: str = "ssl"
+
+    def to_json(self) -> dict[str, Any]:
+        d = asdict(self)
+        d["teams"] = list(self.teams)
+        d["seconds"] = float(self.seconds)
+        return d
+
+
+def validate_config(config: LeagueConfig) -> None:
+    """Clear ValueErrors (or FileNotFoundError for a missing team file) before any match."""
+    from .controllers import TEAM_KINDS, resolve_team_option
+
+    teams = list(config.teams)
+    if len(teams) < 2:
+        raise ValueError(f"a league needs at least two teams, got {teams}")
+    if len(set(teams)) != len(teams):
+        raise ValueError(f"each team may appear once, got {teams}")
+    for t in teams:
+        if not isinstance(t, str) or (t not in TEAM_KINDS and not t.lower().endswith(".json")):
+            raise ValueError(f"unknown team {t!r}: use one of {TEAM_KINDS} or a JSON team file ending in .json")
+        resolve_team_option(t, (), where=f"team {t}")
+    if not isinstance(config.rounds, int) or isinstance(config.rounds, bool) or config.rounds < 1:
+        raise ValueError(f"rounds must be a positive integer, got {config.rounds!r}")
+    if config.colours not in COLOURS:
+        raise ValueError(f"colours must be one of {COLOURS}, got {config.colours!r}")
+    if not (isinstance(config.seconds, (int, float)) and np.isfinite(config.seconds) and config.seconds > 0):
+        raise ValueError(f"seconds must be a positive number, got {config.seconds!r}")
+    format_options(config.match_format, config.seconds)  # raises for an unknown format
+
+
+def schedule(config: LeagueConfig) -> list[dict[str, Any]]:
+    """The league's matches in order: ``{"index", "round", "blue", "yellow", "seed"}``.
+
+    Each round visits the pairs (i, j), i < j, in team order; "alternate" plays one
+    match per pair, team i blue in even rounds (from 0) and yellow in odd ones; "both"
+    plays i blue then j blue. Match ``index``'s seed is ``episode_seed(config.seed, index)``.
+    """
+    teams = list(config.teams)
+    out: list[dict[str, Any]] = []
+    for r in range(config.rounds):
+        for i in range(len(teams)):
+            for j in range(i + 1, len(teams)):
+                pairs = [(teams[i], teams[j]), (teams[j], teams[i])] if config.colours == "both" else \
+                    [(teams[i], teams[j]) if r % 2 == 0 else (teams[j], teams[i])]
+                for blue, yellow in pairs:
+                    k = len(out)
+                    out.append({"index": k, "round": r, "blue": blue, "yellow": yellow,
+                                "seed": episode_seed(config.seed, k)})
+    return out
+
+
+def _league_worker(job: tuple[dict, dict]) -> dict[str, Any]:
+    """Play one scheduled match; return the match entry with its score."""
+    from .controllers import resolve_team_option
+
+    entry, match_kwargs = job
+    blue, blue_skills = resolve_team_option(entry["blue"], (), where="blue")
+    yellow, yellow_skills = resolve_team_option(entry["yellow"], (), where="yellow")
+    res = play_match(blue=blue, yellow=yellow, blue_skills=blue_skills, yellow_skills=yellow_skills,
+                     seed=entry["seed"], progress=False, **match_kwargs)
+    return {**entry, "score": {"blue": int(res.score["blue"]), "yellow": int(res.score["yellow"])},
+            "sim_time_s": float(res.sim_time_s)}
+
+
+def match_kwargs(config: LeagueConfig) -> dict[str, Any]:
+    """:func:`~ssl_marl.runners.match.play_match` options shared by the league's matches."""
+    return dict(robots=config.robots, field=config.field, seconds=float(config.seconds), realism=config.realism,
+                env_kwargs=format_options(config.match_format, config.seconds))
+
+
+def load_state(out: str | os.PathLike, config: LeagueConfig) -> list[dict[str, Any]]:
+    """The matches already played in ``out`` (empty for a new folder); ValueError when the
+    folder holds a league with other arguments."""
+    path = Path(out) / LEAGUE_FILE
+    if not path.is_file():
+        return []
+    import json
+
+    try:
+        state = json.loads(path.read_text())
+        stored = state["config"]
+    except (json.JSONDecodeError, KeyError, TypeError):
+        raise ValueError(f"{path} is not a league file; give another --out") from None
+    mine = config.to_json()
+    if stored != mine:
+        diff = sorted(k for k in set(stored) | set(mine) if stored.get(k) != mine.get(k))
+        raise ValueError(f"{path} holds a league with other arguments ({', '.join(diff)}: "
+                         + "; ".join(f"{k} {stored.get(k)!r} there, {mine.get(k)!r} here" for k in diff)
+                         + "); use the same arguments to resume or another --out")
+    return list(state.get("matches", []))
+
+
+def play_league(config: LeagueConfig, out: str | os.PathLike, workers: int | None = 1, backend: str = "local",
+                address: str | None = None, progress: bool = True, chunk: int | None = None,
+                argv: list[str] | None = None) -> dict[str, Any]:
+    """Play (or resume) the league in ``out``; return the ``league.json`` content.
+
+    Args:
+        config: the league (:class:`LeagueConfig`).
+        out: output folder (created; an existing league there resumes).
+        workers, backend, address: the pool (:func:`~ssl_marl.runners.pool.run_pool`);
+            results do not depend on them.
+        progress: a tqdm bar over the league's matches.
+        chunk: matches per pool call, after each of which the state is saved
+            (default two per worker, 16 on a Ray cluster of unknown size).
+        argv: the command recorded in the manifest (default ``sys.argv``).
+    """
+    validate_config(config)
+    validate_backend(backend, workers, address)
+    folder = prepare_output_dir(out, "league folder")
+    played = {m["index"]: m for m in load_state(folder, config)}
+    plan = schedule(config)
+    todo = [m for m in plan if m["index"] not in played]
+    kwargs = match_kwargs(config)
+    size = chunk or (2 * workers if workers else 16)
+    import sys
+
+    from tqdm.auto import tqdm
+
+    with tqdm(total=len(plan), initial=len(plan) - len(todo), desc="league", unit="match", disable=not progress,
+              file=sys.stderr) as bar:
+        for s in range(0, len(todo), size):
+            part = todo[s:s + size]
+            for m in run_pool(_league_worker, [(e, kwargs) for e in part], workers, "league", False,
+                              unit="match", backend=backend, address=address):
+                played[m["index"]] = m
+            state = league_state(config, [played[i] for i in sorted(played)], argv)
+            atomic_write_json(folder / LEAGUE_FILE, state)
+            bar.update(len(part))
+    state = league_state(config, [played[i] for i in sorted(played)], argv)
+    atomic_write_json(folder / LEAGUE_FILE, state)
+    atomic_write_bytes(folder / RATINGS_FILE, ratings_markdown(state).encode())
+    write_matrix_plot(state, folder / MATRIX_FILE)
+    return state
+
+
+def league_state(config: LeagueConfig, matches: list[dict[str, Any]], argv: list[str] | None = None) -> dict:
+    """``league.json``'s content from the matches played so far (in schedule order)."""
+    from .controllers import load_team_file
+    from .provenance import build_manifest
+
+    matches = sorted(matches, key=lambda m: m["index"])
+    rules = {k: v for k, v in config.to_json().items() if k not in ("seed", "rounds")}
+    files = {t: dict(zip(("kind", "skills"), load_team_file(t))) for t in config.teams if t.lower().endswith(".json")}
+    if files:  # the team files' kinds and skill sources (their checkpoints are hashed)
+        rules["team_files"] = files
+    manifest = build_manifest(rules, {"seed": config.seed, "rounds": config.rounds,
+                                      "match_seed": "ssl_marl.io.episode_seed(seed, match index)"},
+                              argv=argv)
+    return {"config": config.to_json(), "scheduled": len(schedule(config)), "played": len(matches),
+            "matches": matches, "ratings": rate(config.teams, matches),
+            "matrix": results_matrix(config.teams, matches), "manifest": manifest}
+
+
+def rate(teams: Sequence[str], matches: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Plackett-Luce ratings of ``teams`` after ``matches`` (applied in the given order).
+
+    Returns one row per team, by ordinal (best first), ties by team order:
+    ``{"team", "mu", "sigma", "ordinal", "matches", "wins", "draws", "losses",
+    "goals_for", "goals_against"}``.
+    """
+    from openskill.models import PlackettLuce
+
+    model = PlackettLuce()
+    ratings = {t: model.rating(name=t) for t in teams}
+    counts = {t: dict(matches=0, wins=0, draws=0, losses=0, goals_for=0, goals_against=0) for t in teams}
+    for m in matches:
+        b, y = m["score"]["blue"], m["score"]["yellow"]
+        [[rb], [ry]] = model.rate([[ratings[m["blue"]]], [ratings[m["yellow"]]]],
+                                  ranks=[0 if b >= y else 1, 0 if y >= b else 1])
+        ratings[m["blue"]], ratings[m["yellow"]] = rb, ry
+        for team, gf, ga in ((m["blue"], b, y), (m["yellow"], y, b)):
+            c = counts[team]
+            c["matches"] += 1
+            c["wins" if gf > ga else "losses" if gf < ga else "draws"] += 1
+            c["goals_for"] += gf
+            c["goals_against"] += ga
+    rows = [{"team": t, "mu": float(ratings[t].mu), "sigma": float(ratings[t].sigma),
+             "ordinal": float(ratings[t].ordinal()), **counts[t]} for t in teams]
+    order = {t: i for i, t in enumerate(teams)}
+    return sorted(rows, key=lambda r: (-r["ordinal"], order[r["team"]]))
+
+
+def results_matrix(teams: Sequence[str], matches: Sequence[dict[str, Any]]) -> dict[str, dict[str, dict]]:
+    """Per ordered pair, from the row team's view, both colours together:
+    ``matrix[a][b] = {"matches", "wins", "draws", "losses", "goal_diff", "mean_goal_diff"}``
+    (goal_diff: a's goals minus b's over their matches; mean None without a match)."""
+    cell = lambda: dict(matches=0, wins=0, draws=0, losses=0, goal_diff=0, mean_goal_diff=None)  # noqa: E731
+    matrix = {a: {b: cell() for b in teams if b != a} for a in teams}
+    for m in matches:
+        b, y = m["score"]["blue"], m["score"]["yellow"]
+        for row, col, d in ((m["blue"], m["yellow"], b - y), (m["yellow"], m["blue"], y - b)):
+            c = matrix[row][col]
+            c["matches"] += 1
+            c["wins" if d > 0 else "losses" if d < 0 else "draws"] += 1
+            c["goal_diff"] += d
+            c["mean_goal_diff"] = c["goal_diff"] / c["matches"]
+    return matrix
+
+
+def win_probabilities(state: dict[str, Any], team: str) -> dict[str, float]:
+    """``team``'s win probability against each other team of a league state, from the
+    results matrix: (wins + draws / 2) / matches; 0.5 against a team not yet met."""
+    row = state["matrix"][team]
+    return {o: (c["wins"] + 0.5 * c["draws"]) / c["matches"] if c["matches"] else 0.5 for o, c in row.items()}
+
+
+def ratings_markdown(state: dict[str, Any]) -> str:
+    """The ratings table (Markdown) of a league state, sorted by ordinal."""
+    c = state["config"]
+    lines = [f"# League ratings\n",
+             f"{state['played']} of {state['scheduled']} matches of {c['seconds']:g} s ({c['match_format']} format, "
+             f"{c['robots']} robots, {c['field']}, realism {c['realism']}), {c['rounds']} round(s), colours "
+             f"{c['colours']}, seed {c['seed']}. Plackett-Luce ratings (openskill): ordinal = mu - 3 sigma.\n",
+             "| rank | team | ordinal | mu | sigma | matches | W | D | L | goals |",
+             "|---:|---|---:|---:|---:|---:|---:|---:|---:|---|"]
+    for k, r in enumerate(state["ratings"], 1):
+        lines.append(f"| {k} | {r['team']} | {r['ordinal']:.2f} | {r['mu']:.2f} | {r['sigma']:.2f} | {r['matches']} "
+                     f"| {r['wins']} | {r['draws']} | {r['losses']} | {r['goals_for']}-{r['goals_against']} |")
+    return "\n".join(lines) + "\n"
+
+
+def write_matrix_plot(state: dict[str, Any], path: str | os.PathLike, dpi: int = 100) -> None:
+    """Heat map of the mean goal difference per match (row team minus column team), teams
+    in rating order, written atomically; each cell is annotated with W-D-L."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    teams = [r["team"] for r in state["ratings"]]
+    labels = [Path(t).stem if t.lower().endswith(".json") else t for t in teams]  # a team file by its name
+    n = len(teams)
+    values = np.full((n, n), np.nan)
+    for i, a in enumerate(teams):
+        for j, b in enumerate(teams):
+            if a != b and state["matrix"][a][b]["mean_goal_diff"] is not None:
+                values[i, j] = state["matrix"][a][b]["mean_goal_diff"]
+    lim = max(1.0, float(np.nanmax(np.abs(values))) if np.isfinite(values).any() else 1.0)
+    longest = max(len(t) for t in labels)
+    fig = Figure(figsize=(2.2 + 1.1 * n + 0.08 * longest, 1.6 + 0.9 * n + 0.05 * longest), dpi=dpi)
+    FigureCanvasAgg(fig)
+    ax = fig.add_subplot(1, 1, 1)
+    im = ax.imshow(np.ma.masked_invalid(values), cmap="RdBu", vmin=-lim, vmax=lim)
+    for i, a in enumerate(teams):
+        for j, b in enumerate(teams):
+            if a != b:
+                c = state["matrix"][a][b]
+                text = f"{values[i, j]:+.1f}\n{c['wins']}-{c['draws']}-{c['losses']}" if c["matches"] else "-"
+                ax.text(j, i, text, ha="center", va="center", fontsize=8)
+    ax.set_xticks(range(n), labels, rotation=30, ha="right", fontsize=8)
+    ax.set_yticks(range(n), labels, fontsize=8)
+    ax.set_xlabel("opponent")
+    ax.set_title(f"mean goal difference per match (row - column), W-D-L; {state['played']} matches", fontsize=9)
+    fig.colorbar(im, ax=ax, label="goals per match")
+    with warnings.catch_warnings():  # a figure too small for its labels is still written
+        warnings.simplefilter("ignore", UserWarning)
+        fig.tight_layout()
+    atomic_savefig(fig, path)
+
+
+def pfsp_weights(win_probs: Sequence[float], kind: str = "hard") -> np.ndarray:
+    """Prioritized fictitious self-play weights of opponents, normalised to sum 1.
+
+    ``win_probs[i]`` is the learner's probability of beating opponent i (in [0, 1]).
+    "hard": f(p) = (1 - p)^2 (stronger opponents more often); "even": f(p) = p (1 - p)
+    (opponents of the learner's level). Where every f is 0 the weights are uniform.
+    """
+    p = np.asarray(win_probs, dtype=float)
+    if p.ndim != 1 or p.size == 0:
+        raise ValueError(f"win_probs must be a non-empty sequence, got {win_probs!r}")
+    if not np.all(np.isfinite(p)) or np.any(p < 0) or np.any(p > 1):
+        raise ValueError(f"win probabilities must lie in [0, 1], got {list(p)}")
+    if kind == "hard":
+        f = (1.0 - p) ** 2
+    elif kind == "even":
+        f = p * (1.0 - p)
+    else:
+        raise ValueError(f"kind must be one of {PFSP_KINDS}, got {kind!r}")
+    total = f.sum()
+    return f / total if total > 0 else np.full(p.size, 1.0 / p.size)
+
+
+def sample_opponent(opponents: Sequence[Any], win_probs: Sequence[float], rng: np.random.Generator,
+                    kind: str = "hard") -> Any:
+    """One opponent drawn with :func:`pfsp_weights` (``rng`` makes the draw reproducible)."""
+    if len(opponents) != len(win_probs):
+        raise ValueError(f"{len(opponents)} opponents but {len(win_probs)} win probabilities")
+    return opponents[int(rng.choice(len(opponents), p=pfsp_weights(win_probs, kind)))]
+
