@@ -3,12 +3,12 @@ of the receiver; a chipped pass over a blocker is completed, a flat one is not."
 
 import math
 
-import numpy as np
 import pytest
 
 from ssl_marl.physics.ball_flight import projectile_reference
 from ssl_marl.physics.params import BallParams, RobotParams
-from ssl_marl.skills.chip_pass import chip_kick, chip_pass_episode, flight_height
+from ssl_marl.physics.ball_flight import flight_height
+from ssl_marl.skills.chip_pass import chip_kick, chip_pass_episode
 
 RP, BP = RobotParams(), BallParams()
 

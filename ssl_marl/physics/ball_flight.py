@@ -29,6 +29,7 @@ A flight step crosses at most one bounce: the shortest hop that is not the last
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -115,6 +116,20 @@ def effective_xy_scale(step: FlightStep, dt: float) -> np.ndarray:
     distance covered equals v t_touch + v f (dt - t_touch) (full speed until the
     touchdown, damped after it); 1 where there is no bounce."""
     return np.where(step.bounced, (step.t_touch + step.xy_factor * (dt - step.t_touch)) / dt, 1.0)
+
+
+def flight_height(x: float | np.ndarray, speed: float, angle: float, gravity: float) -> float | np.ndarray:
+    """Height (m) of a drag-free ball launched from the ground at ``speed`` (m/s, 3-D)
+    and elevation ``angle`` (rad), at horizontal distance ``x`` (m) from the launch."""
+    vh, vv = speed * math.cos(angle), speed * math.sin(angle)
+    t = np.asarray(x, float) / vh
+    return vv * t - 0.5 * gravity * t * t
+
+
+def speed_for_range(distance: float, angle: float, gravity: float) -> float:
+    """3-D launch speed (m/s) at elevation ``angle`` (rad) whose first touchdown is
+    ``distance`` m away (drag-free: d = v^2 sin(2a) / g)."""
+    return math.sqrt(gravity * distance / math.sin(2.0 * angle))
 
 
 def projectile_reference(speed: float, angle: float, gravity: float) -> tuple[float, float]:

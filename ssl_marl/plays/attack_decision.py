@@ -49,10 +49,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..physics.ball_flight import flight_height, speed_for_range
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
-from .pass_decision import (DecisionParams, evaluate_passes, keep_value, open_goal_interval, opponent_reach_time,
-                            shot_value, valid_receive_point)
+from .pass_decision import (Choice, DecisionParams, choose, evaluate_passes, keep_value, open_goal_interval,
+                            opponent_reach_time, shot_value, valid_receive_point)
 
 
 class AttackChoice(enum.Enum):
@@ -143,7 +144,7 @@ def chip_kick(length: float, angle: float, land_short_m: float, rp: RobotParams,
     that lands ``land_short_m`` short of a point ``length`` m away; None when the speed
     exceeds the kicker cap."""
     d_land = max(length - land_short_m, 0.5 * length)
-    speed = math.sqrt(bp.gravity * d_land / math.sin(2.0 * angle))
+    speed = speed_for_range(d_land, angle, bp.gravity)
     return (speed, d_land) if speed <= rp.kick_speed_max else None
 
 
@@ -163,7 +164,7 @@ def chip_margin(start: np.ndarray, end: np.ndarray, speed: float, angle: float, 
     s = np.linspace(params.skip_near_m, length, samples)
     in_air = s < d_land
     t_air = s / vh
-    z = vv * t_air - 0.5 * bp.gravity * t_air ** 2
+    z = flight_height(s, speed, angle, bp.gravity)
     v_after = vh * bp.bounce_damping_xy_first
     t_ball = np.where(in_air, t_air, t_land + (s - d_land) / max(v_after, 1e-6))
     reachable = ~in_air | (z <= rp.height)
@@ -276,13 +277,10 @@ def decide_attack(p: np.ndarray, carrier: int, teammates: np.ndarray, opponents:
                     for o in flat)
     options += evaluate_chips(p, points, mates, opp, field_geom, rp, bp, params)
     options += evaluate_redirects(p, flat, mates, opp, field_geom, rp, bp, params)
-    ok = [o for o in options if o.success >= dp.min_pass_success]
-    best = max(ok, key=lambda o: o.value) if ok else None
-    if best is not None and best.value >= max(shot, keep) + dp.pass_gain:
-        return AttackDecision(best.kind, shot, keep, options, best)
-    if shot >= dp.shoot_fallback or keep < dp.min_keep:
-        return AttackDecision(AttackChoice.SHOOT, shot, keep, options, best)
-    return AttackDecision(AttackChoice.DRIBBLE, shot, keep, options, best)
+    choice, best = choose(shot, keep, options, dp)
+    kind = {Choice.PASS: best.kind if best else None, Choice.SHOOT: AttackChoice.SHOOT,
+            Choice.KEEP: AttackChoice.DRIBBLE}[choice]
+    return AttackDecision(kind, shot, keep, options, best)
 
 
 __all__ = ["AttackChoice", "AttackParams", "AttackOption", "AttackDecision", "chip_kick", "chip_margin",

@@ -38,7 +38,7 @@ from .chip_pass_tactic import ChipPass
 from .pass_coordinator import CarrierDecider, CarrierRequest, PassCoordinator, PassingParams, PassPhase
 from .pass_decision import Choice, Decision, PassOption
 from .passing_play import restart_applicable
-from .passing_roles import PROHIBITIVE_COST, passing_attacker_role
+from .passing_roles import only_robot, passing_attacker_role
 from .play import (OPTIONAL_ROLE_UNFILLED_COST, Play, PlayContext, RoleDef, defender_role, defense_play, goalie_role,
                    mark_role, offense_applicable)
 from .receive_tactic import ReceiveState
@@ -137,17 +137,6 @@ def _plan_option(coord: PassCoordinator, decider: AttackDecider) -> AttackOption
     return o if plan is not None and o is not None and o.teammate == plan.receiver else None
 
 
-def _only(robot_of) -> callable:
-    def cost(ctx: PlayContext, target: np.ndarray) -> np.ndarray:
-        c = np.full(ctx.n, PROHIBITIVE_COST)
-        k = robot_of(ctx)
-        if k is not None and 0 <= k < ctx.n:
-            c[k] = 0.0
-        return c
-
-    return cost
-
-
 def chip_passer_role(coord: PassCoordinator, decider: AttackDecider, priority: int = 95) -> RoleDef:
     def target(ctx: PlayContext) -> np.ndarray | None:
         return np.asarray(ctx.ball, float) if coord.plan is not None else None
@@ -166,7 +155,7 @@ def chip_passer_role(coord: PassCoordinator, decider: AttackDecider, priority: i
                      if o is not None and o.kind is AttackChoice.REDIRECT else 2.0)
 
     return RoleDef("passer", priority, ChipPass, target, update=update,
-                   cost=_only(lambda ctx: coord.plan.passer if coord.plan else None), unfilled_cost=20.0)
+                   cost=only_robot(lambda ctx: coord.plan.passer if coord.plan else None), unfilled_cost=20.0)
 
 
 def redirect_receiver_role(coord: PassCoordinator, decider: AttackDecider, priority: int = 94) -> RoleDef:
@@ -185,7 +174,7 @@ def redirect_receiver_role(coord: PassCoordinator, decider: AttackDecider, prior
                      redirect_target=None if aim is None else (float(aim[0]), float(aim[1])))
 
     return RoleDef("receiver", priority, Redirect, target, update=update,
-                   cost=_only(lambda ctx: coord.plan.receiver if coord.plan else None), unfilled_cost=20.0)
+                   cost=only_robot(lambda ctx: coord.plan.receiver if coord.plan else None), unfilled_cost=20.0)
 
 
 def spot_support_role(k: int, planner: SpotPlanner, priority: int) -> RoleDef:

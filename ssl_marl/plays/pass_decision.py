@@ -73,6 +73,7 @@ from __future__ import annotations
 import enum
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -435,15 +436,25 @@ def decide(p: np.ndarray, carrier: int, teammates: np.ndarray, opponents: np.nda
     cands = candidates if candidates is not None else tuple(k for k in range(len(mates)) if k != carrier)
     points = {k: (receive_points or {}).get(k, mates[k]) for k in cands if k != carrier}
     passes = evaluate_passes(p, points, mates, opp, field, rp, bp, params, heading)
-    ok = [o for o in passes if o.success >= params.min_pass_success]
+    choice, best = choose(shot, keep, passes, params)
+    return Decision(choice, shot, keep, passes, best)
+
+
+def choose(shot: float, keep: float, options: tuple, params: DecisionParams) -> tuple[Choice, Any]:
+    """The carrier's rule once its options are valued: the best option whose success is at
+    least ``min_pass_success`` if it beats both shot and keep by ``pass_gain`` (returned as
+    ``Choice.PASS``: the caller names its kind), else a shot when the shot is worth
+    ``shoot_fallback`` or keeping is hopeless (< ``min_keep``), else keep. Returns
+    (choice, the best eligible option or None)."""
+    ok = [o for o in options if o.success >= params.min_pass_success]
     best = max(ok, key=lambda o: o.value) if ok else None
     if best is not None and best.value >= max(shot, keep) + params.pass_gain:
-        return Decision(Choice.PASS, shot, keep, passes, best)
+        return Choice.PASS, best
     if shot >= params.shoot_fallback or keep < params.min_keep:
-        return Decision(Choice.SHOOT, shot, keep, passes, best)
-    return Decision(Choice.KEEP, shot, keep, passes, best)
+        return Choice.SHOOT, best
+    return Choice.KEEP, best
 
 
 __all__ = ["DecisionParams", "Choice", "PassOption", "Decision", "motion_time", "opponent_reach_time",
            "path_margins", "path_margin", "pass_success", "pass_kick_speeds", "open_goal_interval", "shot_value",
-           "pass_kick_speed", "keep_value", "valid_receive_point", "evaluate_passes", "decide"]
+           "pass_kick_speed", "keep_value", "valid_receive_point", "evaluate_passes", "choose", "decide"]

@@ -26,7 +26,7 @@ from .tactic_base import Tactic
 PROHIBITIVE_COST = 50.0  # s: a role meant for one robot costs this for any other (unfilled_cost is lower)
 
 
-def _only(robot_of: Callable[[PlayContext], int | None]) -> Callable[[PlayContext, np.ndarray], np.ndarray]:
+def only_robot(robot_of: Callable[[PlayContext], int | None]) -> Callable[[PlayContext, np.ndarray], np.ndarray]:
     """Cost function: 0 for the robot ``robot_of(ctx)`` names, prohibitive for the others."""
 
     def cost(ctx: PlayContext, target: np.ndarray) -> np.ndarray:
@@ -52,7 +52,7 @@ def passer_role(coord: PassCoordinator, priority: int = 95) -> RoleDef:
                      receiver_ready=plan.urgent or (ready is not None and ready.state in (ReceiveState.READY,)))
 
     return RoleDef("passer", priority, Pass, target, update=update,
-                   cost=_only(lambda ctx: coord.plan.passer if coord.plan else None), unfilled_cost=20.0)
+                   cost=only_robot(lambda ctx: coord.plan.passer if coord.plan else None), unfilled_cost=20.0)
 
 
 def receiver_role(coord: PassCoordinator, priority: int = 94) -> RoleDef:
@@ -68,7 +68,7 @@ def receiver_role(coord: PassCoordinator, priority: int = 94) -> RoleDef:
                      ball_from=(float(src[0]), float(src[1])))
 
     return RoleDef("receiver", priority, Receive, target, update=update,
-                   cost=_only(lambda ctx: coord.plan.receiver if coord.plan else None), unfilled_cost=20.0)
+                   cost=only_robot(lambda ctx: coord.plan.receiver if coord.plan else None), unfilled_cost=20.0)
 
 
 def passing_attacker_role(coord: PassCoordinator, priority: int = 90) -> RoleDef:

@@ -31,6 +31,7 @@ import numpy as np
 
 from ..envs.ssl_env import SSLParallelEnv
 from ..envs.tracking import with_tracker
+from ..physics.ball_flight import flight_height, projectile_reference
 from ..physics.params import BallParams, RobotParams
 from ..physics.world import PhysicsWorld
 from .base import make_action
@@ -48,14 +49,6 @@ class ChipKick:
     blocker_clearance: float
 
 
-def flight_height(x: float | np.ndarray, speed: float, angle: float, gravity: float) -> float | np.ndarray:
-    """Height (m) of a drag-free ball launched from the ground at ``speed`` (m/s, 3-D)
-    and ``angle`` (rad) at horizontal distance ``x`` (m)."""
-    vh, vv = speed * math.cos(angle), speed * math.sin(angle)
-    t = np.asarray(x, float) / vh
-    return vv * t - 0.5 * gravity * t * t
-
-
 def chip_kick(blocker_distance: float, receiver_distance: float, rp: RobotParams, bp: BallParams,
               clearance: float = 0.05, land_short: float = 0.6, body: float | None = None) -> ChipKick:
     """The chip (speed <= ``rp.kick_speed_max``, elevation <= ``rp.chip_angle_max``)
@@ -71,7 +64,7 @@ def chip_kick(blocker_distance: float, receiver_distance: float, rp: RobotParams
     best_flight = math.inf
     for angle in np.linspace(math.radians(15.0), rp.chip_angle_max, 46):
         for speed in np.linspace(1.0, rp.kick_speed_max, 56):
-            landing, _ = projectile_reference_xy(speed, angle, g)
+            landing, _ = projectile_reference(speed, angle, g)
             if landing > receiver_distance - land_short or landing <= xs[-1] + land_short:
                 continue
             low = float(np.min(flight_height(xs, speed, angle, g)))  # the ball's lowest point is its height
@@ -84,14 +77,6 @@ def chip_kick(blocker_distance: float, receiver_distance: float, rp: RobotParams
         raise ValueError(f"no chip clears a blocker {blocker_distance:.2f} m away and lands "
                          f"{land_short:.2f} m short of a receiver {receiver_distance:.2f} m away")
     return best
-
-
-def projectile_reference_xy(speed: float, angle: float, gravity: float) -> tuple[float, float]:
-    """(first touchdown distance (m), apex (m)) of a drag-free chip
-    (:func:`ssl_marl.physics.ball_flight.projectile_reference`)."""
-    from ..physics.ball_flight import projectile_reference
-
-    return projectile_reference(speed, angle, gravity)
 
 
 def chip_pass_episode(seed: int, chip: bool = True, realism: Any = "none", tracker: Any = False,
@@ -180,4 +165,4 @@ def chip_pass_completion(episodes: int, seed: int = 0, chip: bool = True, realis
             "chip": chip, "realism": realism, "tracker": use, "seed": seed}
 
 
-__all__ = ["ChipKick", "chip_kick", "chip_pass_completion", "chip_pass_episode", "flight_height"]
+__all__ = ["ChipKick", "chip_kick", "chip_pass_completion", "chip_pass_episode"]
