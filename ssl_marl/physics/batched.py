@@ -301,12 +301,15 @@ class BatchedPhysics:
         for sub in range(self.substeps):
             for k, lst in drib_lists:
                 self.worlds[k]._apply_dribblers(lst)
-            flying = get(self.in_flight).copy()
+            flying = get(self.in_flight)
+            any_flying = bool(flying.any())
+            if any_flying:
+                flying = flying.copy()  # worlds land during the sub-step
             # two-phase ball friction (PhysicsWorld._apply_ball_friction, vectorised)
             raw = self._ball_vel_raw(idx, full)
             bx_, by_ = raw[:, 0] / S, raw[:, 1] / S
             bsp = np.sqrt(bx_ * bx_ + by_ * by_)
-            moving = (bsp > 0.0) & ~flying
+            moving = (bsp > 0.0) & ~flying if any_flying else bsp > 0.0
             sliding = bsp > slide_until
             dec = np.where(sliding, bp.slide_decel, bp.roll_decel)
             slide_until = np.where(moving & ~sliding, math.inf, slide_until)
@@ -315,7 +318,7 @@ class BatchedPhysics:
             mv = np.flatnonzero(moving)
             if mv.size:
                 self._set_ball_vel_raw(idx[mv], np.stack([bx_[mv] * kf[mv], by_[mv] * kf[mv]], axis=1))
-            if flying.any():
+            if any_flying:
                 fly = set(np.flatnonzero(flying).tolist())
                 for j, w in enumerate(b2worlds):
                     if j not in fly:
