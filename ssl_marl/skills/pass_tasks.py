@@ -30,6 +30,7 @@ from .motion import velocity_command
 from .passing import PassBaseline, ReceiveBaseline
 from .passing_features import (
     PASS_SPEC,
+    check_options,
     check_point,
     expand_pass_action,
     pass_aim_error,
@@ -127,10 +128,7 @@ class PassTask(SkillTask):
         raise RuntimeError("PassEnv: no spawn found in 10,000 draws; check distance_range")
 
     def sample_start(self, rng: np.random.Generator, options: dict) -> Start:
-        unknown = set(options) - {"passer_pose", "target", "receiver_vel"}
-        if unknown:
-            raise ValueError(f"PassEnv.reset: unknown option(s) {sorted(unknown)}; "
-                             "known: ['passer_pose', 'receiver_vel', 'target']")
+        check_options("PassEnv.reset", options, {"passer_pose", "target", "receiver_vel"})
         pose, recv, vel = self._sample_spawn(rng)
         if "target" in options:
             recv = check_point("target", options["target"])

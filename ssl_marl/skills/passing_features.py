@@ -95,6 +95,14 @@ def check_point(name: str, p) -> np.ndarray:
     return a
 
 
+def check_options(where: str, options: dict, known: set[str]) -> None:
+    """ValueError naming ``where`` (e.g. "PassEnv.reset") and the keys of ``options``
+    outside ``known``."""
+    unknown = set(options) - known
+    if unknown:
+        raise ValueError(f"{where}: unknown option(s) {sorted(unknown)}; known: {sorted(known)}")
+
+
 # ---------------------------------------------------------------------- pass
 def pass_features(world: WorldState, robot: int, target: np.ndarray, target_vel: np.ndarray | None = None
                   ) -> np.ndarray:

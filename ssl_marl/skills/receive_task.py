@@ -25,6 +25,7 @@ from .passing import ReceiveBaseline
 from .passing_features import (
     RECEIVE_ACTION_FORMS,
     RECEIVE_SPEC,
+    check_options,
     check_point,
     check_receive_action_form,
     expand_receive_action,
@@ -218,10 +219,7 @@ class ReceiveTask(SkillTask):
         raise RuntimeError("ReceiveEnv: no feasible spawn in 10,000 draws; check the spawn ranges")
 
     def sample_start(self, rng: np.random.Generator, options: dict) -> Start:
-        unknown = set(options) - {"robot_pose", "ball_pos", "ball_vel"}
-        if unknown:
-            raise ValueError(f"ReceiveEnv.reset: unknown option(s) {sorted(unknown)}; "
-                             "known: ['ball_pos', 'ball_vel', 'robot_pose']")
+        check_options("ReceiveEnv.reset", options, {"robot_pose", "ball_pos", "ball_vel"})
         pose, ball, vel = self._sample_spawn(rng)
         if "ball_vel" in options:
             vel = check_point("ball_vel", options["ball_vel"])

@@ -24,7 +24,7 @@ from ..physics import ball_model
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState
-from .passing_features import check_point
+from .passing_features import check_options, check_point
 from .receive_task import ball_out, positive
 from .redirect import (REDIRECT_ACTION_FORMS, RedirectBaseline, check_redirect_action_form, expand_redirect_action,
                        redirect_features, redirect_residual_action, redirect_residual_of)
@@ -142,10 +142,7 @@ class RedirectTask(SkillTask):
         raise RuntimeError("RedirectEnv: no spawn in 10,000 draws; check the spawn ranges")
 
     def sample_start(self, rng: np.random.Generator, options: dict) -> Start:
-        known = {"robot_pose", "ball_pos", "ball_vel", "keeper_pose"}
-        unknown = set(options) - known
-        if unknown:
-            raise ValueError(f"RedirectEnv.reset: unknown option(s) {sorted(unknown)}; known: {sorted(known)}")
+        check_options("RedirectEnv.reset", options, {"robot_pose", "ball_pos", "ball_vel", "keeper_pose"})
         pose, ball, vel = self._sample_spawn(rng)
         if "ball_vel" in options:
             vel = check_point("ball_vel", options["ball_vel"])
