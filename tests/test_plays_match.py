@@ -139,3 +139,26 @@ def test_evaluate_tactic_writes_results_and_is_worker_independent(tmp_path):
     assert res2["episodes_detail"] == res["episodes_detail"]
     with pytest.raises(ValueError):
         evaluate_tactic("baseline", episodes=0, progress=False)
+
+
+
+def _goal_times(restart_jitter_m):
+    r = play_match("baseline", "idle", robots=1, seconds=60.0, seed=3, progress=False,
+                   restart_jitter_m=restart_jitter_m)
+    return r, [g["t"] for g in r.goals]
+
+
+def test_match_restarts_are_drawn_from_the_seed_so_goals_do_not_replay():
+    # the fixed kickoff placement: the deterministic match replays its kickoff goal after goal
+    fixed, t = _goal_times(0.0)
+    gaps = np.round(np.diff(t), 3)
+    assert len(t) >= 3 and len(set(gaps.tolist())) == 1, t
+    # play_match's default: every restart placement drawn from the seed (the env-level test
+    # test_referee_rules.py::test_no_restart_repeats_an_earlier_world_state checks the poses)
+    r, t = _goal_times(0.1)
+    gaps = np.round(np.diff(t), 3)
+    assert len(t) >= 3 and len(set(gaps.tolist())) > 1, t
+    assert r.config["restart_jitter_m"] == 0.1 and r.config["rules"]["restart_jitter_m"] == 0.1
+    assert fixed.config["restart_jitter_m"] == 0.0
+    assert t == _goal_times(0.1)[1]  # same seed, same match
+    assert play_match("baseline", "idle", robots=1, seconds=1.0, progress=False).config["restart_jitter_m"] == 0.1

@@ -46,7 +46,8 @@ class WorldConfig:
         long (simulated s), then it stops; 0 = commands never expire.
         client_teams: the colours clients may command (a command for another is dropped
         with ``WRONG_TEAM``). tracker: run the project's tracker (its state goes out as
-        tracker packets). start_jitter_m: the kickoff formation's seeded jitter (as
+        tracker packets). start_jitter_m, restart_jitter_m: the seeded jitter of the
+        kickoff formation at the start and of every restart's placement (as
         :func:`ssl_marl.runners.match.play_match`).
     """
 
@@ -62,6 +63,7 @@ class WorldConfig:
     client_teams: tuple[str, ...] = ("blue", "yellow")
     tracker: bool = False
     start_jitter_m: float = 0.05
+    restart_jitter_m: float = 0.1
 
 
 class BridgeWorld:
@@ -74,7 +76,8 @@ class BridgeWorld:
 
         self.config = config
         env = parallel_env(n_blue=config.robots, n_yellow=config.robots, field=config.field,
-                           max_time_s=float(config.seconds), realism=config.realism, after_goal="kickoff")
+                           max_time_s=float(config.seconds), realism=config.realism, after_goal="kickoff",
+                           restart_jitter_m=config.restart_jitter_m)
         self.env = with_tracker(env, "on" if config.tracker else "auto")
         cfg = self.env.config
         self.robot, self.ball, self.field, self.dt = cfg.robot, cfg.ball, self.env.field, cfg.dt

@@ -71,6 +71,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     m.add_argument("--no-progress-s", type=non_negative_float("--no-progress-s"), default=10.0,
                    help="the referee restarts play when the ball stays within 0.25 m of one spot this long "
                         "(SSL force start after a lack of progress; seconds, default 10; 0 switches the call off)")
+    m.add_argument("--restart-jitter-m", type=non_negative_float("--restart-jitter-m"), default=0.1,
+                   help="every restart (kickoff after a goal, placement after an out or a no-progress call) "
+                        "places the robots within this many metres of the fixed placement, drawn from the match "
+                        "seed: the same seed replays the same match, but no restart repeats an earlier one "
+                        "(metres, default 0.1; 0: the fixed placements, so a deterministic kickoff can replay "
+                        "itself after every goal)")
     m.add_argument("--format", choices=("plain", "ssl"), default="plain",
                    help="plain: one period, play restarted at once after the ball leaves the field; ssl: SSL's "
                         "format: two halves of --seconds / 2 with ends changed at half-time, referee commands "
@@ -122,6 +128,7 @@ def run(args: argparse.Namespace) -> int:
     common = dict(robots=args.robots, field=args.field, seconds=args.seconds, realism=args.realism,
                   realtime=args.realtime, blue_skills=blue_skills, yellow_skills=yellow_skills,
                   tracker=args.tracker, blue_decision=args.blue_decision, yellow_decision=args.yellow_decision,
+                  restart_jitter_m=args.restart_jitter_m,
                   env_kwargs={"no_progress_s": args.no_progress_s or None, **format_options(args.format, args.seconds)})
     render = None if str(args.render).lower() == "none" else args.render
     if render is not None and args.matches == 1:
@@ -130,9 +137,10 @@ def run(args: argparse.Namespace) -> int:
         prepare_output_file(args.json, None, "--json")
     if args.ssl_log:
         if args.matches != 1 or args.format != "plain" or blue_skills or yellow_skills or args.blue_decision \
-                or args.yellow_decision or args.realtime or args.no_progress_s != 10.0:
+                or args.yellow_decision or args.realtime or args.no_progress_s != 10.0 \
+                or args.restart_jitter_m != 0.1:
             raise ValueError("--ssl-log records single plain-format matches of named teams (no --matches > 1, "
-                             "--format ssl, --skill, --*-decision, --realtime or --no-progress-s)")
+                             "--format ssl, --skill, --*-decision, --realtime, --no-progress-s or --restart-jitter-m)")
         prepare_output_file(args.ssl_log, None, "--ssl-log")
     if args.matches == 1:
         res = play_match(blue=blue, yellow=yellow, seed=args.seed, render=render,

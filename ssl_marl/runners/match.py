@@ -18,9 +18,9 @@ mode (``realtime=False``) is reproducible.
 
 Formats (:func:`format_options`): "plain" (one period; play restarts at once after the
 ball leaves the field) or "ssl" (two halves with ends changed at half-time, referee
-commands, free kicks and fouls of :mod:`ssl_marl.envs.game_control`, restart
-placements drawn from the match seed); the referee's calls are counted in
-``MatchResult.stats["referee"]`` when any of SSL game control is on.
+commands, free kicks and fouls of :mod:`ssl_marl.envs.game_control`); the referee's
+calls are counted in ``MatchResult.stats["referee"]``. In both, every restart's robot
+placement is drawn from the match seed (``restart_jitter_m``).
 
 Rendering (``render="match.mp4"`` or ``".gif"``): every k-th env frame
 (``render_fps`` frames per simulated second) is drawn with ``env.render()`` and
@@ -132,7 +132,8 @@ def validate_match_args(blue: Any, yellow: Any, seconds: Any) -> None:
 def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6, field: Any = "div_b",
                seconds: float = 300.0, seed: int = 0, realism: Any = "none", realtime: bool = False,
                render: str | os.PathLike | None = None, progress: bool = True, render_fps: float = 30.0,
-               render_width_px: int = 640, start_jitter_m: float = 0.05, controller_kwargs: dict | None = None,
+               render_width_px: int = 640, start_jitter_m: float = 0.05, restart_jitter_m: float = 0.1,
+               controller_kwargs: dict | None = None,
                env_kwargs: dict | None = None, blue_skills: Any = None, yellow_skills: Any = None,
                tracker: Any = "auto", blue_decision: Any = None, yellow_decision: Any = None) -> MatchResult:
     """Play one match and return its :class:`MatchResult`.
@@ -155,6 +156,13 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
             sigma / 0.1 m x 0.1 rad), drawn from ``seed``. Without noise (realism
             "none") the simulation is deterministic, so this is what makes matches
             with different seeds differ; 0 = the exact formation.
+        restart_jitter_m: every restart (kickoff after a goal, ball placement after an
+            out or a no-progress call) places its robots at poses drawn from the match's
+            seeded RNG within this many metres of the fixed placement
+            (:class:`~ssl_marl.envs.config.MatchRules`, ``restart_jitter_m``): the same
+            seed gives the same match, but no restart repeats an earlier one, so a
+            deterministic kickoff cannot replay itself goal after goal. 0 = the fixed
+            placements. ``env_kwargs["restart_jitter_m"]`` takes precedence.
         controller_kwargs: extra :func:`~ssl_marl.runners.controllers.make_controller`
             options for both STP teams (robot, ball, dt, TeamSpec fields).
         env_kwargs: extra env options.
@@ -182,6 +190,7 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
                                             for t, k in (("blue", blue), ("yellow", yellow)) if isinstance(k, str)})
     if any(isinstance(k, str) and k in CHIP_KINDS for k in (blue, yellow)):
         env_opts["chip_kicks"] = True  # a team that chips; the other team's 5-entry actions get a flat chip entry
+    env_opts["restart_jitter_m"] = float(restart_jitter_m)
     env_opts.update(env_kwargs or {})
     from ..envs.tracking import with_tracker
 
@@ -261,7 +270,7 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
                   realism=realism if isinstance(realism, str) else repr(realism), realtime=realtime,
                   no_progress_s=env.config.match.no_progress_s,
                   tracker=hasattr(env, "raw_vision_state"),
-                  start_jitter_m=start_jitter_m, render=str(render) if render is not None else None,
+                  start_jitter_m=start_jitter_m, restart_jitter_m=rules.restart_jitter_m, render=str(render) if render is not None else None,
                   skills={t: _json_safe(getattr(c, "skills", None)) for t, c in ctrls.items()})
     decisions = {t: decision_label(k, d) for t, k, _, d in teams}
     if any(v not in (None, "handcoded") for v in decisions.values()):
