@@ -92,3 +92,22 @@ def test_python_dash_m_runs_the_command_line():
     out = subprocess.run([sys.executable, "-m", "ssl_marl.cli", "--version"], capture_output=True, text=True,
                          check=True).stdout
     assert out.strip() == f"ssl-marl {__version__}"
+
+
+def test_match_series_resumes_from_its_partial_folder(tmp_path, capsys):
+    from ssl_marl.cli.match import partial_dir
+
+    out = tmp_path / "s.json"
+    kept = partial_dir(str(out))
+    kept.mkdir()
+    args = ["match", "--blue", "baseline", "--yellow", "idle", "--robots", "1", "--seconds", "2", "--matches", "2",
+            "--seed", "4", "--quiet", "--json", str(out)]
+    assert main(args) == 0
+    first = json.loads(out.read_text())["summary"]
+    assert not kept.exists()  # removed once the series file is written
+    out.unlink()
+    kept.mkdir()
+    (kept / "match_4.json").write_text("{\"key\": \"other\", \"result\": {}}")
+    assert main(args) == 2 and "other options" in capsys.readouterr().err
+    (kept / "match_4.json").unlink()
+    assert main(args) == 0 and json.loads(out.read_text())["summary"]["goals_for"] == first["goals_for"]

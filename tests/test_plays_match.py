@@ -162,3 +162,20 @@ def test_match_restarts_are_drawn_from_the_seed_so_goals_do_not_replay():
     assert fixed.config["restart_jitter_m"] == 0.0
     assert t == _goal_times(0.1)[1]  # same seed, same match
     assert play_match("baseline", "idle", robots=1, seconds=1.0, progress=False).config["restart_jitter_m"] == 0.1
+
+
+def test_series_keeps_finished_matches_and_resumes(tmp_path):
+    keep = tmp_path / "kept"
+    full, _ = play_series("baseline", "baseline", matches=3, seed=11, robots=2, seconds=2.0, progress=False)
+    first, _ = play_series("baseline", "baseline", matches=2, seed=11, robots=2, seconds=2.0, progress=False,
+                           keep_dir=keep)
+    assert sorted(p.name for p in keep.iterdir()) == ["match_11.json", "match_12.json"]
+    (keep / "match_12.json").write_text((keep / "match_12.json").read_text().replace('"steps": 120', '"steps": 7'))
+    resumed, summary = play_series("baseline", "baseline", matches=3, seed=11, robots=2, seconds=2.0,
+                                   progress=False, keep_dir=keep)
+    assert resumed[1].steps == 7  # taken from the folder, not played again
+    assert [r.score for r in resumed] == [r.score for r in full] and summary["matches"] == 3
+    assert resumed[2].steps == 120 and (keep / "match_13.json").exists()
+    with pytest.raises(ValueError, match="other options"):
+        play_series("baseline", "baseline", matches=1, seed=11, robots=2, seconds=3.0, progress=False,
+                    keep_dir=keep)

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import argparse
+import shutil
+from pathlib import Path
 
 from ..envs.animation import VIDEO_SUFFIXES
 from .options import (FIELDS, SKILL_SOURCE_HELP, add_backend, add_tracker_option, int_at_least, non_negative_float,
@@ -61,7 +63,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         "default the cluster's CPUs)")
     add_backend(m, "the matches of a series")
     m.add_argument("--json", default=None, metavar="PATH",
-                   help="also write the result as JSON to PATH (missing folders are created)")
+                   help="also write the result as JSON to PATH (missing folders are created); a series keeps "
+                        "each finished match in PATH.partial/ until PATH is written, so the same command run "
+                        "again after an interruption plays only the missing matches")
     m.add_argument("--quiet", action="store_true", help="no progress bar")
     m.add_argument("--ssl-log", default=None, metavar="PATH",
                    help="also write the match as an SSL log file (the SSL log recorder's format: vision and "
@@ -152,9 +156,10 @@ def run(args: argparse.Namespace) -> int:
         if args.ssl_log:
             _write_ssl_log(args, res)
         return 0
+    keep_dir = partial_dir(args.json) if args.json else None
     results, summary = play_series(blue=blue, yellow=yellow, matches=args.matches, workers=workers(args),
                                    seed=args.seed, progress=not args.quiet, backend=args.backend,
-                                   address=args.address, **common)
+                                   address=args.address, keep_dir=keep_dir, **common)
     print(f"{'match':>5} {'seed':>6}  {'score':>7}  {'shots':>7}  possession")
     for i, r in enumerate(results):
         print(f"{i:>5} {r.seed:>6}  {r.score['blue']:>3}-{r.score['yellow']:<3}  {r.shots['blue']:>3}-{r.shots['yellow']:<3}"
@@ -179,7 +184,14 @@ def run(args: argparse.Namespace) -> int:
             rules={"runner": "match", "blue": args.blue, "yellow": args.yellow, **common,
                    "no_progress_s": common["env_kwargs"]["no_progress_s"]},
             seeds={"seed": args.seed, "matches": args.matches}))
+        shutil.rmtree(keep_dir, ignore_errors=True)
     return 0
+
+
+def partial_dir(json_path: str) -> Path:
+    """Where a series with ``--json PATH`` keeps its finished matches until PATH is written
+    (``PATH.partial/``): the same command run again resumes from there."""
+    return Path(str(json_path) + ".partial")
 
 
 def _write_ssl_log(args: argparse.Namespace, res) -> None:
