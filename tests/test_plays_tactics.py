@@ -450,6 +450,38 @@ def _aiming_attacker(robot, snap_shot):
     raise AssertionError("never reached AIM_TO_SHOOT")
 
 
+def _open_goal_attacker(heading, goalie_y):
+    """Attacker at (2, 0) with the ball on its dribbler, a yellow goalie at (L/2 - 0.15, goalie_y)."""
+    goalie = (F.half_length - 0.15, goalie_y, math.pi)
+
+    def world(t):
+        robot = (2.0, 0.0, heading)
+        return make_world(blue=[robot], yellow=[goalie], ball=ball_in_front(*robot, gap=0.0), t=t, frame="blue")
+
+    tac = Attacker(F, snap_shot=True, aim_open_goal=True)
+    tac.aim_to_shoot = _NeverKicks()
+    tac.act(world(0.0), 0)
+    for k in range(1, 70):
+        a = tac.act(world(k * DT), 0)
+        if tac.state is S.AIM_TO_SHOOT:
+            return a, world(k * DT)
+    raise AssertionError("never reached AIM_TO_SHOOT")
+
+
+def test_open_goal_aim_kicks_into_the_gap_not_at_the_goalie():
+    from ssl_marl.plays.pass_decision import open_goal_interval
+
+    a, w = _open_goal_attacker(0.0, 0.0)  # facing the goalie in the middle of the goal: turn, do not shoot
+    assert a[4] <= 0.0 and a[3] > 0.0 and a[2] != 0.0
+    open_angle, aim = open_goal_interval(w.ball_pos, w.yellow.pos, F, RobotParams(), BallParams())
+    assert open_angle > 0.06 and abs(aim) > 0.03  # the open part lies beside the goalie
+    assert np.sign(a[2]) == np.sign(aim)  # turning towards it
+    a, _ = _open_goal_attacker(aim, 0.0)  # aimed into the gap: a full-strength shot
+    assert a[4] == 1.0 and legal(a)
+    a, _ = _open_goal_attacker(0.0, 0.9)  # goalie out of the mouth: the goal centre is open, shoot at once
+    assert a[4] == 1.0
+
+
 @pytest.mark.parametrize("heading,snap_shot,kicks", [
     (0.0, True, True),            # facing the goal centre from (2, 0): between the posts -> kick at once
     (0.0, False, False),          # without the snap shot the skill alone decides (this one never kicks)

@@ -195,7 +195,7 @@ def spot_support_role(k: int, planner: SpotPlanner, priority: int) -> RoleDef:
 def attack_roles(coord: PassCoordinator, decider: AttackDecider, planner: SpotPlanner) -> tuple[RoleDef, ...]:
     """The roles of the attacking plays, in priority order (as the passing plays')."""
     return (goalie_role(100), chip_passer_role(coord, decider, 95), redirect_receiver_role(coord, decider, 94),
-            passing_attacker_role(coord, 90), defender_role(0, 80), spot_support_role(0, planner, 80),
+            passing_attacker_role(coord, 90, aim_open_goal=True), defender_role(0, 80), spot_support_role(0, planner, 80),
             spot_support_role(1, planner, 70), defender_role(1, 70), mark_role(0, 60),
             spot_support_role(2, planner, 60), mark_role(1, 50), defender_role(2, 50),
             spot_support_role(3, planner, 40), mark_role(2, 40))

@@ -71,14 +71,18 @@ def receiver_role(coord: PassCoordinator, priority: int = 94) -> RoleDef:
                    cost=only_robot(lambda ctx: coord.plan.receiver if coord.plan else None), unfilled_cost=20.0)
 
 
-def passing_attacker_role(coord: PassCoordinator, priority: int = 90) -> RoleDef:
+def passing_attacker_role(coord: PassCoordinator, priority: int = 90, aim_open_goal: bool = False) -> RoleDef:
+    """The carrier: :class:`~ssl_marl.plays.shoot.Attacker` steered by the coordinator's
+    decision (hold fire, keep target and speed); ``aim_open_goal``: its shots aim at the
+    widest open part of the goal mouth (:class:`~ssl_marl.plays.shoot.ShootParams`)."""
+
     def target(ctx: PlayContext) -> np.ndarray | None:
         return None if coord.plan is not None else np.asarray(ctx.ball, float)
 
     def update(t: Tactic, ctx: PlayContext, a: Assignment) -> None:
         t.set_params(hold_fire=coord.hold_fire(), drive_forward_s=coord.params.settle_s,
                      keep_target=coord.keep_target(), keep_speed=coord.keep_speed(),
-                     snap_shot=coord.params.snap_shot)
+                     snap_shot=coord.params.snap_shot, aim_open_goal=aim_open_goal)
 
     return RoleDef("attacker", priority, Attacker, target, update=update)
 

@@ -36,8 +36,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..physics.state import WorldState
-from ..physics.state import wrap_angle
+from ..physics.state import WorldState, wrap_angle
 from ..skills.base import SkillStatus, make_action
 from ..skills.baseline import DriveForward
 from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance, heading_between_posts
@@ -92,6 +91,17 @@ class ShootParams:
             The passing plays set it: a carrier in a match is pressed within a few tenths
             of a second, and a learned aim-to-shoot trained without opponents waits for a
             centred aim that rarely comes (docs/RESULTS.md, "Passing game").
+        aim_open_goal: in AIM_TO_SHOOT, the tactic aims itself at the centre of the widest
+            part of the goal mouth that no other robot shadows (seen from the ball;
+            :func:`~ssl_marl.plays.pass_decision.open_goal_interval`) and kicks at full
+            strength once the heading lies inside that part, ``open_aim_margin`` (rad)
+            from its edges (shots at the goalie are wasted: SSL teams aim at the largest
+            gap, e.g. TIGERs' and Thunderbots' shot rating; docs/references.md, "Passing and
+            pass rating"); with no part at least ``open_aim_min`` (rad) wide, or after
+            ``open_aim_timeout_s`` (s) in AIM_TO_SHOOT, the ``snap_shot`` rule (or the
+            skill) decides. False = the skill (and ``snap_shot``) alone.
+        open_aim_margin, open_aim_min, open_aim_timeout_s: see ``aim_open_goal``.
+        open_aim_turn_rate: turn rate while aiming with the ball (rad/s).
     """
 
     near_ball_m: float = NEAR_BALL_M
@@ -111,6 +121,11 @@ class ShootParams:
     keep_speed: float = 0.3
     keep_target: tuple[float, float] | None = None
     snap_shot: bool = False
+    aim_open_goal: bool = False
+    open_aim_margin: float = 0.02
+    open_aim_min: float = 0.06
+    open_aim_timeout_s: float = 0.8
+    open_aim_turn_rate: float = 4.0
 
 
 @dataclass(frozen=True)
@@ -220,6 +235,11 @@ class GoToBallAndShoot(Tactic):
             self.nav.facing = facing_towards(pos, world.ball_pos)
         if self.state is ShootState.KEEP:
             return self.keep_action(world, robot)
+        if self.state is ShootState.AIM_TO_SHOOT and self.params.aim_open_goal \
+                and self._time_in_state < self.params.open_aim_timeout_s:
+            action = self.open_goal_action(world, robot)
+            if action is not None:
+                return action
         if (self.state is ShootState.AIM_TO_SHOOT and self.params.snap_shot
                 and bool(world.team(world.frame).kick_ready[robot]) and heading_between_posts(world, robot, self.field)):
             return make_action(dribble=True, kick=1.0)
@@ -229,6 +249,24 @@ class GoToBallAndShoot(Tactic):
                                      self.params.approach_decel)
         return action
 
+
+    def open_goal_action(self, world: WorldState, robot: int) -> np.ndarray | None:
+        """``aim_open_goal`` (see :class:`ShootParams`): a full-strength kick when the
+        heading lies inside the widest open part of the goal mouth, else a turn towards
+        its centre with the dribbler on; None when no part is ``open_aim_min`` wide."""
+        from .pass_decision import open_goal_interval
+
+        p = self.params
+        ts = world.team(world.frame)
+        others = np.concatenate([np.delete(ts.pos, robot, axis=0), world.opponents(world.frame).pos])
+        open_angle, aim = open_goal_interval(world.ball_pos, others, self.field, self.rp, self.bp)
+        if open_angle < p.open_aim_min:
+            return None
+        err = float(wrap_angle(aim - float(ts.heading[robot])))
+        if abs(err) <= max(open_angle / 2.0 - p.open_aim_margin, 0.0) and bool(ts.kick_ready[robot]):
+            return make_action(dribble=True, kick=1.0)
+        omega = float(np.clip(6.0 * err, -p.open_aim_turn_rate, p.open_aim_turn_rate))
+        return make_action(omega=omega / self.rp.max_omega, dribble=True)
 
     def keep_action(self, world: WorldState, robot: int) -> np.ndarray:
         """KEEP: dribbler on, turn towards ``keep_target`` (default the opponent goal
