@@ -1,9 +1,10 @@
-"""Where the passing team shoots from: every kick by a blue robot of ``passing-learned``
-against an opponent, with the kicker's role, its distance to the goal centre (m), its heading
+"""Where a passing team shoots from: every kick by a blue robot of ``--team``
+(``passing-learned`` by default; ``attack-learned`` plays in a chip env) against an opponent, with the kicker's role, its distance to the goal centre (m), its heading
 error to the goal centre (rad) and the widest open part of the goal mouth seen from the ball
 (rad; :func:`~ssl_marl.plays.pass_decision.open_goal_interval`, every other robot shadowing).
 
     python benchmarks/passing_shot_probe.py --seeds 45200-45203 --opponent baseline --out results/tuning/shot_probe.json
+    python benchmarks/passing_shot_probe.py --team attack-learned --seconds 600 --seeds 61000-61001 --out results/tuning/attack_shot_probe.json
 """
 
 from __future__ import annotations
@@ -46,25 +47,37 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seeds", default="45200-45203", help="first-last match seed")
     ap.add_argument("--opponent", default="baseline", help="yellow team kind")
+    ap.add_argument("--team", default="passing-learned", help="blue team kind (a passing or attacking team)")
+    ap.add_argument("--seconds", type=float, default=90.0, help="simulated seconds per match")
     ap.add_argument("--out", required=True, help="output JSON")
     args = ap.parse_args(argv)
     from ssl_marl.io import atomic_write_json
-    from ssl_marl.runners.controllers import make_controller
+    from ssl_marl.envs.config import EnvConfig
+    from ssl_marl.runners.controllers import CHIP_KINDS, make_controller
     from ssl_marl.runners.match import play_match
+    from ssl_marl.runners.provenance import build_manifest
 
     lo, hi = (int(x) for x in args.seeds.split("-"))
     matches = []
     for seed in range(lo, hi + 1):
         kicks: list = []
-        blue = KickLog(make_controller("passing-learned", "blue", 6, "div_b", seed=seed), kicks)
-        r = play_match(blue, args.opponent, robots=6, field="div_b", seconds=90, seed=seed, progress=False)
+        chip = args.team in CHIP_KINDS
+        cfg = EnvConfig(chip_kicks=chip)
+        blue = KickLog(make_controller(args.team, "blue", 6, "div_b", seed=seed, robot=cfg.robot, ball=cfg.ball,
+                                       dt=cfg.dt), kicks)
+        r = play_match(blue, args.opponent, robots=6, field="div_b", seconds=args.seconds, seed=seed, progress=False,
+                       env_kwargs={"chip_kicks": True} if chip else None)
         matches.append(dict(seed=seed, score=r.score, goals=r.goals, kicks=kicks))
     att = [k for m in matches for k in m["kicks"] if k["role"] == "attacker"]
     summary = dict(attacker_kicks=len(att), farther_than_4m=sum(k["dist"] > 4.0 for k in att),
                    open_below_0_05rad=sum(k["open_angle"] < 0.05 for k in att),
                    median_dist_m=float(np.median([k["dist"] for k in att])) if att else None,
                    goals=sum(m["score"]["blue"] for m in matches))
-    atomic_write_json(args.out, {"seeds": [lo, hi], "opponent": args.opponent, "summary": summary, "matches": matches})
+    atomic_write_json(args.out, {"seeds": [lo, hi], "team": args.team, "opponent": args.opponent,
+                                 "seconds": args.seconds, "summary": summary, "matches": matches,
+                                 "manifest": build_manifest(rules={"team": args.team, "opponent": args.opponent,
+                                                                   "seconds": args.seconds},
+                                                            seeds={"first": lo, "last": hi})})
     print(summary)
     return 0
 

@@ -99,3 +99,13 @@ def test_committed_records_load(name):
     rows = data.get("episodes_detail", data.get("runs_detail"))
     assert rows and len(rows) == data.get("episodes", data.get("runs"))
     assert load_manifest(folder)["git"]["commit"] != UNRECORDED
+
+
+def test_every_committed_series_file_finds_its_rows_and_manifest():
+    files = sorted((ROOT / "results").glob("*.json"))
+    series = [f for f in files if "rows_file" in json.loads(f.read_text())]
+    assert series
+    for f in series:
+        data = load_result(f)
+        assert len(data["matches"]) == data["summary"]["matches"], f.name
+        assert load_manifest(f) is not None, f.name

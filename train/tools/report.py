@@ -43,6 +43,9 @@ TRACKER_PAIRS = [("go-to-ball, baseline", "go_to_ball_baseline", "go_to_ball_bas
                  ("go-to-ball-and-shoot, baseline skills", "tactic_baseline", "tactic_baseline")]
 PASSING_SERIES = ["match_passing_learned_vs_baseline_snap", "match_passing_learned_vs_passing_learned_snap",
                   "match_passing_learned_vs_passing_baseline_snap"]
+SERIES_600_SSL = ["match_passing_learned_vs_baseline_600_plain", "match_passing_learned_vs_baseline_600_ssl"]
+ATTACK_SERIES = ["match_attack_learned_vs_baseline_600", "match_attack_learned_vs_passing_learned_600",
+                 "match_attack_learned_selfplay_600", "match_attack_learned_vs_baseline_600_realistic"]
 KEEPAWAY = [("random", "keepaway_random"), ("always-hold", "keepaway_always-hold"),
             ("hand-coded", "keepaway_handcoded"), ("learned (shipped `keepaway.pt`, MAPPO seed 1)", "keepaway_learned")]
 ATTACK = [("hand-coded (cost decision, shot threshold 0.25)", "attack_3v2_handcoded_snap"),
@@ -65,6 +68,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "passing_skills": lambda r: t.skills(r, PASSING_SKILLS),
     "pass_endurance": lambda r: t.drills(r, PASS_ENDURANCE),
     "passing_series": lambda r: t.series(r, PASSING_SERIES),
+    "series_600_formats": lambda r: t.series_600(r, SERIES_600_SSL),
+    "attack_series": lambda r: t.series_600(r, ATTACK_SERIES),
     "passing_contested_kick": lambda r: t.tuning(r, [("`contested_kick` on", "passing_contested_kick.json",
                                                       "contested_kick_on"),
                                                      ("`contested_kick` off (the default)",

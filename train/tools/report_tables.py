@@ -149,6 +149,39 @@ def series(results: Path, names: Iterable[str]) -> Lines:
     return rows
 
 
+def series_600(results: Path, names: Iterable[str]) -> Lines:
+    """One row per series of long matches (``results/<name>.json``): W-D-L, win rate and
+    goal difference per 600 s with their 95 % intervals
+    (:func:`~ssl_marl.runners.statistics.series_statistics`), blue's shots, goals and
+    passes by kind."""
+    rows = _head("series", "blue vs yellow", "field, realism", "seeds", "matches", "W-D-L (blue)",
+                 "win rate [95% CI]", "goals for-against (per match)", "goal diff per 600 s [95% CI]",
+                 "blue shots direct / redirect / after chip", "blue goals direct / redirect / after chip / other",
+                 "blue passes completed: flat / chip")
+    for n in names:
+        d = load_result(results / f"{n}.json")
+        s, st = d["summary"], d["summary"]["statistics"]
+        seeds = [m["seed"] for m in d["matches"]]
+        cfg = d["matches"][0]["config"]
+        b = s["stats"]["blue"]
+        k = max(s["matches"], 1)
+        lo, hi = st["goal_diff_per_600s_ci95"]
+        wlo, whi = st["win_rate_ci95"]
+
+        def frac(c: int, a: int) -> str:
+            return f"{c} of {a}" + (f" ({100 * c / a:.0f} %)" if a else "")
+        rows.append(f"| `{n}` | {s['blue']} vs {s['yellow']} | {cfg['field']}, {cfg['realism']} | "
+                    f"{min(seeds)}-{max(seeds)} | {s['matches']} | {s['wins']}-{s['draws']}-{s['losses']} | "
+                    f"{100 * st['win_rate']:.0f} % [{100 * wlo:.0f}, {100 * whi:.0f}] | "
+                    f"{s['goals_for']}-{s['goals_against']} ({s['goals_for'] / k:.2f}-{s['goals_against'] / k:.2f}) | "
+                    f"{st['goal_diff_per_600s']:+.2f} [{lo:+.2f}, {hi:+.2f}] | "
+                    f"{b['shots_direct']} / {b['shots_redirect']} / {b['shots_after_chip_pass']} | "
+                    f"{b['goals_direct']} / {b['goals_redirect']} / {b['goals_after_chip_pass']} / {b['goals_other']} | "
+                    f"{frac(b['passes_flat_completed'], b['passes_flat_attempted'])} / "
+                    f"{frac(b['passes_chip_completed'], b['passes_chip_attempted'])} |")
+    return rows
+
+
 def tuning(results: Path, entries: Iterable[tuple[str, str, str | None]]) -> Lines:
     """Tuning match sets (``results/tuning/*.json``): (label, file, key inside it or None)."""
     rows = _head("variant", "opponent", "seeds", "matches", "W-D-L (blue)", "goals", "shots (blue / yellow)",
