@@ -1,7 +1,9 @@
 """Where a passing team shoots from: every kick by a blue robot of ``--team``
-(``passing-learned`` by default; ``attack-learned`` plays in a chip env) against an opponent, with the kicker's role, its distance to the goal centre (m), its heading
-error to the goal centre (rad) and the widest open part of the goal mouth seen from the ball
-(rad; :func:`~ssl_marl.plays.pass_decision.open_goal_interval`, every other robot shadowing).
+(``passing-learned`` by default; ``attack-learned`` plays in a chip env) against an
+opponent, with the kicker's role, its distance to the goal centre (m), its heading error
+to the goal centre (rad) and the widest open part of the goal mouth seen from the ball
+(rad; :func:`~ssl_marl.plays.pass_decision.open_goal_interval`, every other robot
+shadowing); and the pass coordinator's plans (planned, kicked, completed, aborted).
 
     python benchmarks/passing_shot_probe.py --seeds 45200-45203 --opponent baseline --out results/tuning/shot_probe.json
     python benchmarks/passing_shot_probe.py --team attack-learned --seconds 600 --seeds 61000-61001 --out results/tuning/attack_shot_probe.json
@@ -67,12 +69,18 @@ def main(argv: list[str] | None = None) -> int:
                                        dt=cfg.dt), kicks)
         r = play_match(blue, args.opponent, robots=6, field="div_b", seconds=args.seconds, seed=seed, progress=False,
                        env_kwargs={"chip_kicks": True} if chip else None)
-        matches.append(dict(seed=seed, score=r.score, goals=r.goals, kicks=kicks))
+        coord = next((p.prepare.coordinator for p in blue.inner.selector.plays
+                      if getattr(p.prepare, "coordinator", None) is not None), None)
+        plans = None if coord is None else vars(coord.counters)
+        matches.append(dict(seed=seed, score=r.score, goals=r.goals, kicks=kicks, pass_plans=plans))
     att = [k for m in matches for k in m["kicks"] if k["role"] == "attacker"]
     summary = dict(attacker_kicks=len(att), farther_than_4m=sum(k["dist"] > 4.0 for k in att),
                    open_below_0_05rad=sum(k["open_angle"] < 0.05 for k in att),
                    median_dist_m=float(np.median([k["dist"] for k in att])) if att else None,
-                   goals=sum(m["score"]["blue"] for m in matches))
+                   goals=sum(m["score"]["blue"] for m in matches),
+                   pass_plans={k: sum(m["pass_plans"][k] for m in matches) for k in ("planned", "kicked", "completed",
+                                                                                      "aborted")}
+                   if all(m["pass_plans"] for m in matches) else None)
     atomic_write_json(args.out, {"seeds": [lo, hi], "team": args.team, "opponent": args.opponent,
                                  "seconds": args.seconds, "summary": summary, "matches": matches,
                                  "manifest": build_manifest(rules={"team": args.team, "opponent": args.opponent,

@@ -22,6 +22,17 @@ def test_readme_opens_with_exactly_two_commands():
     assert "python -m pytest -q" in lines[1]
 
 
+def test_readme_first_command_parses():
+    import shlex
+
+    from ssl_marl.cli import build_parser
+
+    first = re.match(r"```bash\n(.*?)```", README.read_text(), flags=re.S).group(1).splitlines()[0]
+    argv = shlex.split(first.split("&& ssl-marl ", 1)[1])
+    args = build_parser().parse_args(argv)
+    assert args.command == "match" and args.seconds > 0
+
+
 def test_readme_has_python_how_tos():
     assert len(BLOCKS) >= 4  # env, skill, tactic, team
 
