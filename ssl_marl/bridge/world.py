@@ -2,9 +2,10 @@
 
 It owns the env (a full-field match, :func:`ssl_marl.envs.parallel_env`, with chip
 kicks: the ball can fly), the last command of every robot, the teams of ours that drive
-the robots no client commands, the referee stream and the vision cameras. Everything it takes is a protobuf message
-(simulation protocol, grSim); everything it gives is a protobuf message (vision,
-referee, tracker, replies). Bad input is answered with errors and counted, never raised.
+the robots no client commands, the referee stream and the vision cameras. Everything it
+takes is a protobuf message (simulation protocol, grSim); everything it gives is a
+protobuf message (vision, referee, tracker, replies). Bad input is answered with errors
+and counted, never raised.
 
 Frames and units: the env works in metres in the field frame (blue attacks +x); the
 simulation protocol and grSim use metres too (grSim's replacement heading is in
