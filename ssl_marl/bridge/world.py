@@ -23,6 +23,7 @@ from typing import Any
 
 import numpy as np
 
+from ..envs.actions import ACTION_DIM
 from .command_codec import CommandError, decode_grsim_command, decode_robot_command
 from .proto import grsim_packet_pb2 as grsim_pb
 from .proto import ssl_simulation_pb2 as sim_pb
@@ -145,7 +146,9 @@ class BridgeWorld:
         for team in ("blue", "yellow"):
             ctrl = self.controllers.get(team)
             if ctrl is not None:
-                actions.update({k: fit_action(v, self.action_dim) for k, v in ctrl.act(self.env).items()})
+                acted = ctrl.act(self.env)  # as play_match: fitted in a chip env, as they are in a flat one
+                actions.update(acted if self.action_dim == ACTION_DIM
+                               else {k: fit_action(v, self.action_dim) for k, v in acted.items()})
             fresh = (self.t - self.command_time[team] <= self.config.command_timeout_s + 1e-9
                      if self.config.command_timeout_s > 0 else np.isfinite(self.command_time[team]))
             for i in np.flatnonzero(fresh):
