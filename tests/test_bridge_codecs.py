@@ -50,7 +50,12 @@ def test_robot_command_round_trip():
     action = np.array([0.5, -0.25, 0.1, 1.0, 0.5], np.float32)
     msg = encode_robot_control({3: action}, robot)
     back, errors = decode_robot_command(msg.robot_commands[0], 0.0, robot)
-    assert not errors and np.allclose(back, action, atol=1e-6)
+    assert not errors and np.allclose(back[:5], action, atol=1e-6) and back[5] == 0.0  # flat
+    chip = np.array([0.0, 0.0, 0.0, -1.0, 0.8, 0.5], np.float32)  # 5.2 m/s at half the chip cap
+    msg = encode_robot_control({0: chip}, robot)
+    assert msg.robot_commands[0].kick_angle == pytest.approx(np.degrees(0.5 * robot.chip_angle_max), rel=1e-6)
+    back, errors = decode_robot_command(msg.robot_commands[0], 0.0, robot)
+    assert not errors and np.allclose(back, chip, atol=1e-6)
     cmd = msg.robot_commands[0]
     cmd.move_command.global_velocity.x = 1.0  # field frame: +x is the robot's left when it faces -y
     cmd.move_command.global_velocity.y = 0.0

@@ -176,9 +176,10 @@ def test_grsim_commands_and_replacement():
     team, errors = world.grsim_packet(packet)
     assert team == "blue" and errors[0].code == "WRONG_TEAM"
     packet.commands.isteamyellow = True
-    packet.commands.robot_commands[0].kickspeedz = 2.0
+    packet.commands.robot_commands[0].kickspeedz = 2.0  # a chip: 2 m/s up, no forward part -> at the cap
     team, errors = world.grsim_packet(packet)
-    assert team == "yellow" and [e.code for e in errors] == ["CHIP_KICK_UNSUPPORTED"]
+    assert team == "yellow" and [e.code for e in errors] == ["VALUE_CLIPPED"]
+    assert world.commands["yellow"][0, 5] == 1.0  # the steepest chip
     rep = grsim_pb.grSim_Packet()
     rep.replacement.ball.x, rep.replacement.ball.y = 1.0, -1.0
     rep.replacement.robots.add(x=-1.0, y=1.0, dir=90.0, id=1, yellowteam=False)

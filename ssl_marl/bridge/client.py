@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 from google.protobuf.message import DecodeError
 
+from ..envs.actions import CHIP_ACTION_DIM
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from .command_codec import encode_grsim_packet, encode_robot_control
@@ -37,6 +38,8 @@ from .transport import UdpReceiver, parse_address
 from .vision_codec import Detections, merge_frames
 
 PROTOCOLS = ("simulation", "grsim")
+#: the stop command: no motion, dribbler off, no kick, flat
+STOP = np.array([0, 0, 0, -1, -1, 0], np.float32)
 
 
 class PlayBrain:
@@ -95,13 +98,16 @@ class PlayBrain:
                                              if f.HasField("dribbler_ball_contact")})
 
     def decide(self, det: Detections) -> dict[int, np.ndarray] | None:
-        """Normalised actions {robot id: (5,)} for a detection set (None: not a new frame)."""
+        """Normalised actions {robot id: (6,)} (the env's chip layout; a team's five-entry
+        actions get a flat chip entry) for a detection set (None: not a new frame)."""
+        from ..runners.match import fit_action
+
         world = self.vision.update(det)
         if world is None:
             return None
         self.decisions += 1
         if self.halted:
-            actions = {f"{self.team}_{i}": np.array([0, 0, 0, -1, -1], np.float32) for i in range(self.n)}
+            actions = {f"{self.team}_{i}": STOP.copy() for i in range(self.n)}
         elif self.tracker is not None:
             from ..physics.state import to_team_frame
 
@@ -109,9 +115,9 @@ class PlayBrain:
             actions = self.controller.act(self.tracker.predict(world.t + self.latency_steps * self.dt))
         else:
             actions = self.controller.act(world)
-        by_id = {int(name.rsplit("_", 1)[1]): np.asarray(a, np.float32) for name, a in actions.items()}
+        by_id = {int(name.rsplit("_", 1)[1]): fit_action(a, CHIP_ACTION_DIM) for name, a in actions.items()}
         if self.tracker is not None:
-            rows = np.array([by_id.get(i, np.array([0, 0, 0, -1, -1], np.float32)) for i in range(self.n)])
+            rows = np.array([by_id.get(i, STOP) for i in range(self.n)])
             self.tracker.record_command(self.tracker.tick_of(world.t) + self.latency_steps, rows)
         return by_id
 

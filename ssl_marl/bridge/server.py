@@ -8,7 +8,8 @@ every ``referee_every_s``), tracker packets (each control period, when tracker
 addresses are given). In (UDP): ``SimulatorCommand`` on the control port (reply
 ``SimulatorResponse``), ``RobotControl`` on the blue / yellow ports (reply
 ``RobotControlResponse`` with errors and dribbler feedback), legacy ``grSim_Packet``
-on the grSim port (robot status to the sender's host on the colour's status port).
+on the grSim port (robot status to the sender's host on the colour's status port:
+light barrier, and a flat or chip kick since the last status).
 Replies go to the sender's address and port.
 
 Real-time mode paces the world with the wall clock (times ``speed``); lock-step mode
@@ -213,9 +214,11 @@ class BridgeServer:
         team, _ = self.world.grsim_packet(packet)
         if team is not None:
             held = self.world.env.world_state().team(team).ball_on_dribbler
+            kicks = self.world.take_kicks(team)
             status = grsim_pb.grSim_Robots_Status()
             for i in range(self.world.n):
-                status.robots_status.add(robot_id=i, infrared=bool(held[i]), flat_kick=False, chip_kick=False)
+                status.robots_status.add(robot_id=i, infrared=bool(held[i]), flat_kick=kicks.get(i) == "flat",
+                                         chip_kick=kicks.get(i) == "chip")
             port = self.config.grsim_status_ports[0 if team == "blue" else 1]
             self.grsim_in.reply(status.SerializeToString(), (addr[0], port))
 

@@ -1,7 +1,9 @@
 """Tracked world snapshots -> SSL tracker packets (``TrackerWrapperPacket``).
 
 The tracker protocol is in metres, m/s and rad in the field frame, like our
-:class:`~ssl_marl.physics.state.WorldState`; the ball's z is 0 (the simulation is planar).
+:class:`~ssl_marl.physics.state.WorldState`; the ball's ``pos.z`` is the snapshot's
+``ball_height`` (height of its lowest point, m; 0 on the ground) and ``vel.z`` its
+``ball_vz`` (m/s, up positive).
 """
 
 from __future__ import annotations
@@ -22,8 +24,8 @@ def tracker_packet(ws: WorldState, frame_number: int, timestamp: float, uuid: st
     frame.frame_number = int(frame_number) & 0xFFFFFFFF
     frame.timestamp = float(timestamp)
     ball = frame.balls.add(visibility=1.0 if ws.ball_visible else 0.0)
-    ball.pos.x, ball.pos.y, ball.pos.z = float(ws.ball_pos[0]), float(ws.ball_pos[1]), 0.0
-    ball.vel.x, ball.vel.y, ball.vel.z = float(ws.ball_vel[0]), float(ws.ball_vel[1]), 0.0
+    ball.pos.x, ball.pos.y, ball.pos.z = float(ws.ball_pos[0]), float(ws.ball_pos[1]), float(ws.ball_height)
+    ball.vel.x, ball.vel.y, ball.vel.z = float(ws.ball_vel[0]), float(ws.ball_vel[1]), float(ws.ball_vz)
     for team in ("blue", "yellow"):
         ts = ws.team(team)
         for i in range(ts.n):

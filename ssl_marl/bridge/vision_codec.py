@@ -4,6 +4,11 @@ Frames: SSL-Vision reports positions in millimetres in the field frame (origin a
 centre, +x towards the goal blue attacks in our field frame, headings in rad CCW from
 +x); our snapshots (:class:`~ssl_marl.physics.state.WorldState`) are in metres in the
 same field frame. Velocities are not part of a detection: a receiver differentiates.
+A ball's ``z`` is the height of its lowest point (mm; 0 on the ground) as the snapshot
+has it: a snapshot of the env's realistic cameras (:mod:`ssl_marl.envs.camera`) reports
+a ball in the air projected onto the ground plane with height 0, as SSL-Vision's single
+cameras do; a snapshot without realism reports the true height, as simulators that
+fill ``z`` do.
 
 Cameras: the field is cut into ``n_cameras`` (1, 2, 4 or 8) equal rectangles
 (:func:`camera_regions`); each camera reports the objects inside its rectangle grown
@@ -79,8 +84,9 @@ def _add_robots(repeated, team: TeamState, mask: np.ndarray, region: CameraRegio
 def detection_frames(ws: WorldState, regions: list[CameraRegion], frame_numbers: list[int], t_capture: float,
                      t_sent: float) -> list[det_pb.SSL_DetectionFrame]:
     """One detection frame per camera from a field-frame snapshot ``ws`` (a hidden
-    ball, ``ws.ball_visible`` False, is left out). Times in seconds (Unix-based when a
-    game controller listens); ``frame_numbers[k]`` is camera k's frame counter."""
+    ball, ``ws.ball_visible`` False, is left out; the ball's ``z`` is
+    ``ws.ball_height``). Times in seconds (Unix-based when a game controller listens);
+    ``frame_numbers[k]`` is camera k's frame counter."""
     if ws.frame != "field":
         raise ValueError(f"detection_frames expects a field-frame snapshot, got frame={ws.frame!r}")
     frames = []
@@ -91,7 +97,8 @@ def detection_frames(ws: WorldState, regions: list[CameraRegion], frame_numbers:
         if ws.ball_visible and region.sees(ws.ball_pos)[0]:
             bx, by = float(ws.ball_pos[0]), float(ws.ball_pos[1])
             px, py = region.pixel(bx, by)
-            f.balls.add(confidence=1.0, area=80, x=bx * 1000.0, y=by * 1000.0, z=0.0, pixel_x=px, pixel_y=py)
+            f.balls.add(confidence=1.0, area=80, x=bx * 1000.0, y=by * 1000.0, z=float(ws.ball_height) * 1000.0,
+                        pixel_x=px, pixel_y=py)
         _add_robots(f.robots_yellow, ws.yellow, region.sees(ws.yellow.pos), region)
         _add_robots(f.robots_blue, ws.blue, region.sees(ws.blue.pos), region)
         frames.append(f)

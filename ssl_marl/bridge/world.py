@@ -1,14 +1,17 @@
 """The served match world without sockets: :class:`BridgeWorld`.
 
-It owns the env (a full-field match, :func:`ssl_marl.envs.parallel_env`), the last
-command of every robot, the teams of ours that drive the robots no client commands,
-the referee stream and the vision cameras. Everything it takes is a protobuf message
-(simulation protocol, grSim); everything it gives is a protobuf message (vision,
-referee, tracker, replies). Bad input is answered with errors and counted, never raised.
+It owns the env (a full-field match, :func:`ssl_marl.envs.parallel_env`, with chip
+kicks: the ball can fly), the last command of every robot, the teams of ours that drive
+the robots no client commands, the referee stream and the vision cameras. Everything it
+takes is a protobuf message (simulation protocol, grSim); everything it gives is a
+protobuf message (vision, referee, tracker, replies). Bad input is answered with errors
+and counted, never raised.
 
 Frames and units: the env works in metres in the field frame (blue attacks +x); the
 simulation protocol and grSim use metres too (grSim's replacement heading is in
-degrees); vision is converted to mm by :mod:`.vision_codec`.
+degrees); vision is converted to mm by :mod:`.vision_codec`. Commands are the env's
+six-entry chip layout (:mod:`.command_codec`); our teams' five-entry actions get a flat
+chip entry (:func:`ssl_marl.runners.match.fit_action`).
 """
 
 from __future__ import annotations
@@ -48,7 +51,11 @@ class WorldConfig:
         with ``WRONG_TEAM``). tracker: run the project's tracker (its state goes out as
         tracker packets). start_jitter_m, restart_jitter_m: the seeded jitter of the
         kickoff formation at the start and of every restart's placement (as
-        :func:`ssl_marl.runners.match.play_match`).
+        :func:`ssl_marl.runners.match.play_match`). chip_kicks: the env's chip-kick
+        layout (``parallel_env(chip_kicks=True)``: chips fly, robots kick on contact);
+        off, the world is the flat-kick env of :func:`~ssl_marl.runners.match.play_match`
+        for teams that do not chip (what :func:`~.log_tools.record_match_log` replays),
+        and a client's chip is kicked flat with a ``CHIP_KICK_UNSUPPORTED`` error.
     """
 
     robots: int = 6
@@ -64,6 +71,7 @@ class WorldConfig:
     tracker: bool = False
     start_jitter_m: float = 0.05
     restart_jitter_m: float = 0.1
+    chip_kicks: bool = True
 
 
 class BridgeWorld:
@@ -72,16 +80,22 @@ class BridgeWorld:
     def __init__(self, config: WorldConfig) -> None:
         from ..envs import parallel_env
         from ..envs.tracking import with_tracker
-        from ..runners.controllers import STP_KINDS, make_controller
+        from ..runners.controllers import CHIP_KINDS, STP_KINDS, make_controller
 
         self.config = config
+        if not config.chip_kicks:
+            for team, kind in (("blue", config.blue_team), ("yellow", config.yellow_team)):
+                if kind in CHIP_KINDS:
+                    raise ValueError(f"{team}_team {kind!r} chips; it needs WorldConfig(chip_kicks=True)")
         env = parallel_env(n_blue=config.robots, n_yellow=config.robots, field=config.field,
                            max_time_s=float(config.seconds), realism=config.realism, after_goal="kickoff",
-                           restart_jitter_m=config.restart_jitter_m)
+                           restart_jitter_m=config.restart_jitter_m, chip_kicks=bool(config.chip_kicks))
         self.env = with_tracker(env, "on" if config.tracker else "auto")
         cfg = self.env.config
         self.robot, self.ball, self.field, self.dt = cfg.robot, cfg.ball, self.env.field, cfg.dt
         self.n = config.robots
+        #: entries of an env action (6 with chip kicks)
+        self.action_dim = int(self.env.action_dim)
         self.controllers: dict[str, Any] = {}
         for k, (team, kind) in enumerate((("blue", config.blue_team), ("yellow", config.yellow_team))):
             if kind != "idle" and self.n > 0:
@@ -108,9 +122,10 @@ class BridgeWorld:
         for ctrl in self.controllers.values():
             if hasattr(ctrl, "reset"):
                 ctrl.reset()
-        self.commands = {t: np.zeros((self.n, ACTION_DIM), np.float32) for t in ("blue", "yellow")}
+        self.commands = {t: np.zeros((self.n, self.action_dim), np.float32) for t in ("blue", "yellow")}
         for cmd in self.commands.values():
-            cmd[:, 3:] = -1.0
+            cmd[:, 3:5] = -1.0  # dribbler off, no kick (a chip entry stays 0: flat)
+        self.kicks: dict[str, dict[int, str]] = {"blue": {}, "yellow": {}}
         self.command_time = {t: np.full(self.n, -np.inf) for t in ("blue", "yellow")}
         self.finished = False
         self.referee.start(0)
@@ -123,13 +138,17 @@ class BridgeWorld:
     def step(self, now_us: int) -> tuple[list[dict], bool]:
         """Advance one control period; (env events, referee command changed). ``now_us``
         stamps a new referee command (Unix µs). No-op once the match is over."""
+        from ..runners.match import fit_action
+
         if self.finished:
             return [], False
         actions: dict[str, np.ndarray] = {}
         for team in ("blue", "yellow"):
             ctrl = self.controllers.get(team)
             if ctrl is not None:
-                actions.update(ctrl.act(self.env))
+                acted = ctrl.act(self.env)  # as play_match: fitted in a chip env, as they are in a flat one
+                actions.update(acted if self.action_dim == ACTION_DIM
+                               else {k: fit_action(v, self.action_dim) for k, v in acted.items()})
             fresh = (self.t - self.command_time[team] <= self.config.command_timeout_s + 1e-9
                      if self.config.command_timeout_s > 0 else np.isfinite(self.command_time[team]))
             for i in np.flatnonzero(fresh):
@@ -141,7 +160,20 @@ class BridgeWorld:
         changed = self.referee.update(events, self.env.world_state(), self.env.score, time_left, self.finished, now_us)
         self.events = events
         self.stats["steps"] += 1
+        self._note_kicks(events)
         return events, changed
+
+    def _note_kicks(self, events: list[dict]) -> None:
+        """Remember this step's kicks for :meth:`take_kicks`: a chip when the ball left
+        the ground after it (ground truth), else flat."""
+        kicks = [e["agent"] for e in events if e["type"] == "kick"]
+        if not kicks:
+            return
+        ws = self.env.world_state()
+        kind = "chip" if ws.ball_height > 0.0 or ws.ball_vz > 0.0 or ws.ball_max_height > 0.0 else "flat"
+        for agent in kicks:
+            team, rid = agent.rsplit("_", 1)
+            self.kicks[team][int(rid)] = kind
 
     # --------------------------------------------------------------- output
     def detections(self, t_capture: float, t_sent: float) -> list:
@@ -169,6 +201,12 @@ class BridgeWorld:
         return [sim_pb.RobotFeedback(id=sim_pb.RobotId(id=i, team=colour), dribbler_ball_contact=bool(held[i]))
                 for i in range(self.n)]
 
+    def take_kicks(self, team: str) -> dict[int, str]:
+        """{robot id: "flat" or "chip"} of ``team``'s kicks since the last call (grSim's
+        robot status reports them), forgotten once taken."""
+        kicks, self.kicks[team] = self.kicks[team], {}
+        return kicks
+
     # ---------------------------------------------------------------- input
     def _error(self, errors: list, code: str, message: str) -> None:
         self.stats[f"error:{code}"] += 1
@@ -189,7 +227,7 @@ class BridgeWorld:
             for e in errs:
                 self._error(errors, e.code, e.message)
             if action is not None:
-                self._set_command(team, cmd.id, action)
+                self._set_command(team, cmd.id, action, errors)
         return errors
 
     def grsim_packet(self, packet: grsim_pb.grSim_Packet) -> tuple[str | None, list[CommandError]]:
@@ -209,7 +247,7 @@ class BridgeWorld:
                     for e in errs:
                         self._error(errors, e.code, e.message)
                     if action is not None:
-                        self._set_command(team, cmd.id, action)
+                        self._set_command(team, cmd.id, action, errors)
         if packet.HasField("replacement"):
             rep = packet.replacement
             control = sim_pb.SimulatorControl()
@@ -227,8 +265,13 @@ class BridgeWorld:
             errors += self.simulator_control(control)
         return team, errors
 
-    def _set_command(self, team: str, rid: int, action: np.ndarray) -> None:
-        self.commands[team][rid] = action
+    def _set_command(self, team: str, rid: int, action: np.ndarray, errors: list) -> None:
+        """Store a decoded (6,) command; in a world without chip kicks a chip is kicked
+        flat (its chip entry dropped) with an error."""
+        if self.action_dim < action.shape[-1] and action[self.action_dim:].max() > 0 and action[4] > 0:
+            self._error(errors, "CHIP_KICK_UNSUPPORTED", f"{team} robot {rid}: this world has chip kicks off "
+                                                         "(WorldConfig.chip_kicks); kicked flat")
+        self.commands[team][rid] = action[:self.action_dim]
         self.command_time[team][rid] = self.t
         self.stats["commands"] += 1
         self.stats[f"commands:{team}"] += 1
