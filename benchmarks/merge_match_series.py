@@ -1,7 +1,7 @@
 """Merge match-series JSON parts (``ssl-marl match --matches K --json PART``) into one series file.
 
-A long series can be played in parts (e.g. 2 matches per part, seeds S, S+2, ...), so that
-an interrupted run keeps what it finished; this writes the same record one
+A series can be played in parts (seeds S..S+k-1, S+k..., e.g. to extend a finished series or
+to split it over machines); this writes the same record one
 ``ssl-marl match --matches N --json OUT`` would (``ssl_marl.runners.result.write_series_file``:
 OUT with the summary, ``<stem>.matches.csv.gz`` with the matches in seed order,
 ``<stem>.manifest.json``), the summary recomputed by ``ssl_marl.runners.result.summarize``
