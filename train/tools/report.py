@@ -71,6 +71,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "passing_series": lambda r: t.series(r, PASSING_SERIES),
     "series_600_formats": lambda r: t.series_600(r, SERIES_600_SSL),
     "attack_series": lambda r: t.series_600(r, ATTACK_SERIES),
+    "league_anchors": lambda r: t.league(r, "league_anchors"),
     "passing_contested_kick": lambda r: t.tuning(r, [("`contested_kick` on", "passing_contested_kick.json",
                                                       "contested_kick_on"),
                                                      ("`contested_kick` off (the default)",

@@ -182,6 +182,15 @@ def series_600(results: Path, names: Iterable[str]) -> Lines:
     return rows
 
 
+def league(results: Path, name: str) -> Lines:
+    """The ratings table of a league folder (``results/<name>/league.json``), as
+    :func:`ssl_marl.runners.league.ratings_markdown` writes it."""
+    from ssl_marl.runners.league import ratings_markdown
+
+    text = ratings_markdown(json.loads((results / name / "league.json").read_text()))
+    return [ln for ln in text.splitlines() if ln.startswith("|")]
+
+
 def tuning(results: Path, entries: Iterable[tuple[str, str, str | None]]) -> Lines:
     """Tuning match sets (``results/tuning/*.json``): (label, file, key inside it or None)."""
     rows = _head("variant", "opponent", "seeds", "matches", "W-D-L (blue)", "goals", "shots (blue / yellow)",
