@@ -46,7 +46,7 @@ PASSING_SERIES = ["match_passing_learned_vs_baseline_snap", "match_passing_learn
 SERIES_600_SSL = ["match_passing_learned_vs_baseline_600_plain", "match_passing_learned_vs_baseline_600_ssl"]
 ATTACK_SERIES = ["match_attack_learned_vs_baseline_600", "match_attack_learned_vs_passing_learned_600",
                  "match_attack_learned_selfplay_600", "match_attack_learned_vs_baseline_600_realistic",
-                 "match_attack_learned_vs_baseline_600_div_a_11v11"]
+                 "match_attack_learned_vs_baseline_600_div_a_11v11", "match_attack_learned_vs_attack_baseline_600"]
 KEEPAWAY = [("random", "keepaway_random"), ("always-hold", "keepaway_always-hold"),
             ("hand-coded", "keepaway_handcoded"), ("learned (shipped `keepaway.pt`, MAPPO seed 1)", "keepaway_learned")]
 ATTACK = [("hand-coded (cost decision, shot threshold 0.25)", "attack_3v2_handcoded_snap"),
