@@ -10,7 +10,8 @@ times, path margins, shot value and pass value). Every option's value is
   the goal); its success and value are folded into one number in [0, 1].
 * **Flat pass** to teammate ``k`` at ``q``: ``P_flat * result(q)`` with ``P_flat`` the
   pass success of :func:`~ssl_marl.plays.pass_decision.evaluate_passes` and
-  ``result(q) = w_receiver_shot * shot_value(q) + w_progress * progress + w_possession``.
+  ``result(q) = w_receiver_shot * shot_value(q) + w_progress * progress + w_possession``
+  (:func:`~ssl_marl.plays.pass_decision.receive_value`).
 * **Chip pass** to ``k``: ``P_chip * chip_receive_factor * result(q)``. The chip is
   kicked at the steepest elevation in ``chip_angles`` whose 3-D speed stays under the
   kicker cap with the first bounce ``land_short_m`` short of ``q`` (drag-free
@@ -52,8 +53,9 @@ import numpy as np
 from ..physics.ball_flight import flight_height, speed_for_range
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
-from .pass_decision import (Choice, DecisionParams, choose, evaluate_passes, keep_value, open_goal_interval,
-                            opponent_reach_time, shot_value, valid_receive_point)
+from .pass_decision import (Choice, DecisionParams, choose, evaluate_passes, keep_value, margin_success,
+                            open_goal_interval, opponent_reach_time, pass_candidates, receive_value, shot_value,
+                            teammates_except)
 
 
 class AttackChoice(enum.Enum):
@@ -185,31 +187,18 @@ def evaluate_chips(p: np.ndarray, receive_points: dict[int, np.ndarray], teammat
     opp = np.asarray(opponents, float).reshape(-1, 2)
     mates = np.asarray(teammates, float).reshape(-1, 2)
     out = []
-    for k, q in receive_points.items():
-        q = np.asarray(q, float)
-        length = float(np.hypot(*(q - p)))
-        if not (params.min_chip_m <= length <= dp.max_pass_m) or not valid_receive_point(q, field_geom):
-            continue
+    for k, q, length in pass_candidates(p, receive_points, params.min_chip_m, dp.max_pass_m, field_geom):
         kick = next(((a, ck) for a in params.chip_angles
                      if (ck := chip_kick(length, a, params.land_short_m, rp, bp)) is not None), None)
         if kick is None:
             continue
         angle, (speed, _) = kick
         margin = chip_margin(p, q, speed, angle, opp, rp, bp, dp, params.chip_samples)
-        success = min(max((margin - dp.pass_margin_lo) / (dp.pass_margin_hi - dp.pass_margin_lo), 0.0), 1.0)
-        others = np.delete(mates, k, axis=0) if 0 <= k < len(mates) else mates
-        result = pass_result(p, q, opp, others, field_geom, rp, bp, dp)
+        success = margin_success(margin, dp)
+        result = receive_value(p, q, shot_value(q, opp, teammates_except(mates, k), field_geom, rp, bp, dp), dp)
         out.append(AttackOption(AttackChoice.CHIP, int(k), q, speed, angle, success,
                                 float(success * params.chip_receive_factor * result)))
     return tuple(out)
-
-
-def pass_result(p: np.ndarray, q: np.ndarray, opponents: np.ndarray, others: np.ndarray, field_geom: FieldGeometry,
-                rp: RobotParams, bp: BallParams, dp: DecisionParams) -> float:
-    """Value of the ball controlled at ``q`` (the flat pass's result term)."""
-    progress = min(max((float(q[0]) - float(p[0])) / dp.progress_scale_m, -1.0), 1.0)
-    return (dp.w_receiver_shot * shot_value(q, opponents, others, field_geom, rp, bp, dp) + dp.w_progress * progress
-            + dp.w_possession)
 
 
 # -------------------------------------------------------------- redirect
@@ -240,7 +229,7 @@ def evaluate_redirects(p: np.ndarray, flat: tuple, teammates: np.ndarray, oppone
     mates = np.asarray(teammates, float).reshape(-1, 2)
     out = []
     for o in flat:
-        others = np.delete(mates, o.teammate, axis=0) if 0 <= o.teammate < len(mates) else mates
+        others = teammates_except(mates, o.teammate)
         aim, deflection, _ = redirect_geometry(o.point, p, np.concatenate([opp, others]), field_geom, rp, bp)
         f = redirect_factor(deflection, params.redirect_full, params.redirect_zero)
         if f <= 0.0 or o.receiver_shot < params.min_redirect_shot:
@@ -284,5 +273,5 @@ def decide_attack(p: np.ndarray, carrier: int, teammates: np.ndarray, opponents:
 
 
 __all__ = ["AttackChoice", "AttackParams", "AttackOption", "AttackDecision", "chip_kick", "chip_margin",
-           "evaluate_chips", "pass_result", "redirect_factor", "redirect_geometry", "evaluate_redirects",
+           "evaluate_chips", "redirect_factor", "redirect_geometry", "evaluate_redirects",
            "decide_attack"]

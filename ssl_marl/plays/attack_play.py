@@ -35,10 +35,10 @@ from ..physics.params import BallParams
 from .assignment import Assignment
 from .attack_decision import AttackChoice, AttackDecision, AttackOption, AttackParams, decide_attack
 from .chip_pass_tactic import ChipPass
-from .pass_coordinator import CarrierDecider, CarrierRequest, PassCoordinator, PassingParams, PassPhase
+from .pass_coordinator import CarrierDecider, CarrierRequest, PassCoordinator, PassingParams, PassPlan
 from .pass_decision import Choice, Decision, PassOption
 from .passing_play import restart_applicable
-from .passing_roles import only_robot, passing_attacker_role
+from .passing_roles import passer_role, passing_attacker_role, receiver_role
 from .play import (OPTIONAL_ROLE_UNFILLED_COST, Play, PlayContext, RoleDef, defender_role, defense_play, goalie_role,
                    mark_role, offense_applicable)
 from .receive_tactic import ReceiveState
@@ -138,43 +138,31 @@ def _plan_option(coord: PassCoordinator, decider: AttackDecider) -> AttackOption
 
 
 def chip_passer_role(coord: PassCoordinator, decider: AttackDecider, priority: int = 95) -> RoleDef:
-    def target(ctx: PlayContext) -> np.ndarray | None:
-        return np.asarray(ctx.ball, float) if coord.plan is not None else None
+    """:func:`~ssl_marl.plays.passing_roles.passer_role` with
+    :class:`~ssl_marl.plays.chip_pass_tactic.ChipPass`: the chosen chip's elevation and
+    speed (0 for a flat pass), a pass into a redirect kicked to arrive firmer."""
 
-    def update(t: Tactic, ctx: PlayContext, a: Assignment) -> None:
-        plan = coord.plan
-        if plan is None:
-            return
+    def extra(ctx: PlayContext, plan: PassPlan) -> dict:
         o = _plan_option(coord, decider)
         chip = o is not None and o.kind is AttackChoice.CHIP
-        ready = ctx.role_status.get("receiver")
-        t.set_params(target_robot=plan.receiver, target_point=(float(plan.point[0]), float(plan.point[1])),
-                     receiver_ready=plan.urgent or (ready is not None and ready.state is ReceiveState.READY),
-                     chip_angle=o.chip_angle if chip else 0.0, chip_speed=o.kick_speed if chip else 0.0,
-                     arrival_speed=decider.params.redirect_arrive_speed
-                     if o is not None and o.kind is AttackChoice.REDIRECT else 2.0)
+        return dict(chip_angle=o.chip_angle if chip else 0.0, chip_speed=o.kick_speed if chip else 0.0,
+                    arrival_speed=decider.params.redirect_arrive_speed
+                    if o is not None and o.kind is AttackChoice.REDIRECT else 2.0)
 
-    return RoleDef("passer", priority, ChipPass, target, update=update,
-                   cost=only_robot(lambda ctx: coord.plan.passer if coord.plan else None), unfilled_cost=20.0)
+    return passer_role(coord, priority, ChipPass, extra)
 
 
 def redirect_receiver_role(coord: PassCoordinator, decider: AttackDecider, priority: int = 94) -> RoleDef:
-    def target(ctx: PlayContext) -> np.ndarray | None:
-        return coord.plan.point if coord.plan is not None else None
+    """:func:`~ssl_marl.plays.passing_roles.receiver_role` with
+    :class:`~ssl_marl.plays.redirect_tactic.Redirect`: for a pass into a redirect, the aim
+    point of the one-touch shot; otherwise an ordinary reception."""
 
-    def update(t: Tactic, ctx: PlayContext, a: Assignment) -> None:
-        plan = coord.plan
-        if plan is None:
-            return
+    def extra(ctx: PlayContext, plan: PassPlan) -> dict:
         o = _plan_option(coord, decider)
-        src = ctx.ball if plan.phase is PassPhase.SETUP else ctx.our_pos[plan.passer]
         aim = o.aim if o is not None and o.kind is AttackChoice.REDIRECT else None
-        t.set_params(receive_point=(float(plan.point[0]), float(plan.point[1])),
-                     ball_from=(float(src[0]), float(src[1])),
-                     redirect_target=None if aim is None else (float(aim[0]), float(aim[1])))
+        return dict(redirect_target=None if aim is None else (float(aim[0]), float(aim[1])))
 
-    return RoleDef("receiver", priority, Redirect, target, update=update,
-                   cost=only_robot(lambda ctx: coord.plan.receiver if coord.plan else None), unfilled_cost=20.0)
+    return receiver_role(coord, priority, Redirect, extra)
 
 
 def spot_support_role(k: int, planner: SpotPlanner, priority: int) -> RoleDef:
@@ -195,8 +183,8 @@ def spot_support_role(k: int, planner: SpotPlanner, priority: int) -> RoleDef:
 def attack_roles(coord: PassCoordinator, decider: AttackDecider, planner: SpotPlanner) -> tuple[RoleDef, ...]:
     """The roles of the attacking plays, in priority order (as the passing plays')."""
     return (goalie_role(100), chip_passer_role(coord, decider, 95), redirect_receiver_role(coord, decider, 94),
-            passing_attacker_role(coord, 90, aim_open_goal=True), defender_role(0, 80), spot_support_role(0, planner, 80),
-            spot_support_role(1, planner, 70), defender_role(1, 70), mark_role(0, 60),
+            passing_attacker_role(coord, 90, aim_open_goal=True), defender_role(0, 80),
+            spot_support_role(0, planner, 80), spot_support_role(1, planner, 70), defender_role(1, 70), mark_role(0, 60),
             spot_support_role(2, planner, 60), mark_role(1, 50), defender_role(2, 50),
             spot_support_role(3, planner, 40), mark_role(2, 40))
 

@@ -377,6 +377,36 @@ def valid_receive_point(q: np.ndarray, field: FieldGeometry, margin: float = 0.1
                 and not field.in_defense_area(q, +1, 0.1))
 
 
+def pass_candidates(p: np.ndarray, receive_points: dict[int, np.ndarray], min_m: float, max_m: float,
+                    field: FieldGeometry) -> list[tuple[int, np.ndarray, float]]:
+    """``(teammate, receive point, length)`` of each ``{teammate: point}`` a pass from ``p``
+    may go to: ``min_m`` to ``max_m`` metres long, at a :func:`valid_receive_point`."""
+    out = []
+    for k, q in receive_points.items():
+        q = np.asarray(q, float)
+        length = float(np.hypot(*(q - p)))
+        if min_m <= length <= max_m and valid_receive_point(q, field):
+            out.append((k, q, length))
+    return out
+
+
+def margin_success(margin: float, params: DecisionParams) -> float:
+    """Pass success P in [0, 1] of a path margin (s): 0 at ``pass_margin_lo``, 1 at ``pass_margin_hi``."""
+    return min(max((margin - params.pass_margin_lo) / (params.pass_margin_hi - params.pass_margin_lo), 0.0), 1.0)
+
+
+def receive_value(p: np.ndarray, q: np.ndarray, receiver_shot: float, params: DecisionParams) -> float:
+    """Value of the ball controlled at ``q`` after a pass from ``p`` (a pass's result term):
+    ``w_receiver_shot * receiver_shot + w_progress * progress + w_possession``."""
+    progress = min(max((float(q[0]) - float(p[0])) / params.progress_scale_m, -1.0), 1.0)
+    return params.w_receiver_shot * receiver_shot + params.w_progress * progress + params.w_possession
+
+
+def teammates_except(mates: np.ndarray, k: int) -> np.ndarray:
+    """``mates`` (n, 2) without row ``k`` (all of them when ``k`` is not a row)."""
+    return np.delete(mates, k, axis=0) if 0 <= k < len(mates) else mates
+
+
 def evaluate_passes(p: np.ndarray, receive_points: dict[int, np.ndarray], teammates: np.ndarray,
                     opponents: np.ndarray, field: FieldGeometry, rp: RobotParams, bp: BallParams,
                     params: DecisionParams, heading: float | None = None) -> tuple[PassOption, ...]:
@@ -388,22 +418,15 @@ def evaluate_passes(p: np.ndarray, receive_points: dict[int, np.ndarray], teamma
     opp = np.asarray(opponents, float).reshape(-1, 2)
     mates = np.asarray(teammates, float).reshape(-1, 2)
     out = []
-    for k, q in receive_points.items():
-        q = np.asarray(q, float)
-        length = float(np.hypot(*(q - p)))
-        if not (params.min_pass_m <= length <= params.max_pass_m) or not valid_receive_point(q, field):
-            continue
+    for k, q, length in pass_candidates(p, receive_points, params.min_pass_m, params.max_pass_m, field):
         v0 = pass_kick_speed(length, bp, rp, params)
         margin = path_margin(p, q, v0, opp, rp, bp, params)
         if heading is not None:
             turn = abs(math.remainder(math.atan2(q[1] - p[1], q[0] - p[0]) - heading, 2.0 * math.pi))
             margin -= turn / params.turn_rate
-        success = min(max((margin - params.pass_margin_lo) / (params.pass_margin_hi - params.pass_margin_lo), 0.0),
-                      1.0)
-        others = np.delete(mates, k, axis=0) if 0 <= k < len(mates) else mates
-        recv_shot = shot_value(q, opp, others, field, rp, bp, params)
-        progress = min(max((float(q[0]) - float(p[0])) / params.progress_scale_m, -1.0), 1.0)
-        value = success * (params.w_receiver_shot * recv_shot + params.w_progress * progress + params.w_possession)
+        success = margin_success(margin, params)
+        recv_shot = shot_value(q, opp, teammates_except(mates, k), field, rp, bp, params)
+        value = success * receive_value(p, q, recv_shot, params)
         out.append(PassOption(int(k), q, v0, margin, success, recv_shot, float(value)))
     return tuple(out)
 
@@ -457,4 +480,5 @@ def choose(shot: float, keep: float, options: tuple, params: DecisionParams) -> 
 
 __all__ = ["DecisionParams", "Choice", "PassOption", "Decision", "motion_time", "opponent_reach_time",
            "path_margins", "path_margin", "pass_success", "pass_kick_speeds", "open_goal_interval", "shot_value",
-           "pass_kick_speed", "keep_value", "valid_receive_point", "evaluate_passes", "choose", "decide"]
+           "pass_kick_speed", "keep_value", "valid_receive_point", "pass_candidates", "margin_success",
+           "receive_value", "teammates_except", "evaluate_passes", "choose", "decide"]

@@ -15,7 +15,7 @@ from typing import Callable
 import numpy as np
 
 from .assignment import Assignment
-from .pass_coordinator import PassCoordinator, PassPhase
+from .pass_coordinator import PassCoordinator, PassPhase, PassPlan
 from .pass_tactic import Pass
 from .play import PlayContext, RoleDef, defender_role, goalie_role, mark_role, _filled_index, _support_band
 from .receive_tactic import Receive, ReceiveState
@@ -39,7 +39,12 @@ def only_robot(robot_of: Callable[[PlayContext], int | None]) -> Callable[[PlayC
     return cost
 
 
-def passer_role(coord: PassCoordinator, priority: int = 95) -> RoleDef:
+def passer_role(coord: PassCoordinator, priority: int = 95, tactic: type[Tactic] = Pass,
+                extra: Callable[[PlayContext, PassPlan], dict] | None = None) -> RoleDef:
+    """The plan's passer: ``tactic`` (a :class:`~ssl_marl.plays.pass_tactic.Pass`) told the
+    receiver, the receive point and whether the receiver is READY (or the plan urgent);
+    ``extra(ctx, plan)`` adds tactic parameters (e.g. a chip's elevation)."""
+
     def target(ctx: PlayContext) -> np.ndarray | None:
         return np.asarray(ctx.ball, float) if coord.plan is not None else None
 
@@ -49,13 +54,19 @@ def passer_role(coord: PassCoordinator, priority: int = 95) -> RoleDef:
             return
         ready = ctx.role_status.get("receiver")
         t.set_params(target_robot=plan.receiver, target_point=(float(plan.point[0]), float(plan.point[1])),
-                     receiver_ready=plan.urgent or (ready is not None and ready.state in (ReceiveState.READY,)))
+                     receiver_ready=plan.urgent or (ready is not None and ready.state is ReceiveState.READY),
+                     **(extra(ctx, plan) if extra is not None else {}))
 
-    return RoleDef("passer", priority, Pass, target, update=update,
+    return RoleDef("passer", priority, tactic, target, update=update,
                    cost=only_robot(lambda ctx: coord.plan.passer if coord.plan else None), unfilled_cost=20.0)
 
 
-def receiver_role(coord: PassCoordinator, priority: int = 94) -> RoleDef:
+def receiver_role(coord: PassCoordinator, priority: int = 94, tactic: type[Tactic] = Receive,
+                  extra: Callable[[PlayContext, PassPlan], dict] | None = None) -> RoleDef:
+    """The plan's receiver: ``tactic`` (a :class:`~ssl_marl.plays.receive_tactic.Receive`)
+    told the receive point and where the ball comes from (the ball during the setup, the
+    passer in flight); ``extra(ctx, plan)`` adds tactic parameters (e.g. a redirect's aim)."""
+
     def target(ctx: PlayContext) -> np.ndarray | None:
         return coord.plan.point if coord.plan is not None else None
 
@@ -65,9 +76,9 @@ def receiver_role(coord: PassCoordinator, priority: int = 94) -> RoleDef:
             return
         src = ctx.ball if plan.phase is PassPhase.SETUP else ctx.our_pos[plan.passer]
         t.set_params(receive_point=(float(plan.point[0]), float(plan.point[1])),
-                     ball_from=(float(src[0]), float(src[1])))
+                     ball_from=(float(src[0]), float(src[1])), **(extra(ctx, plan) if extra is not None else {}))
 
-    return RoleDef("receiver", priority, Receive, target, update=update,
+    return RoleDef("receiver", priority, tactic, target, update=update,
                    cost=only_robot(lambda ctx: coord.plan.receiver if coord.plan else None), unfilled_cost=20.0)
 
 

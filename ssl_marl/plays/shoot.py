@@ -41,6 +41,7 @@ from ..skills.base import SkillStatus, make_action
 from ..skills.baseline import DriveForward
 from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance, heading_between_posts
 from ..skills.navigation import NavigateToPoint, NavParams, defense_rect, facing_towards, push_out_of_rect
+from .pass_decision import open_goal_interval
 from .tactic_base import NEAR_BALL_M, Tactic, skill_status
 
 
@@ -249,13 +250,10 @@ class GoToBallAndShoot(Tactic):
                                      self.params.approach_decel)
         return action
 
-
     def open_goal_action(self, world: WorldState, robot: int) -> np.ndarray | None:
         """``aim_open_goal`` (see :class:`ShootParams`): a full-strength kick when the
         heading lies inside the widest open part of the goal mouth, else a turn towards
         its centre with the dribbler on; None when no part is ``open_aim_min`` wide."""
-        from .pass_decision import open_goal_interval
-
         p = self.params
         ts = world.team(world.frame)
         others = np.concatenate([np.delete(ts.pos, robot, axis=0), world.opponents(world.frame).pos])

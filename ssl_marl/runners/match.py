@@ -270,7 +270,8 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
                   realism=realism if isinstance(realism, str) else repr(realism), realtime=realtime,
                   no_progress_s=env.config.match.no_progress_s,
                   tracker=hasattr(env, "raw_vision_state"),
-                  start_jitter_m=start_jitter_m, restart_jitter_m=rules.restart_jitter_m, render=str(render) if render is not None else None,
+                  start_jitter_m=start_jitter_m, restart_jitter_m=rules.restart_jitter_m,
+                  render=str(render) if render is not None else None,
                   skills={t: _json_safe(getattr(c, "skills", None)) for t, c in ctrls.items()})
     decisions = {t: decision_label(k, d) for t, k, _, d in teams}
     if any(v not in (None, "handcoded") for v in decisions.values()):
