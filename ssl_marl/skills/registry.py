@@ -180,6 +180,19 @@ class SkillDef:
         return self.learned_class()(field, robot, ball, checkpoint=checkpoint, **kwargs)
 
 
+def direct_env_action(expand: Callable[[Any], np.ndarray], skill: str, residual_spec: str, learned: str,
+                      env: str, action3: Any, mapping: str | None = None) -> np.ndarray:
+    """``to_env_action`` of a skill task with a ``direct`` and a ``residual`` action form
+    (bind the first five arguments with :func:`functools.partial`): ``expand(action3)``
+    for a direct action; a residual action is a correction of the hand-coded skill's
+    action and needs the world state, so it is refused (ValueError naming ``learned`` and
+    ``env``, which apply it)."""
+    if mapping == "residual":
+        raise ValueError(f"a residual {skill} action ({residual_spec}) is a correction of the hand-coded {skill}'s "
+                         f"action and needs the world state: use {learned} or {env}(action_form='residual')")
+    return expand(action3)
+
+
 _REGISTRY: dict[str, SkillDef] = {}
 _LOADED = False
 
@@ -257,4 +270,4 @@ def get_task(name: str) -> SkillTaskDef:
 
 
 __all__ = ["SKILL_KINDS", "PRETRAINED_DIR", "SkillDef", "SkillTaskDef", "register", "all_skills", "skill_names",
-           "task_skills", "learned_skills", "cli_choices", "get_skill", "get_task", "resolve_ref"]
+           "task_skills", "learned_skills", "cli_choices", "get_skill", "get_task", "resolve_ref", "direct_env_action"]

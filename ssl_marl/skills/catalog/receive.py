@@ -9,19 +9,16 @@ shipped actor, when there is one, is residual (docs/RESULTS.md, "Passing skills"
 
 from __future__ import annotations
 
+import functools
+
 from ..passing import ReceiveBaseline
 from ..passing_features import (RECEIVE_ACTION_FORMS, RECEIVE_NAMES, expand_receive_action, receive_features,
                                 receive_task_action)
-from ..registry import PRETRAINED_DIR, SkillDef, SkillTaskDef, register
+from ..registry import PRETRAINED_DIR, SkillDef, SkillTaskDef, direct_env_action, register
 
 _ACTOR = PRETRAINED_DIR / "receive.pt"
-
-
-def _to_env(action3, mapping: str | None = None):
-    if mapping == "residual":
-        raise ValueError("a residual receive action (receive/v2) is a correction of the hand-coded receive's action "
-                         "and needs the world state: use LearnedReceive or ReceiveEnv(action_form='residual')")
-    return expand_receive_action(action3)
+_to_env = functools.partial(direct_env_action, expand_receive_action,
+                            "receive", "receive/v2", "LearnedReceive", "ReceiveEnv")
 
 
 def _drive(env, skill):

@@ -8,18 +8,15 @@ kicker is always armed; robots kick on contact."""
 
 from __future__ import annotations
 
+import functools
+
 from ..redirect import (REDIRECT_ACTION_FORMS, REDIRECT_ACTIONS, REDIRECT_NAMES, RedirectBaseline,
                         expand_redirect_action, redirect_features, redirect_task_action)
-from ..registry import PRETRAINED_DIR, SkillDef, SkillTaskDef, register
+from ..registry import PRETRAINED_DIR, SkillDef, SkillTaskDef, direct_env_action, register
 
 _ACTOR = PRETRAINED_DIR / "redirect.pt"
-
-
-def _to_env(action3, mapping: str | None = None):
-    if mapping == "residual":
-        raise ValueError("a residual redirect action (redirect/v2) is a correction of the hand-coded redirect's "
-                         "action and needs the world state: use LearnedRedirect or RedirectEnv(action_form='residual')")
-    return expand_redirect_action(action3)
+_to_env = functools.partial(direct_env_action, expand_redirect_action,
+                            "redirect", "redirect/v2", "LearnedRedirect", "RedirectEnv")
 
 
 def _drive(env, skill):
