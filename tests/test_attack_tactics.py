@@ -91,3 +91,65 @@ def test_attack_team_plays_a_short_match_in_a_chip_env():
     assert fit_action(np.zeros(5, np.float32), 5).shape == (5,)
     res = play_match("attack-baseline", "baseline", robots=3, seconds=6.0, seed=3, progress=False)
     assert set(res.score) == {"blue", "yellow"}
+
+
+def test_behind_ball_waypoint_walks_round_the_ball_to_the_pass_line():
+    from ssl_marl.plays.pass_tactic import BESIDE_M, PassParams, behind_ball_waypoint
+
+    rp, p = _chip_env(1)[1], PassParams()
+    ball, target = np.array([0.0, 0.0]), np.array([3.0, 0.0])
+    back = rp.front_distance + BP.radius + p.behind_gap_m
+    # in front of the ball: first sideways (BESIDE_M off the line, on the robot's side), then back
+    np.testing.assert_allclose(behind_ball_waypoint((0.5, 0.1), math.pi, ball, target, rp, BP, p), (0.5, BESIDE_M))
+    np.testing.assert_allclose(behind_ball_waypoint((0.5, 0.32), math.pi, ball, target, rp, BP, p),
+                               (-back, BESIDE_M))
+    np.testing.assert_allclose(behind_ball_waypoint((-0.05, -0.1), 0.0, ball, target, rp, BP, p),
+                               (-0.05, -BESIDE_M))
+    # beside and behind: the staging point on the line
+    np.testing.assert_allclose(behind_ball_waypoint((-0.5, -0.6), 0.0, ball, target, rp, BP, p), (-back, 0.0))
+    # behind on the line but facing away: still the staging point (turn there)
+    np.testing.assert_allclose(behind_ball_waypoint((-back, 0.0), math.pi / 2, ball, target, rp, BP, p), (-back, 0.0))
+    # behind, on the line, facing the target: the go-to-ball skill takes over
+    assert behind_ball_waypoint((-back, 0.01), 0.05, ball, target, rp, BP, p) is None
+    # ... unless it waits for the receiver: it stays on the staging point, off the ball
+    np.testing.assert_allclose(behind_ball_waypoint((-back, 0.01), 0.05, ball, target, rp, BP, p, wait=True),
+                               (-back, 0.0))
+
+
+def test_attack_team_takes_its_free_kick_as_a_set_piece():
+    """A free kick for blue (ball out over the side line in blue's half, nobody touched
+    it): the attacking plays plan the pass before anyone reaches the ball (a set-piece
+    plan), the kicker walks round behind the ball and passes within the free kick."""
+    from ssl_marl.envs import parallel_env
+    from ssl_marl.envs.game_control import FREE_KICK
+    from ssl_marl.plays.attack_play import attack_decider_of
+    from ssl_marl.runners.controllers import make_controller
+    from ssl_marl.runners.match import fit_action
+
+    env = parallel_env(n_blue=4, n_yellow=2, field="div_b", max_time_s=12.0, chip_kicks=True, ssl_restarts=True,
+                       fouls=True, stop_s=0.5)
+    cfg = env.config
+    blue = make_controller("attack-baseline", "blue", 4, F, robot=cfg.robot, ball=cfg.ball, dt=cfg.dt)
+    yellow = make_controller("idle", "yellow", 2, F)
+    env.reset(seed=0, options={"ball": {"pos": (-1.0, 2.9), "vel": (0.0, 2.0)},
+                               "robots": {"blue_0": (-4.0, 0.0, 0.0), "blue_1": (-2.0, 1.5, 0.0),
+                                          "blue_2": (0.5, 1.0, math.pi), "blue_3": (-0.5, -1.5, 0.0),
+                                          "yellow_0": (4.0, 0.0, math.pi), "yellow_1": (2.0, -2.0, math.pi)}})
+    coord = next(p.prepare.coordinator for p in blue.selector.plays if p.prepare is not None)
+    restart_plans, fk_seen, fouls, kicked_in_fk = 0, False, [], False
+    while env.agents and env.world_state().t < 10.0:
+        st = env.task.referee_state
+        in_fk = st.command == FREE_KICK and st.team == "blue"
+        fk_seen |= in_fk
+        actions = {k: fit_action(v, 6) for k, v in {**blue.act(env), **yellow.act(env)}.items()}
+        if coord.plan is not None and coord.plan.restart and coord.plan.phase.value == "setup":
+            restart_plans += 1
+        _, _, _, _, infos = env.step(actions)
+        ev = infos["blue_0"]["events"]
+        fouls += [e for e in ev if e["type"] == "foul"]
+        kicked_in_fk |= in_fk and any(e["type"] == "kick" and e["agent"].startswith("blue") for e in ev)
+        if coord.counters.kicked:
+            break
+    assert fk_seen and restart_plans > 0  # planned while the ball still rested at the spot
+    assert coord.counters.kicked == 1 and attack_decider_of(blue.selector.plays).counters.shoot == 0
+    assert not fouls

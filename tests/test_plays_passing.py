@@ -268,6 +268,28 @@ def test_stats_deflection_is_not_control_and_timeout_loses_the_pass():
         tr.observe(make_world(blue=[(0, 0, 0)], frame="blue"))
 
 
+def test_stats_count_set_pieces_and_their_goals():
+    """A free kick for blue taken as a pass, the receiver scores: a set-piece pass and a
+    set-piece goal; after yellow's free kick, yellow's kick and then a blue control end
+    yellow's set-piece possession, so blue's next goal is no set-piece goal."""
+    tr = MatchStatsTracker(F, BP)
+    w = _kick_world((0.0, 0.0), (3.0, 0.0), [(2.5, 0.1)], opp=[(1.0, 2.0)])
+    tr.observe(w, [{"type": "referee", "command": "FREE_KICK", "team": "blue", "position": [0.0, 0.0], "t": 0.0}])
+    tr.observe(w, [{"type": "kick", "agent": "blue_0", "speed": 3.0}])
+    tr.observe(_kick_world((2.0, 0.0), (6.0, 0.3), []), [{"type": "kick", "agent": "blue_0", "speed": 6.0}])
+    tr.observe(w, [{"type": "goal", "team": "blue", "t": 1.0}])
+    s = tr.summary()["blue"]
+    assert (s["set_pieces"], s["set_piece_passes"], s["set_piece_shots"], s["goals_set_piece"]) == (1, 1, 0, 1)
+    tr.observe(w, [{"type": "referee", "command": "FREE_KICK", "team": "yellow", "position": [0.0, 0.0], "t": 2.0}])
+    tr.observe(w, [{"type": "kick", "agent": "yellow_0", "speed": 3.0}])
+    for k in range(6):  # blue controls the ball: yellow's set-piece possession is over
+        tr.observe(_kick_world((0.0, 0.0), (0.0, 0.0), [(2.5, 0.1)], on_blue=[False, True], t=2.5 + k / 60))
+    tr.observe(w, [{"type": "goal", "team": "yellow", "t": 3.0}])
+    s = tr.summary()
+    assert s["yellow"]["set_pieces"] == 1 and s["yellow"]["goals_set_piece"] == 0
+    assert s["blue"]["goals_set_piece"] == 1
+
+
 # ------------------------------------------------------------- in the simulator
 def _run_pass(env, passer, receiver, steps, tracker=None):
     """Drive blue_0 (Pass) and blue_1 (Receive) with the handshake wired as a play does."""

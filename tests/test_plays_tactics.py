@@ -326,6 +326,32 @@ def test_mark_states():
     assert Mark.transition(MarkState.NO_TARGET, Mark.Inputs(True), Mark.Params()) is MarkState.MARK
 
 
+def test_shot_blocking_mark_closes_the_goal_the_goalie_leaves_open():
+    """A supporter waiting for a one-touch redirect at (-2.5, 1.5), our goalie at the
+    near post: the block_shot mark stands on the supporter's line to the open far part
+    of the goal, and leaves it less open than the ordinary mark does."""
+    from ssl_marl.physics.params import BallParams, RobotParams
+    from ssl_marl.plays.defense import shot_block_position
+    from ssl_marl.plays.pass_decision import open_goal_interval
+
+    rp, bp = RobotParams(), BallParams()
+    opp, goalie, ball = np.array([-2.5, 1.5]), np.array([-F.half_length + 0.15, 0.35]), np.array([0.5, -1.5])
+
+    def open_angle(marker):  # seen from the supporter, mirrored to the +x goal
+        return open_goal_interval(-opp, -np.array([goalie, marker]), F, rp, bp)[0]
+
+    block = shot_block_position(opp, goalie[None], F, rp, bp, distance=0.35)
+    plain = mark_position(opp, ball, F)
+    assert np.hypot(*(block - opp)) == pytest.approx(0.35)
+    assert block[1] < opp[1] and block[0] < opp[0]  # towards the far (lower) part of our goal
+    assert open_angle(block) < 0.5 * open_angle(plain)
+    ws = make_world(blue=[(-F.half_length + 0.15, 0.35, 0.0), (-2.0, 0.0, 0.0)], yellow=[(-2.5, 1.5, 0.0)],
+                    ball=(0.5, -1.5), frame="blue")
+    tac = Mark(F, opponent=0, block_shot=True)
+    tac.act(ws, 1)
+    assert tac.mark_target(ws) == pytest.approx(block)
+
+
 # ------------------------------------------------------------------- support
 def test_support_takes_open_space_ahead_in_opponent_half():
     opps = [(2.0, 1.0, math.pi), (2.0, -1.0, math.pi)]

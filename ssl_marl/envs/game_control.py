@@ -76,6 +76,10 @@ class RefereeState:
         kickoff / free kick for the other team."""
         return self.command == STOP or (self.command in (KICKOFF, FREE_KICK) and self.team != team)
 
+    def is_set_piece_for(self, team: str) -> bool:
+        """True during a kickoff or free kick for ``team`` (not yet taken)."""
+        return self.command in (KICKOFF, FREE_KICK) and self.team == team
+
     def to_dict(self) -> dict:
         return {"command": self.command, "team": self.team,
                 "position": None if self.position is None else list(self.position), "since": self.since}

@@ -14,7 +14,13 @@ pass/receive handshake; restart, offense and defense plays) with three changes:
   pass into a redirect, else an ordinary reception);
 * the supports stand on spots rated by :mod:`~ssl_marl.plays.spot_rating` (re-rated
   every ``rate_every`` ticks, one spot per support role, greedy so that no two share a
-  spot or a lane) with :class:`~ssl_marl.plays.spot_support_tactic.SpotSupport`.
+  spot or a lane) with :class:`~ssl_marl.plays.spot_support_tactic.SpotSupport`;
+* the marks (in attack and in the defense play) stand on the marked opponent's line to
+  the part of our goal the goalie leaves open (``block_shot``: they block its one-touch
+  redirect and its shot after a reception);
+* restarts are set pieces under SSL game control (``decide_at_restart``): the kick is
+  decided before the kicker reaches the ball and the passer walks up behind the ball on
+  the pass line (``approach_behind``).
 
 The coordinator's setup check of the flat lane is off (``abort_margin_s = -inf``): a
 chip is chosen exactly when the flat lane is blocked.
@@ -47,8 +53,10 @@ from .spot_rating import SpotParams, assign_spots, candidate_grid
 from .spot_support_tactic import SpotSupport
 from .tactic_base import Tactic
 
-#: the attacking team's pass plan: no setup abort on the flat lane (chips go over it)
-ATTACK_PASSING = PassingParams(abort_margin_s=-math.inf)
+#: the attacking team's pass plan: no setup abort on the flat lane (chips go over it);
+#: restarts are set pieces (decided before the kicker reaches the ball); a pass whose
+#: ball lies dead after the kick is dropped at once
+ATTACK_PASSING = PassingParams(abort_margin_s=-math.inf, decide_at_restart=True, dead_ball_s=0.6)
 
 
 @dataclass
@@ -82,7 +90,7 @@ class AttackDecider:
         ours = ctx.world.team(ctx.team)
         params = AttackParams(**{**vars(self.params), "decision": request.params})
         d = decide_attack(ctx.ball, request.carrier, ours.pos, ctx.opp_pos, ctx.field, ctx.robot, request.ball,
-                          params, candidates=request.candidates, heading=float(ours.heading[request.carrier]))
+                          params, candidates=request.candidates, heading=request.heading)
         self.last = d
         name = "pass_" if d.choice is AttackChoice.PASS else d.choice.value
         setattr(self.counters, name, getattr(self.counters, name) + 1)
@@ -146,7 +154,7 @@ def chip_passer_role(coord: PassCoordinator, decider: AttackDecider, priority: i
         o = _plan_option(coord, decider)
         chip = o is not None and o.kind is AttackChoice.CHIP
         return dict(chip_angle=o.chip_angle if chip else 0.0, chip_speed=o.kick_speed if chip else 0.0,
-                    arrival_speed=decider.params.redirect_arrive_speed
+                    approach_behind=plan.restart, arrival_speed=decider.params.redirect_arrive_speed
                     if o is not None and o.kind is AttackChoice.REDIRECT else 2.0)
 
     return passer_role(coord, priority, ChipPass, extra)
@@ -184,9 +192,9 @@ def attack_roles(coord: PassCoordinator, decider: AttackDecider, planner: SpotPl
     """The roles of the attacking plays, in priority order (as the passing plays')."""
     return (goalie_role(100), chip_passer_role(coord, decider, 95), redirect_receiver_role(coord, decider, 94),
             passing_attacker_role(coord, 90, aim_open_goal=True), defender_role(0, 80),
-            spot_support_role(0, planner, 80), spot_support_role(1, planner, 70), defender_role(1, 70), mark_role(0, 60),
-            spot_support_role(2, planner, 60), mark_role(1, 50), defender_role(2, 50),
-            spot_support_role(3, planner, 40), mark_role(2, 40))
+            spot_support_role(0, planner, 80), spot_support_role(1, planner, 70), defender_role(1, 70),
+            mark_role(0, 60, block_shot=True), spot_support_role(2, planner, 60), mark_role(1, 50, block_shot=True),
+            defender_role(2, 50), spot_support_role(3, planner, 40), mark_role(2, 40, block_shot=True))
 
 
 def attack_plays(params: PassingParams | None = None, ball: BallParams | None = None,
@@ -206,7 +214,7 @@ def attack_plays(params: PassingParams | None = None, ball: BallParams | None = 
 
     restart = Play("restart", restart_applicable, roles, priority=1, prepare=AttackPrepare(coord, planner, True))
     offense = Play("offense_attack", offense_attack_applicable, roles, prepare=AttackPrepare(coord, planner))
-    return (restart, offense, defense_play())
+    return (restart, offense, defense_play(block_shot=True))
 
 
 def attack_decider_of(plays) -> AttackDecider | None:

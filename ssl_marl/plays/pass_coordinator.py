@@ -79,7 +79,8 @@ class PassPhase(enum.Enum):
 class PassPlan:
     """The team's current pass: passer and receiver robot indices, receive point (m),
     phase, start and kick times (s); ``urgent``: an opponent contests the ball, so the
-    passer kicks without waiting for the receiver's READY."""
+    passer kicks without waiting for the receiver's READY; ``restart``: a set piece
+    planned before the passer reached the ball."""
 
     passer: int
     receiver: int
@@ -88,6 +89,7 @@ class PassPlan:
     t_start: float
     t_kick: float | None = None
     urgent: bool = False
+    restart: bool = False
 
 
 @dataclass(frozen=True)
@@ -106,6 +108,21 @@ class PassingParams:
         control_s: the ball on the receiver's dribbler this long completes the pass (s).
         snap_shot: the attacker kicks as soon as its heading lies between the posts
             (:class:`~ssl_marl.plays.shoot.ShootParams`, ``snap_shot``).
+        decide_at_restart: at the referee's kickoff or free kick for us (``ctx.set_piece``:
+            the opponents keep 0.5 m until it is taken; the restart play's
+            ``prepare(restart=True)``) decide before anyone holds the ball: the
+            kicker is the robot on the ``attacker`` role (else our field robot nearest the
+            ball), the request says ``on_ball=False``, a pass plan opens at once and its
+            passer walks up behind the ball on the pass line (a set piece). False: decide
+            only once a carrier has settled the ball, as in open play.
+        max_restart_setup_s: a set piece's pass not kicked within this is dropped (s; it
+            includes the walk to the ball).
+        set_piece_wait_s: a set piece's passer waits at most this long (s, from the plan)
+            for the receiver's READY, then the plan turns urgent (it kicks once it faces
+            the receive point).
+        dead_ball_s: in flight, a ball slower than 0.1 m/s this long (s) after the kick
+            while the receiver neither receives nor fetches it drops the plan (the kick
+            did not leave, or the pass died on the way); None: wait ``max_flight_s``.
         contested_kick: during setup, an opponent's dribbler on the ball while the passer
             still holds it does not drop the pass: the plan turns urgent and the passer
             kicks as soon as it faces the receive point, without the receiver's READY.
@@ -127,6 +144,10 @@ class PassingParams:
     control_s: float = 0.1
     snap_shot: bool = True
     contested_kick: bool = False
+    decide_at_restart: bool = False
+    max_restart_setup_s: float = 5.0
+    set_piece_wait_s: float = 2.0
+    dead_ball_s: float | None = None
 
 
 @dataclass
@@ -152,6 +173,8 @@ class CarrierRequest:
         restart: the ball is at a restart (kickoff, free kick).
         ball: ball parameters (for the ball model).
         t: simulated time (s).
+        on_ball: the carrier holds the ball (False: a set piece decided before the
+            kicker reached it, so its heading says nothing about the kick).
     """
 
     ctx: PlayContext
@@ -161,6 +184,12 @@ class CarrierRequest:
     restart: bool
     ball: BallParams
     t: float
+    on_ball: bool = True
+
+    @property
+    def heading(self) -> float | None:
+        """The carrier's heading (rad, team frame) while it holds the ball, else None."""
+        return float(self.ctx.world.team(self.ctx.team).heading[self.carrier]) if self.on_ball else None
 
 
 @runtime_checkable
@@ -179,7 +208,7 @@ class CostDecider:
         ctx = request.ctx
         ours = ctx.world.team(ctx.team)
         return decide(ctx.ball, request.carrier, ours.pos, ctx.opp_pos, ctx.field, ctx.robot, request.ball,
-                      request.params, candidates=request.candidates, heading=float(ours.heading[request.carrier]))
+                      request.params, candidates=request.candidates, heading=request.heading)
 
 
 class PassCoordinator:
@@ -279,7 +308,10 @@ class PassCoordinator:
                 plan.phase, plan.t_kick = PassPhase.IN_FLIGHT, t
                 self.counters.kicked += 1
                 return
-            if (passer is not None and passer.state is PassState.FAILED) or t - plan.t_start > p.max_setup_s:
+            if plan.restart and t - plan.t_start > p.set_piece_wait_s:
+                plan.urgent = True
+            max_setup = p.max_restart_setup_s if plan.restart else p.max_setup_s
+            if (passer is not None and passer.state is PassState.FAILED) or t - plan.t_start > max_setup:
                 self._drop(t)
                 return
             if self._tick % p.decide_every == 0 and not (passer is not None and passer.state is PassState.KICK):
@@ -290,11 +322,21 @@ class PassCoordinator:
             return
         if t - (plan.t_kick or t) > p.max_flight_s:
             self._drop(t)
+            return
+        if p.dead_ball_s is not None and t - (plan.t_kick or t) > p.dead_ball_s \
+                and float(np.hypot(*ctx.world.ball_vel)) < 0.1 \
+                and not (receiver is not None and receiver.state in (ReceiveState.RECEIVING, ReceiveState.FETCH)):
+            self._drop(t)
 
     def _decide(self, ctx: PlayContext, t: float, restart: bool) -> None:
         p = self.params
         ours = ctx.world.team(ctx.team)
         holders = [i for i in np.flatnonzero(ours.ball_on_dribbler) if not (ctx.n >= 2 and i == 0)]
+        if not holders and restart and p.decide_at_restart and ctx.set_piece:
+            kicker = self._restart_kicker(ctx)
+            if kicker is not None:
+                self._request(ctx, t, kicker, restart=True, on_ball=False)
+                return
         if not holders:
             self.decision = None
             self._keep_since = None
@@ -313,16 +355,37 @@ class PassCoordinator:
             self._commit_until = -math.inf
         if self.decision is not None and (self._tick % p.decide_every != 0 or t < self._commit_until - 1e-9):
             return
+        self._request(ctx, t, carrier, restart)
+
+    def _restart_kicker(self, ctx: PlayContext) -> int | None:
+        """The set piece's kicker: the ``attacker`` role's robot, else our field robot
+        nearest the ball (None without field robots)."""
+        k = ctx.role_holders.get("attacker")
+        if k is not None and not (ctx.n >= 2 and k == 0):
+            return int(k)
+        field_robots = [i for i in range(ctx.n) if not (ctx.n >= 2 and i == 0)]
+        if not field_robots:
+            return None
+        d = np.hypot(*(ctx.our_pos[field_robots] - ctx.ball).T)
+        return int(field_robots[int(np.argmin(d))])
+
+    def _request(self, ctx: PlayContext, t: float, carrier: int, restart: bool, on_ball: bool = True) -> None:
+        """Ask the decider and act on its answer (keep clock, plan)."""
+        p = self.params
+        if not on_ball and self.decision is not None and self._tick % p.decide_every != 0:
+            return
         params = p.restart_decision if restart else p.decision
         cands = tuple(k for k in range(ctx.n) if k != carrier and not (ctx.n >= 2 and k == 0))
         if t < self._cooldown_until:
             cands = ()
-        d = self.decider.decide(CarrierRequest(ctx, carrier, cands, params, restart, self.bp, t))
+        d = self.decider.decide(CarrierRequest(ctx, carrier, cands, params, restart, self.bp, t, on_ball))
         if not isinstance(d, Decision):
             raise TypeError(f"PassCoordinator: the decider {type(self.decider).__name__} returned "
                             f"{type(d).__name__}, expected a Decision")
         self._commit_until = t + float(d.commit_s) if d.commit_s > 0 else -math.inf
-        if d.choice is Choice.KEEP and d.commit_s > 0:
+        if not on_ball:  # a set piece: only a pass opens; shot and keep wait for the carrier
+            self._keep_since = None
+        elif d.choice is Choice.KEEP and d.commit_s > 0:
             self._keep_since = None
         elif d.choice is Choice.KEEP:
             if self._keep_since is None:
@@ -334,7 +397,7 @@ class PassCoordinator:
         self.decision = d
         if d.choice is Choice.PASS and d.best_pass is not None:
             self.plan = PassPlan(carrier, d.best_pass.teammate, np.asarray(d.best_pass.point, float),
-                                 PassPhase.SETUP, t)
+                                 PassPhase.SETUP, t, restart=not on_ball)
             self.counters.planned += 1
 
 

@@ -33,7 +33,7 @@ from ..physics.state import WorldState, wrap_angle
 from ..skills.base import SkillStatus, make_action
 from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance
 from ..skills.motion import velocity_command
-from ..skills.navigation import facing_towards
+from ..skills.navigation import NavigateToPoint, NavParams, facing_towards
 from .shoot import govern_approach
 from .tactic_base import NEAR_BALL_M, Tactic, check_field_point, skill_status
 
@@ -70,6 +70,16 @@ class PassParams:
         hold_alpha: change of the turn rate while holding (rad/s^2; at the robot's 50
             rad/s^2 the face accelerates the ball at 4 m/s^2 sideways, near the
             dribbler's 5 m/s^2 grip).
+        approach_behind: GET_BALL with a target set walks first to a point behind the
+            ball on the line ball -> target (:func:`behind_ball_waypoint`, around the
+            ball's side when it starts in front), so that the robot takes the ball already
+            facing the target and HOLD has no turn left (a set piece; False: the go-to-ball
+            skill from wherever the robot is). It waits there, off the ball, until the
+            receiver is ready: touching a free kick's ball puts it in play.
+        behind_gap_m: the staging point's gap between the robot's front and the ball (m).
+        behind_tol_m: the robot counts as behind the ball (go-to-ball takes over) within
+            this lateral offset from the line (m) and facing the target within
+            ``kick_align_tol``.
     """
 
     target_robot: int | None = None
@@ -87,6 +97,9 @@ class PassParams:
     hold_decel: float = 2.5
     hold_alpha: float = 20.0
     arrival_speed: float | None = 2.0
+    approach_behind: bool = False
+    behind_gap_m: float = 0.08
+    behind_tol_m: float = 0.05
 
 
 @dataclass(frozen=True)
@@ -120,6 +133,7 @@ class Pass(Tactic):
         super().__init__(field, robot, ball, skills, dt, **params)
         self.go_to_ball = self._skill("go_to_ball")
         self.pass_skill = self._skill("pass")
+        self.nav = NavigateToPoint(self.field, self.rp, self.bp, NavParams(), tolerance=0.03)
         self.on_enter(self.state)
 
     def set_params(self, **changes) -> None:
@@ -173,6 +187,15 @@ class Pass(Tactic):
     def execute(self, world: WorldState, robot: int, inputs: PassInputs) -> np.ndarray:
         S, p = PassState, self.params
         if self.state is S.GET_BALL:
+            if p.approach_behind and p.target_point is not None:
+                ts = world.team(world.frame)
+                way = behind_ball_waypoint(ts.pos[robot], float(ts.heading[robot]), world.ball_pos,
+                                           np.asarray(p.target_point, float), self.rp, self.bp, p,
+                                           wait=not p.receiver_ready)
+                if way is not None:
+                    self.nav.target = way
+                    self.nav.facing = facing_towards(world.ball_pos, np.asarray(p.target_point, float))
+                    return self.nav.act(world, robot)
             a = self.go_to_ball.act(world, robot)
             if p.approach_speed is not None:
                 a = govern_approach(a, world, robot, self.rp, self.bp, p.approach_speed, p.approach_decel)
@@ -198,10 +221,46 @@ class Pass(Tactic):
         return make_action()
 
 
+#: m: a robot going round the ball to its staging point keeps this far off the pass line
+BESIDE_M = 0.35
+
+
+def behind_ball_waypoint(pos: np.ndarray, heading: float, ball: np.ndarray, target: np.ndarray, rp, bp,
+                         params: PassParams, wait: bool = False) -> np.ndarray | None:
+    """Where a robot at ``pos`` (heading rad) walks to take ``ball`` towards ``target``
+    (team frame, m): None once it stands behind the ball on the line (lateral offset
+    within ``behind_tol_m``, facing the target within ``kick_align_tol``) and need not
+    ``wait`` (for the receiver): then the go-to-ball skill drives straight on. Else the
+    staging point ``behind_gap_m`` behind the ball (front face to ball surface); a robot
+    not yet as far back as that goes round the ball at ``BESIDE_M`` off the pass line on
+    its own side: first straight sideways while nearer the line than that, then back
+    level with the staging point, so that it never pushes the ball on its way."""
+    ball, target, pos = (np.asarray(v, float) for v in (ball, target, pos))
+    d = target - ball
+    n = float(np.hypot(*d))
+    if n < 1e-6:
+        return None
+    u = d / n
+    rel = pos - ball
+    along = float(rel @ u)
+    lateral = float(u[0] * rel[1] - u[1] * rel[0])
+    back = rp.front_distance + bp.radius + params.behind_gap_m
+    face = abs(wrap_angle(math.atan2(u[1], u[0]) - heading))
+    if along < -rp.front_distance and abs(lateral) <= params.behind_tol_m and face <= params.kick_align_tol \
+            and not wait:
+        return None
+    if along > -back + params.behind_tol_m:
+        side = np.array([-u[1], u[0]]) * (1.0 if lateral >= 0.0 else -1.0)
+        if abs(lateral) < BESIDE_M - 0.05:
+            return ball + BESIDE_M * side + along * u  # sideways first
+        return ball + BESIDE_M * side - back * u  # then back, beside the ball
+    return ball - back * u
+
+
 def heading_error_to(world: WorldState, robot: int, point) -> float:
     """|heading error| (rad) of ``robot`` towards ``point`` (team frame)."""
     ts = world.team(world.frame)
     return abs(wrap_angle(facing_towards(ts.pos[robot], np.asarray(point, float)) - float(ts.heading[robot])))
 
 
-__all__ = ["PassState", "PassParams", "PassInputs", "Pass", "heading_error_to"]
+__all__ = ["PassState", "PassParams", "PassInputs", "Pass", "BESIDE_M", "behind_ball_waypoint", "heading_error_to"]

@@ -28,12 +28,16 @@ RESTART_LINE_BAND_M = 0.35  # a resting ball this close to a field line is at a 
 
 
 def restart_applicable(ctx: PlayContext) -> bool:
-    """A restart we can take: the ball rests (< 0.1 m/s) at the centre mark (kickoff) or
-    within ``RESTART_LINE_BAND_M`` of a field line (the referee's free-kick placement),
-    nobody is within 0.3 m of it, and we are at least as close as they are (+0.25 s)."""
+    """A restart we can take: the ball rests (< 0.1 m/s) and nobody holds it, and either
+    the referee gave us the kickoff / free kick (``ctx.set_piece``) or, without referee
+    commands, the ball lies at the centre mark (kickoff) or within
+    ``RESTART_LINE_BAND_M`` of a field line (the placement after an out), nobody is
+    within 0.3 m of it, and we are at least as close as they are (+0.25 s)."""
     w, f = ctx.world, ctx.field
     if float(np.hypot(*w.ball_vel)) >= 0.1 or ctx.we_have_ball or ctx.they_have_ball:
         return False
+    if ctx.set_piece:
+        return True
     b = ctx.ball
     at_mark = float(np.hypot(*b)) < 0.15
     near_line = (f.half_length - abs(float(b[0])) < RESTART_LINE_BAND_M

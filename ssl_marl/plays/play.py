@@ -33,11 +33,12 @@ from typing import Any, Callable, Mapping, Sequence
 import numpy as np
 
 from ..physics.field import FieldGeometry
-from ..physics.params import RobotParams
+from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState
 from ..skills.navigation import NavParams, sanitize_target
 from .assignment import DEFAULT_UNFILLED_COST, Assignment
-from .defense import Defender, Goalie, Mark, block_position, goalie_guard_position, mark_position
+from .defense import (Defender, Goalie, Mark, block_position, goalie_guard_position, goalie_of, mark_position,
+                      shot_block_position)
 from .shoot import Attacker
 from .support import Support, SupportParams
 from .tactic_base import Tactic, TacticStatus
@@ -65,6 +66,9 @@ class PlayContext:
             its tactic reported on the previous tick (how tactics report to plays,
             e.g. the pass handshake); filled by the team controller.
         role_holders: role name -> robot index that held it on the previous tick.
+        set_piece: the referee gave us a kickoff or free kick that is not taken yet (the
+            opponents keep 0.5 m from the ball until it is; SSL game control, filled by
+            the team controller from the env's referee state; False without one).
     """
 
     team: str
@@ -80,6 +84,7 @@ class PlayContext:
     threats: tuple[int, ...]
     role_status: Mapping[str, TacticStatus] = field(default_factory=dict)
     role_holders: Mapping[str, int] = field(default_factory=dict)
+    set_piece: bool = False
 
     @property
     def ball(self) -> np.ndarray:
@@ -224,17 +229,21 @@ def defender_role(k: int, priority: int) -> RoleDef:
     return RoleDef(name, priority, Defender, target, update=update)
 
 
-def mark_role(k: int, priority: int) -> RoleDef:
+def mark_role(k: int, priority: int, block_shot: bool = False) -> RoleDef:
+    """Mark the k-th most dangerous opponent (:class:`~ssl_marl.plays.defense.Mark`);
+    ``block_shot``: on its line to the part of our goal the goalie leaves open."""
     name = f"mark_{k}"
 
     def target(ctx: PlayContext) -> np.ndarray | None:
         if k >= len(ctx.threats):
             return None
         opp = ctx.opp_pos[ctx.threats[k]]
-        return sanitize_target(mark_position(opp, ctx.ball, ctx.field), ctx.field, NavParams())
+        spot = (shot_block_position(opp, goalie_of(ctx.our_pos), ctx.field, ctx.robot, BallParams()) if block_shot
+                else mark_position(opp, ctx.ball, ctx.field))
+        return sanitize_target(spot, ctx.field, NavParams())
 
     def update(t: Tactic, ctx: PlayContext, a: Assignment) -> None:
-        t.set_params(opponent=ctx.threats[k] if k < len(ctx.threats) else None)
+        t.set_params(opponent=ctx.threats[k] if k < len(ctx.threats) else None, block_shot=block_shot)
 
     return RoleDef(name, priority, Mark, target, update=update, unfilled_cost=OPTIONAL_ROLE_UNFILLED_COST)
 
@@ -289,12 +298,14 @@ def offense_play() -> Play:
     return Play("offense", offense_applicable, roles)
 
 
-def defense_play() -> Play:
-    """Goalie, two defenders on the shot lane, marks on the most dangerous opponents,
-    an attacker pressing the ball."""
+def defense_play(block_shot: bool = False) -> Play:
+    """Goalie, two defenders on the shot lane, marks on the most dangerous opponents
+    (``block_shot``: on their lines to the goal, :func:`mark_role`), an attacker pressing
+    the ball."""
     roles = (goalie_role(100), attacker_role(90), defender_role(0, 80), defender_role(1, 80),
-             mark_role(0, 70), mark_role(1, 70), mark_role(2, 60), defender_role(2, 60),
-             mark_role(3, 50), support_role(0, 50), mark_role(4, 40), support_role(1, 40))
+             mark_role(0, 70, block_shot), mark_role(1, 70, block_shot), mark_role(2, 60, block_shot),
+             defender_role(2, 60), mark_role(3, 50, block_shot), support_role(0, 50), mark_role(4, 40, block_shot),
+             support_role(1, 40))
     return Play("defense", defense_applicable, roles)
 
 

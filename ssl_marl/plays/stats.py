@@ -37,7 +37,11 @@ opponent took), ``passes_lost``, ``interceptions`` (opponent passes this team to
 ``shots_direct`` / ``_redirect`` / ``_after_chip_pass``, ``goals_direct`` / ``_redirect``
 / ``_after_chip_pass`` / ``_other``, ``passes_flat_attempted`` / ``_completed``,
 ``passes_chip_attempted`` / ``_completed`` and the completions ``pass_completion_flat`` /
-``pass_completion_chip``.
+``pass_completion_chip``. Under SSL game control (``referee`` events): ``set_pieces``
+(kickoffs and free kicks awarded), ``set_piece_passes`` / ``set_piece_chips`` /
+``set_piece_shots`` (what the team's first kick after one was; chips are among the
+passes) and ``goals_set_piece`` (goals of a possession that began with the team's
+set-piece kick: no restart and no opponent kick or control in between).
 """
 
 from __future__ import annotations
@@ -90,6 +94,11 @@ class TeamStats:
     passes_flat_completed: int = 0
     passes_chip_attempted: int = 0
     passes_chip_completed: int = 0
+    set_pieces: int = 0
+    set_piece_passes: int = 0
+    set_piece_chips: int = 0
+    set_piece_shots: int = 0
+    goals_set_piece: int = 0
 
     def to_dict(self) -> dict:
         d = dict(self.__dict__)
@@ -133,6 +142,8 @@ class MatchStatsTracker:
         self._prev_speed = 0.0  # m/s, ball speed at the previous observation
         self._chip_receiver: tuple[str, int] | None = None  # got a completed chip pass, has not kicked since
         self._last_shot_kind: dict[str, str | None] = {t: None for t in TEAMS}
+        self._set_piece_for: str | None = None  # awarded a kickoff / free kick, not kicked yet
+        self._set_piece_chain: str | None = None  # its possession began with its set-piece kick
 
     # -------------------------------------------------------------- helpers
     def classify_kick(self, world: WorldState, team: str, kicker: int) -> str:
@@ -222,12 +233,17 @@ class MatchStatsTracker:
                     setattr(s, f"passes_{pk}_attempted", getattr(s, f"passes_{pk}_attempted") + 1)
                     self._open = _OpenPass(team, idx, t, pk)
                     self.log.append({"t": t, "type": "pass", "team": team, "kicker": idx, "kind": pk})
+                self._set_piece_kick(team, what, world)
                 if self._chip_receiver == (team, idx):
                     self._chip_receiver = None
                 self._held.clear()
+            elif kind == "referee" and e.get("command") in ("KICKOFF", "FREE_KICK") and e.get("team") in TEAMS:
+                self.teams[e["team"]].set_pieces += 1
+                self._set_piece_for, self._set_piece_chain = e["team"], None
             elif kind == "goal":
                 gs = self.teams[e["team"]]
                 gs.goals += 1
+                gs.goals_set_piece += int(self._set_piece_chain == e["team"])
                 gk = self._last_shot_kind[e["team"]] or "other"
                 setattr(gs, f"goals_{gk}", getattr(gs, f"goals_{gk}") + 1)
                 self.log.append({"t": t, "type": "goal", "team": e["team"], "kind": gk})
@@ -247,12 +263,29 @@ class MatchStatsTracker:
                 held[key] = self._held.get(key, 0) + 1
                 if held[key] == self.params.control_steps:
                     self._touch(team, int(i), t)
+                    if self._set_piece_chain not in (None, team):
+                        self._set_piece_chain = None
         self._held = held
         if self._open is not None and t - self._open.t > self.params.pass_timeout_s:
             self._close("lost", None, t)
         self._prev_speed = float(np.hypot(*world.ball_vel))
 
+    def _set_piece_kick(self, team: str, what: str, world: WorldState) -> None:
+        """A kick by ``team`` ("shot" / "pass" / "clear"): the awarded set piece's kick, or
+        the opponent's kick that ends a set-piece possession."""
+        if self._set_piece_for is not None:
+            if team == self._set_piece_for:
+                s = self.teams[team]
+                s.set_piece_shots += int(what == "shot")
+                s.set_piece_passes += int(what == "pass")
+                s.set_piece_chips += int(what == "pass" and world.ball_vz > 0.0)
+                self._set_piece_chain = team
+            self._set_piece_for = None
+        elif self._set_piece_chain not in (None, team):
+            self._set_piece_chain = None
+
     def _restarted(self) -> None:
+        self._set_piece_chain = None
         self._chip_receiver = None
         self._last_shot_kind = {t: None for t in TEAMS}
 

@@ -177,9 +177,11 @@ class TeamController:
         ours = world.team(self.team)
         if ours.n != self.n:
             raise ValueError(f"TeamController({self.team!r}) was built for {self.n} robots, the world has {ours.n}")
+        referee = getattr(getattr(env_or_world, "task", None), "referee_state", None)
         ctx = make_context(world, self.team, self.field, self.rp)
         ctx = replace(ctx, role_status={role: tactic.status for role, _, tactic in self._tactics.values()},
-                      role_holders={role: i for i, (role, _, _) in self._tactics.items()})
+                      role_holders={role: i for i, (role, _, _) in self._tactics.items()},
+                      set_piece=referee is not None and referee.is_set_piece_for(self.team))
         play = self.selector.select(ctx, world.t)
         if play.prepare is not None:
             play.prepare(ctx)
@@ -208,7 +210,6 @@ class TeamController:
             if role.update is not None:
                 role.update(tactic, ctx, assignment)
             actions[self.agents[i]] = tactic.act(world, i)
-        referee = getattr(getattr(env_or_world, "task", None), "referee_state", None)
         if referee is not None and referee.must_keep_clear(self.team):
             keep_clear(actions, self.agents, world, self.team, self.rp.max_speed)
         return actions
