@@ -16,8 +16,9 @@ pass/receive handshake; restart, offense and defense plays) with three changes:
   every ``rate_every`` ticks, one spot per support role, greedy so that no two share a
   spot or a lane) with :class:`~ssl_marl.plays.spot_support_tactic.SpotSupport`;
 * the marks (in attack and in the defense play) stand on the marked opponent's line to
-  the part of our goal the goalie leaves open (``block_shot``: they block its one-touch
-  redirect and its shot after a reception);
+  our goal centre (``ball_bias`` 0 instead of 0.25 towards the ball): 0.35 m in front of
+  it a marker shadows the whole goal mouth, so it blocks the opponent's one-touch
+  redirect and its shot after a reception;
 * restarts are set pieces under SSL game control (``decide_at_restart``): the kick is
   decided before the kicker reaches the ball and the passer walks up behind the ball on
   the pass line (``approach_behind``).
@@ -193,8 +194,8 @@ def attack_roles(coord: PassCoordinator, decider: AttackDecider, planner: SpotPl
     return (goalie_role(100), chip_passer_role(coord, decider, 95), redirect_receiver_role(coord, decider, 94),
             passing_attacker_role(coord, 90, aim_open_goal=True), defender_role(0, 80),
             spot_support_role(0, planner, 80), spot_support_role(1, planner, 70), defender_role(1, 70),
-            mark_role(0, 60, block_shot=True), spot_support_role(2, planner, 60), mark_role(1, 50, block_shot=True),
-            defender_role(2, 50), spot_support_role(3, planner, 40), mark_role(2, 40, block_shot=True))
+            mark_role(0, 60, ball_bias=0.0), spot_support_role(2, planner, 60), mark_role(1, 50, ball_bias=0.0),
+            defender_role(2, 50), spot_support_role(3, planner, 40), mark_role(2, 40, ball_bias=0.0))
 
 
 def attack_plays(params: PassingParams | None = None, ball: BallParams | None = None,
@@ -214,7 +215,7 @@ def attack_plays(params: PassingParams | None = None, ball: BallParams | None = 
 
     restart = Play("restart", restart_applicable, roles, priority=1, prepare=AttackPrepare(coord, planner, True))
     offense = Play("offense_attack", offense_attack_applicable, roles, prepare=AttackPrepare(coord, planner))
-    return (restart, offense, defense_play(block_shot=True))
+    return (restart, offense, defense_play(mark_ball_bias=0.0))
 
 
 def attack_decider_of(plays) -> AttackDecider | None:

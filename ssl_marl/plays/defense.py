@@ -22,12 +22,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..physics.field import FieldGeometry
-from ..physics.params import BallParams, RobotParams
+from ..physics.params import RobotParams
 from ..physics.state import WorldState
 from ..skills.features import dribbler_ball_distance
 from ..skills.navigation import NavigateToPoint, NavParams, defense_rect, facing_towards, push_out_of_rect
 from .clearing import BallClearing, ClearPhase, clear_phase
-from .pass_decision import open_goal_interval
 from .tactic_base import NEAR_BALL_M, Tactic
 
 
@@ -95,26 +94,6 @@ def mark_position(opp_pos: np.ndarray, ball_pos: np.ndarray, field: FieldGeometr
     bx, by = unit(float(ball_pos[0]) - ox, float(ball_pos[1]) - oy)
     dx, dy = unit((1.0 - ball_bias) * gx + ball_bias * bx, (1.0 - ball_bias) * gy + ball_bias * by)
     return field.clamp_to_field(np.array([ox + distance * dx, oy + distance * dy]))
-
-
-def shot_block_position(opp_pos: np.ndarray, blockers: np.ndarray, field: FieldGeometry, rp: RobotParams,
-                        bp: BallParams, distance: float = 0.35) -> np.ndarray:
-    """Marking spot (team frame, m) that blocks the opponent's shot, direct or one-touch
-    (a redirect shoots the ball on from where the opponent stands): ``distance`` from
-    the opponent towards the centre of the widest part of our goal mouth that
-    ``blockers`` (k, 2; the marking team passes its goalie) leave open as seen from
-    the opponent (:func:`~ssl_marl.plays.pass_decision.open_goal_interval`, mirrored to
-    the own goal at -x); the goal centre when none is open."""
-    o = np.asarray(opp_pos, float)
-    _, aim = open_goal_interval(-o, -np.asarray(blockers, float).reshape(-1, 2), field, rp, bp)
-    direction = aim + math.pi  # back from the mirrored frame
-    return field.clamp_to_field(o + distance * np.array([math.cos(direction), math.sin(direction)]))
-
-
-def goalie_of(our_pos: np.ndarray) -> np.ndarray:
-    """(k, 2) the goalie's position (robot 0 of a team of two or more), else empty."""
-    pos = np.asarray(our_pos, float).reshape(-1, 2)
-    return pos[:1] if len(pos) >= 2 else pos[:0]
 
 
 # ------------------------------------------------------------------ Goalie
@@ -368,16 +347,11 @@ class MarkParams:
         opponent: index of the opponent to shadow (in its team), or None.
         distance: distance from the opponent towards the own goal (m).
         ball_bias: 0..1, turn the marking direction towards the ball.
-        block_shot: stand on the opponent's line to the part of our goal that our goalie
-            (robot 0 of a team of two or more) leaves open (:func:`shot_block_position`:
-            blocks its one-touch redirect and its shot after a reception) instead of
-            towards the goal centre turned to the ball (:func:`mark_position`).
     """
 
     opponent: int | None = None
     distance: float = 0.35
     ball_bias: float = 0.25
-    block_shot: bool = False
 
 
 @dataclass(frozen=True)
@@ -415,9 +389,6 @@ class Mark(Tactic):
         opp = world.opponents(world.frame)
         if k is None or not 0 <= int(k) < opp.n:
             return None
-        if self.params.block_shot:
-            return shot_block_position(opp.pos[int(k)], goalie_of(world.team(world.frame).pos), self.field, self.rp,
-                                       self.bp, self.params.distance)
         return mark_position(opp.pos[int(k)], world.ball_pos, self.field, self.params.distance,
                              self.params.ball_bias)
 
