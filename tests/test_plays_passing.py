@@ -1,5 +1,6 @@
 """The passing game: decision values, Pass / Receive tactics, the coordinator, match stats."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -453,6 +454,30 @@ def test_coordinator_follows_the_handshake_to_completion_and_aborts_on_failure()
     assert c.plan is None and c.counters.aborted == 2
 
 
+def test_set_piece_plan_turns_urgent_after_its_wait_and_a_dead_pass_is_dropped():
+    from ssl_marl.plays.pass_coordinator import PassCoordinator, PassingParams, PassPhase, PassPlan
+
+    c = PassCoordinator(PassingParams(set_piece_wait_s=2.0, dead_ball_s=0.6))
+    c.plan = PassPlan(1, 2, np.array([2.0, 2.2]), PassPhase.SETUP, 1.0, restart=True)
+    waiting = {"passer": _status(PassState.GET_BALL), "receiver": _status(ReceiveState.POSITION)}
+    c.prepare(_ctx(make_world(**BLOCKED, t=2.5, frame="blue"), waiting))
+    assert c.plan is not None and not c.plan.urgent
+    c.prepare(_ctx(make_world(**BLOCKED, t=3.1, frame="blue"), waiting))
+    assert c.plan is not None and c.plan.urgent  # kicks without the receiver's READY now
+    c.prepare(_ctx(make_world(**BLOCKED, t=3.2, frame="blue"), {"passer": _status(PassState.DONE)}))
+    assert c.plan.phase is PassPhase.IN_FLIGHT
+    # the ball lies still 0.6 s after the kick and the receiver is not on it: dropped
+    c.prepare(_ctx(make_world(**BLOCKED, t=3.7, frame="blue"), {"receiver": _status(ReceiveState.READY)}))
+    assert c.plan is not None
+    c.prepare(_ctx(make_world(**BLOCKED, t=3.9, frame="blue"), {"receiver": _status(ReceiveState.READY)}))
+    assert c.plan is None and c.counters.aborted == 1
+    # an open-play plan (restart False) has no such wait; without dead_ball_s a still ball waits max_flight_s
+    c = PassCoordinator()
+    c.plan = PassPlan(1, 2, np.array([2.0, 2.2]), PassPhase.IN_FLIGHT, 1.0, t_kick=1.0)
+    c.prepare(_ctx(make_world(**BLOCKED, t=2.0, frame="blue"), {"receiver": _status(ReceiveState.READY)}))
+    assert c.plan is not None
+
+
 CONTESTED = dict(BLOCKED, yellow=[(3.3, -0.2, math.pi), (3.3, 0.0, math.pi), (1.75, 0.0, math.pi)],
                  yellow_on_dribbler=[False, False, True])
 
@@ -498,5 +523,9 @@ def test_restart_play_applies_at_the_centre_mark_and_free_kick_spots():
     assert restart_applicable(_ctx(make_world(blue=mates, yellow=opp, ball=spot, frame="blue")))
     assert not restart_applicable(_ctx(make_world(blue=mates, yellow=opp, ball=(-1.0, 1.0), frame="blue")))
     far = [(-4.2, 0.0, 0.0), (-3.0, -2.0, 0.0)]  # they are much closer: no restart for us
-    assert not restart_applicable(_ctx(make_world(blue=far, yellow=[(4.2, 0, math.pi), (-0.8, 2.0, math.pi)],
-                                                  ball=spot, frame="blue")))
+    near_them = make_world(blue=far, yellow=[(4.2, 0, math.pi), (-0.8, 2.0, math.pi)], ball=spot, frame="blue")
+    assert not restart_applicable(_ctx(near_them))
+    # ... unless the referee gave us the free kick (SSL game control): then anywhere the ball rests
+    assert restart_applicable(dataclasses.replace(_ctx(near_them), set_piece=True))
+    mid = make_world(blue=far, yellow=[(4.2, 0, math.pi), (-0.8, 1.4, math.pi)], ball=(-1.0, 1.0), frame="blue")
+    assert restart_applicable(dataclasses.replace(_ctx(mid), set_piece=True)) and not restart_applicable(_ctx(mid))
