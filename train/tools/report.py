@@ -47,6 +47,7 @@ SERIES_600_SSL = ["match_passing_learned_vs_baseline_600_plain", "match_passing_
 ATTACK_SERIES = ["match_attack_learned_vs_baseline_600", "match_attack_learned_vs_passing_learned_600",
                  "match_attack_learned_selfplay_600", "match_attack_learned_vs_baseline_600_realistic",
                  "match_attack_learned_vs_baseline_600_div_a_11v11", "match_attack_learned_vs_attack_baseline_600"]
+SET_PIECE_SERIES = ["match_attack_learned_vs_baseline_600_ssl_058d181", "match_attack_learned_vs_baseline_600_ssl"]
 KEEPAWAY = [("random", "keepaway_random"), ("always-hold", "keepaway_always-hold"),
             ("hand-coded", "keepaway_handcoded"), ("learned (shipped `keepaway.pt`, MAPPO seed 1)", "keepaway_learned")]
 ATTACK = [("hand-coded (cost decision, shot threshold 0.25)", "attack_3v2_handcoded_snap"),
@@ -71,6 +72,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "passing_series": lambda r: t.series(r, PASSING_SERIES),
     "series_600_formats": lambda r: t.series_600(r, SERIES_600_SSL),
     "attack_series": lambda r: t.series_600(r, ATTACK_SERIES),
+    "set_piece_series": lambda r: t.set_piece_series(r, SET_PIECE_SERIES),
     "league_anchors": lambda r: t.league(r, "league_anchors"),
     "passing_contested_kick": lambda r: t.tuning(r, [("`contested_kick` on", "passing_contested_kick.json",
                                                       "contested_kick_on"),

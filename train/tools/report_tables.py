@@ -354,3 +354,30 @@ def training_compare(results: Path, runs: Iterable[str], window: int, upto: int 
                      target: float = 0.99) -> Lines:
     """:mod:`train.compare`'s tables for runs under ``results/training``."""
     return markdown([summarize(results / "training" / r, window, upto, target) for r in runs], target).splitlines()
+
+
+def set_piece_series(results: Path, names: Iterable[str]) -> Lines:
+    """One row per series of long matches under SSL game control (``results/<name>.json``):
+    the code's commit (from the manifest), W-D-L, goals and goal difference per 600 s with
+    its 95 % interval, and blue's set pieces (awarded; passes, chips among them, and shots
+    as their first kick; goals of set-piece possessions; "-" where the code did not count
+    them), shots and pass completion."""
+    rows = _head("series", "code", "blue vs yellow", "seeds", "matches", "W-D-L (blue)", "goals for-against",
+                 "goal diff per 600 s [95% CI]", "blue set pieces: awarded / passes (chips) / shots",
+                 "blue goals from set pieces", "blue shots", "blue passes completed")
+    for n in names:
+        d = load_result(results / f"{n}.json")
+        s, st = d["summary"], d["summary"]["statistics"]
+        manifest = json.loads((results / json.loads((results / f"{n}.json").read_text())["manifest_file"]).read_text())
+        seeds = [m["seed"] for m in d["matches"]]
+        b = s["stats"]["blue"]
+        lo, hi = st["goal_diff_per_600s_ci95"]
+        counted = any("set_pieces" in m["stats"]["blue"] for m in d["matches"])
+        sp = (f"{b['set_pieces']} / {b['set_piece_passes']} ({b['set_piece_chips']}) / {b['set_piece_shots']}"
+              if counted else "-")
+        rows.append(f"| `{n}` | {manifest['git']['commit'][:7]} | {s['blue']} vs {s['yellow']} | "
+                    f"{min(seeds)}-{max(seeds)} | {s['matches']} | {s['wins']}-{s['draws']}-{s['losses']} | "
+                    f"{s['goals_for']}-{s['goals_against']} | {st['goal_diff_per_600s']:+.2f} [{lo:+.2f}, {hi:+.2f}] | "
+                    f"{sp} | {b['goals_set_piece'] if counted else '-'} | {b['shots']} | "
+                    f"{b['passes_completed']} of {b['passes_attempted']} |")
+    return rows

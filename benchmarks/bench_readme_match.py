@@ -1,0 +1,59 @@
+"""Wall time of the README's first command (after setup): the match with its GIF.
+
+Runs ``ssl-marl match --blue attack-learned --yellow attack-learned --seconds 300 --seed 2
+--render-fps 5`` in a temporary folder under ``/usr/bin/time`` and records the process's wall
+time and peak memory, the match's own wall time and score (from its summary line), the GIF's
+size and the load average before and after. A benchmark: run it on an idle machine.
+
+    python benchmarks/bench_readme_match.py [--out results/bench_readme_match.json]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import re
+import shutil
+import subprocess
+import tempfile
+import time
+from pathlib import Path
+
+from ssl_marl.io import atomic_write_json
+from ssl_marl.runners.provenance import build_manifest
+
+ARGS = ["match", "--blue", "attack-learned", "--yellow", "attack-learned", "--seconds", "300", "--seed", "2",
+        "--render-fps", "5"]
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--out", default=None, help="write the record (JSON) here")
+    a = ap.parse_args()
+    exe = shutil.which("ssl-marl")
+    if exe is None:
+        raise SystemExit("bench_readme_match: the ssl-marl command is not on PATH (install the package)")
+    load_before = os.getloadavg()[0]
+    with tempfile.TemporaryDirectory() as tmp:
+        env = {**os.environ, "SDL_VIDEODRIVER": "dummy"}
+        proc = subprocess.run(["/usr/bin/time", "-f", "TIME %e %M", exe, *ARGS], cwd=tmp, env=env,
+                              capture_output=True, text=True, check=True)
+        gif = Path(tmp, "match.gif").stat().st_size
+    out = proc.stdout + proc.stderr
+    wall, rss = re.findall(r"TIME ([\d.]+) (\d+)", out)[-1]
+    line = re.findall(r"blue \([^)]*\) (\d+) - (\d+) yellow .*? ([\d.]+) s simulated in ([\d.]+) s wall", out)[-1]
+    rec = {"what": "the README's first command (after setup): wall time of the match with its GIF, /usr/bin/time",
+           "command": ["ssl-marl", *ARGS], "score": {"blue": int(line[0]), "yellow": int(line[1])},
+           "simulated_s": float(line[2]), "match_wall_s": float(line[3]), "process_wall_s": float(wall),
+           "max_rss_kb": int(rss), "gif_bytes": gif,
+           "load_average_1min_before_after": [load_before, os.getloadavg()[0]], "date": time.strftime("%Y-%m-%d %H:%M"),
+           "manifest": build_manifest(rules={"blue": "attack-learned", "yellow": "attack-learned"},
+                                      seeds={"seed": 2})}
+    print(json.dumps({k: v for k, v in rec.items() if k != "manifest"}, indent=1))
+    if a.out:
+        atomic_write_json(a.out, rec)
+
+
+if __name__ == "__main__":
+    main()
