@@ -28,7 +28,7 @@ torch.set_num_threads(1)
 ROOT = Path(__file__).resolve().parents[1]
 SKILL_ACTORS = sorted((ROOT / "ssl_marl" / "skills" / "pretrained").glob("*.pt"))
 DECISION_ACTORS = sorted((ROOT / "ssl_marl" / "decisions" / "pretrained").glob("*.pt")) \
-    + [ROOT / "results" / "training" / "bc_attack_3v2.pt"]
+    + [ROOT / "results" / "training" / "bc_attack_3v2.pt", ROOT / "results" / "training" / "bc_attack_3v2_snap.pt"]
 
 
 # --- actor files ----------------------------------------------------------------------------------
@@ -40,14 +40,20 @@ def test_every_shipped_skill_actor_loads(path: Path) -> None:
 
 @pytest.mark.parametrize("path", DECISION_ACTORS, ids=lambda p: p.name)
 def test_every_stored_decision_actor_loads_and_keeps_its_network(path: Path) -> None:
-    """Decision actors stored in the flat layout load, with every tensor where the loaders look."""
+    """Stored decision actors load, in the flat layout (``ssl_marl.decision_actor/1``) or the
+    current actor format (``ssl_marl.actor`` version 2), with every tensor where the loaders look."""
     actor, meta = load_decision_actor(path)
-    raw = torch.load(path, weights_only=True)  # the flat layout these files were written in
-    assert torch.equal(actor.obs_mean, raw["obs_mean"].float()) and meta["task"] == raw["task"]
+    raw = torch.load(path, weights_only=True)
     state, metadata = read_actor_file(path, "decision")
     assert "obs_mean" in state and "format" not in metadata and "state_dict" not in metadata
-    assert torch.equal(state["obs_std"], raw["obs_std"])
-    for k, v in raw["state_dict"].items():
+    if raw["format"] == "ssl_marl.actor":
+        assert (raw["version"], raw["kind"]) == (2, "decision") and meta["task"] == raw["metadata"]["task"]
+        flat_state, obs_mean, obs_std = raw["state_dict"], raw["state_dict"]["obs_mean"], raw["state_dict"]["obs_std"]
+    else:
+        assert meta["task"] == raw["task"]
+        flat_state, obs_mean, obs_std = raw["state_dict"], raw["obs_mean"], raw["obs_std"]
+    assert torch.equal(actor.obs_mean, obs_mean.float()) and torch.equal(state["obs_std"], obs_std)
+    for k, v in flat_state.items():
         assert torch.equal(state[k], v), k
 
 

@@ -51,7 +51,9 @@ SET_PIECE_SERIES = ["match_attack_learned_vs_baseline_600_ssl_058d181", "match_a
 KEEPAWAY = [("random", "keepaway_random"), ("always-hold", "keepaway_always-hold"),
             ("hand-coded", "keepaway_handcoded"), ("learned (shipped `keepaway.pt`, MAPPO seed 1)", "keepaway_learned")]
 ATTACK = [("hand-coded (cost decision, shot threshold 0.25)", "attack_3v2_handcoded_snap"),
-          ("learned (shipped `attack_3v2.pt`)", "attack_3v2_learned_snap")]
+          ("learned, the previous actor (trained without the snap shot)", "attack_3v2_learned_snap"),
+          ("learned (shipped `attack_3v2.pt`: retrained with the snap shot, `mappo_attack_snap_bc_s0`)",
+           "attack_3v2_learned_snap_retrained")]
 
 TABLES: dict[str, Callable[[Path], list[str]]] = {
     "skills_paper": lambda r: t.skills(r, SKILLS_PAPER),
@@ -91,7 +93,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
                                                  ("mappo_keepaway_s1", "keepaway_learned"),
                                                  ("mappo_keepaway_s2", "keepaway_learned_s2")],
                                              "keepaway_handcoded", "duration"),
-    "mappo_attack": lambda r: t.mappo_runs(r, [(f"mappo_attack{k}_s{s}", "") for k in ("-3v2", "_bc")
+    "mappo_attack": lambda r: t.mappo_runs(r, [(f"mappo_attack{k}_s{s}", "") for k in ("-3v2", "_bc", "_snap_bc")
                                                for s in (0, 1, 2)], None, "goal"),
     "pass_and_score": t.pass_and_score,
 }
