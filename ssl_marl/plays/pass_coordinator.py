@@ -331,11 +331,12 @@ class PassCoordinator:
     def _decide(self, ctx: PlayContext, t: float, restart: bool) -> None:
         p = self.params
         ours = ctx.world.team(ctx.team)
-        holders = [i for i in np.flatnonzero(ours.ball_on_dribbler) if not (ctx.n >= 2 and i == 0)]
+        holders = [int(i) for i in np.flatnonzero(ours.ball_on_dribbler) if i in ctx.field_robots]
         if not holders and restart and p.decide_at_restart and ctx.set_piece:
             kicker = self._restart_kicker(ctx)
             if kicker is not None:
-                self._request(ctx, t, kicker, restart=True, on_ball=False)
+                if self.decision is None or self._tick % p.decide_every == 0:
+                    self._request(ctx, t, kicker, restart=True, on_ball=False)
                 return
         if not holders:
             self.decision = None
@@ -361,21 +362,19 @@ class PassCoordinator:
         """The set piece's kicker: the ``attacker`` role's robot, else our field robot
         nearest the ball (None without field robots)."""
         k = ctx.role_holders.get("attacker")
-        if k is not None and not (ctx.n >= 2 and k == 0):
+        if k in ctx.field_robots:
             return int(k)
-        field_robots = [i for i in range(ctx.n) if not (ctx.n >= 2 and i == 0)]
+        field_robots = list(ctx.field_robots)
         if not field_robots:
             return None
         d = np.hypot(*(ctx.our_pos[field_robots] - ctx.ball).T)
-        return int(field_robots[int(np.argmin(d))])
+        return field_robots[int(np.argmin(d))]
 
     def _request(self, ctx: PlayContext, t: float, carrier: int, restart: bool, on_ball: bool = True) -> None:
         """Ask the decider and act on its answer (keep clock, plan)."""
         p = self.params
-        if not on_ball and self.decision is not None and self._tick % p.decide_every != 0:
-            return
         params = p.restart_decision if restart else p.decision
-        cands = tuple(k for k in range(ctx.n) if k != carrier and not (ctx.n >= 2 and k == 0))
+        cands = tuple(k for k in ctx.field_robots if k != carrier)
         if t < self._cooldown_until:
             cands = ()
         d = self.decider.decide(CarrierRequest(ctx, carrier, cands, params, restart, self.bp, t, on_ball))

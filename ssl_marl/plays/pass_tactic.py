@@ -33,7 +33,7 @@ from ..physics.state import WorldState, wrap_angle
 from ..skills.base import SkillStatus, make_action
 from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance
 from ..skills.motion import velocity_command
-from ..skills.navigation import NavigateToPoint, NavParams, facing_towards
+from ..skills.navigation import NavigateToPoint, NavParams, facing_towards, line_frame
 from .shoot import govern_approach
 from .tactic_base import NEAR_BALL_M, Tactic, check_field_point, skill_status
 
@@ -235,15 +235,12 @@ def behind_ball_waypoint(pos: np.ndarray, heading: float, ball: np.ndarray, targ
     not yet as far back as that goes round the ball at ``BESIDE_M`` off the pass line on
     its own side: first straight sideways while nearer the line than that, then back
     level with the staging point, so that it never pushes the ball on its way."""
-    ball, target, pos = (np.asarray(v, float) for v in (ball, target, pos))
-    d = target - ball
-    n = float(np.hypot(*d))
-    if n < 1e-6:
+    ball = np.asarray(ball, float)
+    frame = line_frame(ball, target, pos)
+    if frame is None:
         return None
-    u = d / n
-    rel = pos - ball
-    along = float(rel @ u)
-    lateral = float(u[0] * rel[1] - u[1] * rel[0])
+    u, _, along, lateral = frame
+    along, lateral = float(along), float(lateral)
     back = rp.front_distance + bp.radius + params.behind_gap_m
     face = abs(wrap_angle(math.atan2(u[1], u[0]) - heading))
     if along < -rp.front_distance and abs(lateral) <= params.behind_tol_m and face <= params.kick_align_tol \

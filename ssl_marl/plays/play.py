@@ -90,6 +90,11 @@ class PlayContext:
         return self.world.ball_pos
 
     @property
+    def field_robots(self) -> tuple[int, ...]:
+        """Our robot indices but the goalie (robot 0 when the team has two or more)."""
+        return tuple(range(1, self.n)) if self.n >= 2 else tuple(range(self.n))
+
+    @property
     def our_pos(self) -> np.ndarray:
         return self.world.team(self.team).pos
 

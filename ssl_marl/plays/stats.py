@@ -50,6 +50,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..envs.game_control import FREE_KICK, KICKOFF
 from ..physics import ball_model
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams
@@ -237,7 +238,7 @@ class MatchStatsTracker:
                 if self._chip_receiver == (team, idx):
                     self._chip_receiver = None
                 self._held.clear()
-            elif kind == "referee" and e.get("command") in ("KICKOFF", "FREE_KICK") and e.get("team") in TEAMS:
+            elif kind == "referee" and e.get("command") in (KICKOFF, FREE_KICK) and e.get("team") in TEAMS:
                 self.teams[e["team"]].set_pieces += 1
                 self._set_piece_for, self._set_piece_chain = e["team"], None
             elif kind == "goal":
@@ -263,8 +264,7 @@ class MatchStatsTracker:
                 held[key] = self._held.get(key, 0) + 1
                 if held[key] == self.params.control_steps:
                     self._touch(team, int(i), t)
-                    if self._set_piece_chain not in (None, team):
-                        self._set_piece_chain = None
+                    self._end_set_piece_chain_unless(team)
         self._held = held
         if self._open is not None and t - self._open.t > self.params.pass_timeout_s:
             self._close("lost", None, t)
@@ -281,7 +281,12 @@ class MatchStatsTracker:
                 s.set_piece_chips += int(what == "pass" and world.ball_vz > 0.0)
                 self._set_piece_chain = team
             self._set_piece_for = None
-        elif self._set_piece_chain not in (None, team):
+        else:
+            self._end_set_piece_chain_unless(team)
+
+    def _end_set_piece_chain_unless(self, team: str) -> None:
+        """``team`` kicked or controlled the ball: a set-piece possession of the other team ends."""
+        if self._set_piece_chain not in (None, team):
             self._set_piece_chain = None
 
     def _restarted(self) -> None:

@@ -139,6 +139,20 @@ def defense_corner_waypoint(pos: np.ndarray, target: np.ndarray, field: FieldGeo
     return corners[int(np.argmin(lengths))]
 
 
+def line_frame(origin: np.ndarray, target: np.ndarray, points: np.ndarray
+               ) -> tuple[np.ndarray, float, np.ndarray, np.ndarray] | None:
+    """Coordinates of ``points`` ((k, 2) or (2,), m) along the line ``origin -> target``:
+    (unit direction, line length (m), along-track distance from ``origin`` (m),
+    left-positive cross-track offset (m)); None when the line is shorter than 1 um."""
+    d = np.asarray(target, float) - np.asarray(origin, float)
+    length = float(np.hypot(*d))
+    if length < 1e-6:
+        return None
+    u = d / length
+    rel = np.asarray(points, float) - origin
+    return u, length, rel @ u, rel[..., 0] * (-u[1]) + rel[..., 1] * u[0]
+
+
 def detour_waypoint(pos: np.ndarray, target: np.ndarray, obstacles: np.ndarray, clearance: float,
                     margin: float) -> np.ndarray | None:
     """Waypoint around the first obstacle blocking segment pos-target, or None.
@@ -150,14 +164,10 @@ def detour_waypoint(pos: np.ndarray, target: np.ndarray, obstacles: np.ndarray, 
     """
     if obstacles.size == 0:
         return None
-    d = target - pos
-    length = float(np.hypot(*d))
-    if length < 1e-6:
+    frame = line_frame(pos, target, obstacles)
+    if frame is None:
         return None
-    u = d / length
-    rel = obstacles - pos
-    s = rel @ u  # along-track
-    lat = rel[:, 0] * (-u[1]) + rel[:, 1] * u[0]  # left-positive cross-track
+    u, length, s, lat = frame
     blocking = (s > 0.0) & (s < length + clearance * 0.5) & (np.abs(lat) < clearance)
     if not blocking.any():
         return None
