@@ -64,7 +64,7 @@ def test_every_consumer_covers_every_registered_skill():
         assert _make_env(s.cli_name, {}).spec_version == t.spec_of()
         a5 = np.array([0.1, -0.2, 0.3, 0.9, 0.5], np.float32)  # action mapping round trip
         assert t.to_task_action(a5).shape == (t.act_dim,)
-        assert t.to_env_action(t.to_task_action(a5)).shape == (5,)
+        assert t.to_env_action(t.to_task_action(a5)).shape in ((5,), (6,))  # (6,): the env's chip layout
         if s.has_learned and s.actor is not None:  # shipped actor keeps loading (spec versions)
             from ssl_marl.skills.learned import load_policy
 

@@ -1,5 +1,5 @@
-"""Chip passes over a robot in the lane: the kick's speed and elevation from the
-ball-flight model, and a small scene that measures completions.
+"""The chip pass skill: lift a pass over a robot standing in the lane, hand-coded and
+learned.
 
 A chip's ball flies (:mod:`ssl_marl.physics.ball_flight`, no drag): from the ground at
 3-D speed ``v`` and elevation ``a`` its height at horizontal distance ``x`` is
@@ -13,29 +13,44 @@ chip that clears a blocker by ``clearance`` over its whole body and touches down
 ``land_short`` short of the receiver, so the receiver meets a ball that has stopped
 hopping high.
 
-:func:`chip_pass_episode` plays one pass in a full-field env: the passer ``blue_0``
-with the ball on its dribbler, a blocker ``yellow_0`` standing midway in the lane, the
-receiver ``blue_1`` running the hand-coded receive. The env's action has no chip
-entry, so the episode drives the chip through the physics (``PhysicsWorld.step(...,
-chip=...)``) on the kick's control step.
+The skill acts in the env's chip layout (``chip_kicks=True``, 6-entry actions: index
+5 the chip, the kick's elevation as a fraction of ``RobotParams.chip_angle_max``).
+
+State (spec ``chip_pass/v1``, 12 values, float32; robot frame, m, m/s, rad/s): the
+pass's 10 values (:func:`~ssl_marl.skills.passing_features.pass_features`: target
+x, y, vx, vy, distance, sin and cos of its bearing, ball x, y, turn rate), then the
+lane's blocker x, y (:func:`lane_blocker`).
+
+Action (4 values in [-1, 1]): (omega, kick, speed, elevation): turn rate (fraction of
+the limit, dribbler on, no translation); kick when ``kick > 0``; the 3-D kick speed
+:func:`~ssl_marl.skills.passing_features.pass_kick_speed` (1 to 6.5 m/s); elevation
+``(e + 1) / 2 * chip_angle_max`` (0 to 60 deg).
 """
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass
-from typing import Any
+from pathlib import Path
 
 import numpy as np
 
-from ..envs.ssl_env import SSLParallelEnv
-from ..envs.tracking import with_tracker
-from ..physics.ball_flight import flight_height, projectile_reference
+from ..envs.actions import make_action
+from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
-from ..physics.world import PhysicsWorld
-from .base import make_action
-from .passing import ReceiveBaseline
+from ..physics.state import WorldState
+from .features import to_robot_frame
+from .passing import PassBaseline, PassSkill
+from .passing_features import pass_features, pass_kick_speed, pass_speed_action
+
+CHIP_PASS_SPEC = "chip_pass/v1"
+CHIP_PASS_NAMES = ("target_x", "target_y", "target_vx", "target_vy", "target_dist", "sin_target", "cos_target",
+                   "ball_x", "ball_y", "omega", "blocker_x", "blocker_y")
+CHIP_PASS_ACTIONS = ("omega", "kick", "speed", "elevation")
+#: an opponent this close (m) to the ball -> target segment counts as standing in the lane
+LANE_HALF_WIDTH = 0.5
+#: opponents nearer than this (m, along the lane) to the ball or the target are not blockers
+LANE_END_MARGIN = 0.2
 
 
 @dataclass(frozen=True)
@@ -55,114 +70,168 @@ def chip_kick(blocker_distance: float, receiver_distance: float, rp: RobotParams
     whose ball's lowest point stays ``clearance`` (m) above ``rp.height`` over the
     blocker's body (``blocker_distance`` +- ``body``, default robot radius + ball radius,
     m from the kicker's face) and whose first touchdown is at most ``receiver_distance
-    - land_short`` (m); of those, the one that lands farthest (the fastest ball to the
-    receiver). ValueError when no chip does both."""
+    - land_short`` (m); of those, the one with the shortest flight (the fastest ball to
+    the receiver). Candidates: a 46 x 56 grid of elevations (15 deg to the limit) and
+    speeds (1 m/s to the cap). ValueError when no chip does both."""
     g = bp.gravity
     body = rp.radius + bp.radius if body is None else body
     xs = np.array([blocker_distance - body, blocker_distance, blocker_distance + body])
-    best: ChipKick | None = None
-    best_flight = math.inf
-    for angle in np.linspace(math.radians(15.0), rp.chip_angle_max, 46):
-        for speed in np.linspace(1.0, rp.kick_speed_max, 56):
-            landing, _ = projectile_reference(speed, angle, g)
-            if landing > receiver_distance - land_short or landing <= xs[-1] + land_short:
-                continue
-            low = float(np.min(flight_height(xs, speed, angle, g)))  # the ball's lowest point is its height
-            if low < rp.height + clearance:
-                continue
-            flight = 2.0 * speed * math.sin(angle) / g
-            if best is None or flight < best_flight:
-                best, best_flight = ChipKick(float(speed), float(angle), float(landing), low), flight
-    if best is None:
+    angles = np.linspace(math.radians(15.0), rp.chip_angle_max, 46)[:, None]
+    speeds = np.linspace(1.0, rp.kick_speed_max, 56)[None, :]
+    landing = 2.0 * speeds ** 2 * np.sin(angles) * np.cos(angles) / g
+    vh, vv = speeds * np.cos(angles), speeds * np.sin(angles)
+    t = xs[:, None, None] / vh[None]
+    low = np.min(vv[None] * t - 0.5 * g * t * t, axis=0)  # the ball's lowest point over the body
+    ok = (landing <= receiver_distance - land_short) & (landing > xs[-1] + land_short) & (low >= rp.height + clearance)
+    if not ok.any():
         raise ValueError(f"no chip clears a blocker {blocker_distance:.2f} m away and lands "
                          f"{land_short:.2f} m short of a receiver {receiver_distance:.2f} m away")
-    return best
+    flight = np.where(ok, 2.0 * vv / g, np.inf)
+    i, j = np.unravel_index(int(np.argmin(flight)), flight.shape)
+    speed, angle = float(speeds[0, j]), float(angles[i, 0])
+    return ChipKick(speed, angle, float(landing[i, j]), float(low[i, j]))
 
 
-def chip_pass_episode(seed: int, chip: bool = True, realism: Any = "none", tracker: Any = False,
-                      distance_range: tuple[float, float] = (3.0, 4.5), max_time_s: float = 6.0,
-                      hold_s: float = 0.5, flat_speed: float = 3.5) -> dict[str, Any]:
-    """One pass over a blocker (see the module docstring): the passer at a random spot
-    of the own half, the receiver ``U(distance_range)`` m away in a random direction
-    (inside the field, 0.5 m margin), the blocker on the lane's midpoint (+- 0.05 m to
-    the side) facing the passer. ``chip``: a :func:`chip_kick`; otherwise a flat kick at
-    ``flat_speed`` m/s. Completed when the receiver holds the ball on its dribbler for
-    ``hold_s`` within ``max_time_s`` and the blocker never touched it (the ball's lowest
-    point at most ``rp.height`` within its body radius + ball radius + 1 cm: in a game
-    that is an interception). Returns {"completed", "blocked", "time_s", "chip": the
-    ChipKick or None, "max_height" (m)}."""
-    rng = np.random.default_rng(seed)
-    env = with_tracker(SSLParallelEnv(n_blue=2, n_yellow=1, field="div_b", realism=realism, referee=False,
-                                      max_time_s=1e9, obs_max_teammates=0, obs_max_opponents=0), tracker)
-    f, rp, bp = env.field, env.config.robot, env.config.ball
-    reach = rp.front_distance + bp.radius
-    while True:
-        passer = f.random_free_point(rng, margin=0.5)
-        ang = rng.uniform(-math.pi, math.pi)
-        dist = rng.uniform(*distance_range)
-        u = np.array([math.cos(ang), math.sin(ang)])
-        receiver = passer + dist * u
-        if bool(f.in_field(receiver, 0.5)):
-            break
-    mid = passer + 0.5 * dist * u + rng.uniform(-0.05, 0.05) * np.array([-u[1], u[0]])
-    ball = passer + reach * u
-    env.reset(seed=int(rng.integers(2 ** 31)), options={
-        "robots": {"blue_0": (*passer, ang), "blue_1": (*receiver, ang + math.pi), "yellow_0": (*mid, ang + math.pi)},
-        "ball": {"pos": tuple(ball), "vel": (0.0, 0.0)}})
-    kick = chip_kick(float(np.hypot(*(mid - ball))), float(np.hypot(*(receiver - ball))) - reach, rp, bp) \
-        if chip else None
-    strength = (kick.speed if kick else flat_speed) / rp.kick_speed_max
-    receive = ReceiveBaseline(f, rp, bp, hold_s=hold_s)
-    physics: PhysicsWorld = env.unwrapped.physics if hasattr(env, "unwrapped") else env.physics
-    held_since, max_h, t, blocked, kicked = None, 0.0, 0.0, False, False
-    if kick is not None:  # the chip rides on the physics step until the passer's kick fires (radio delays, losses)
-        chip_angles = np.zeros(env.n)
-        chip_angles[0] = kick.angle
-        physics.step = functools.partial(PhysicsWorld.step, physics, chip=chip_angles)
-    for step in range(int(max_time_s / env.config.dt)):
-        acts = {"yellow_0": make_action(), "blue_0": make_action() if kicked else make_action(kick=strength)}
-        if step > 0:
-            acts["blue_1"] = receive.act(env.vision_state("blue"), 1)
-        _, _, _, _, infos = env.step(acts)
-        if not kicked and any(ev["type"] == "kick" and ev["agent"] == "blue_0" for ev in infos["blue_0"]["events"]):
-            kicked = True
-            if kick is not None:
-                del physics.step
-        truth = env.world_state()
-        max_h = max(max_h, float(truth.ball_height))
-        if float(truth.ball_height) <= rp.height and \
-                float(np.hypot(*(truth.ball_pos - truth.yellow.pos[0]))) <= rp.radius + bp.radius + 0.01:
-            blocked = True
-        t = (step + 1) * env.config.dt
-        if bool(truth.blue.ball_on_dribbler[1]):
-            held_since = t if held_since is None else held_since
-            if t - held_since >= hold_s - 1e-9:
-                if not kicked and kick is not None:
-                    del physics.step
-                env.close()
-                return {"completed": not blocked, "blocked": blocked, "time_s": t, "chip": kick, "max_height": max_h}
-        else:
-            held_since = None
-        if not bool(f.in_field(truth.ball_pos, -bp.radius)):
-            break
-    if not kicked and kick is not None:
-        del physics.step
-    env.close()
-    return {"completed": False, "blocked": blocked, "time_s": t, "chip": kick, "max_height": max_h}
+def lane_blocker(world: WorldState, target: np.ndarray, half_width: float = LANE_HALF_WIDTH) -> np.ndarray:
+    """Team-frame position (m) of the opponent standing in the lane from the ball to
+    ``target``: of the opponents within ``half_width`` of the segment and more than
+    :data:`LANE_END_MARGIN` from either end along it, the one nearest the line; the
+    lane's midpoint when none stands there (a chip then clears an imagined robot
+    midway)."""
+    ball = world.ball_pos.astype(float)
+    d = np.asarray(target, float) - ball
+    length = float(np.hypot(*d))
+    if length < 1e-9:
+        return ball.copy()
+    u = d / length
+    opp = world.opponents(world.frame).pos
+    if len(opp):
+        rel = opp - ball
+        along = rel @ u
+        cross = np.abs(rel[:, 0] * u[1] - rel[:, 1] * u[0])
+        inside = (along > LANE_END_MARGIN) & (along < length - LANE_END_MARGIN) & (cross < half_width)
+        if inside.any():
+            k = int(np.flatnonzero(inside)[np.argmin(cross[inside])])
+            return opp[k].astype(float)
+    return ball + 0.5 * d
 
 
-def chip_pass_completion(episodes: int, seed: int = 0, chip: bool = True, realism: Any = "none",
-                         tracker: Any = "auto") -> dict[str, Any]:
-    """Completed fraction of ``episodes`` passes over a blocker (episode ``i`` seeded
-    ``seed * 100_003 + i``); ``tracker="auto"``: the receiver reads tracked vision
-    when realism is on."""
-    from ..envs.tracking import resolve_tracker
-
-    use = resolve_tracker(tracker, realism)
-    done = [chip_pass_episode(seed * 100_003 + i, chip=chip, realism=realism, tracker=use)["completed"]
-            for i in range(episodes)]
-    return {"episodes": episodes, "completed": int(sum(done)), "completion_rate": float(np.mean(done)),
-            "chip": chip, "realism": realism, "tracker": use, "seed": seed}
+def chip_pass_features(world: WorldState, robot: int, target: np.ndarray, target_vel: np.ndarray | None = None
+                       ) -> np.ndarray:
+    """The 12 chip-pass state values (float32), see the module docstring; ``target`` and
+    ``target_vel`` in the team frame (m, m/s)."""
+    ts = world.team(world.frame)
+    blocker = to_robot_frame(lane_blocker(world, target), ts.pos[robot], float(ts.heading[robot]))
+    return np.concatenate([pass_features(world, robot, target, target_vel), blocker]).astype(np.float32)
 
 
-__all__ = ["ChipKick", "chip_kick", "chip_pass_completion", "chip_pass_episode"]
+def chip_elevation(a_elev: float, rp: RobotParams) -> float:
+    """Kick elevation (rad) of the action's elevation entry in [-1, 1]."""
+    return (float(np.clip(a_elev, -1.0, 1.0)) + 1.0) / 2.0 * rp.chip_angle_max
+
+
+def expand_chip_pass_action(action4: np.ndarray, rp: RobotParams) -> np.ndarray:
+    """The task's (omega, kick, speed, elevation) as a (6,) env action (chip layout):
+    dribbler on, no translation; when ``kick > 0`` the kick strength = speed / cap and
+    the chip entry = elevation / ``chip_angle_max``."""
+    a = np.clip(np.asarray(action4, dtype=np.float64).reshape(4), -1.0, 1.0)
+    if a[1] <= 0:
+        return make_action(0.0, 0.0, a[0], dribble=True, chip=0.0)
+    return make_action(0.0, 0.0, a[0], dribble=True, kick=pass_kick_speed(a[2], rp) / rp.kick_speed_max,
+                       chip=chip_elevation(a[3], rp) / rp.chip_angle_max)
+
+
+def chip_pass_task_action(action6: np.ndarray, rp: RobotParams) -> np.ndarray:
+    """A chip-pass skill's (6,) action projected onto the task's (omega, kick, speed,
+    elevation) (a 5-entry action is a flat one)."""
+    a = np.asarray(action6, dtype=np.float64)
+    kick = a[4] > 0
+    speed = pass_speed_action(a[4] * rp.kick_speed_max, rp) if kick else 0.0
+    chip = float(np.clip(a[5], 0.0, 1.0)) if len(a) > 5 else 0.0
+    return np.array([a[2], 1.0 if kick else -1.0, speed, 2.0 * chip - 1.0 if kick else -1.0], dtype=np.float32)
+
+
+class ChipPassSkill(PassSkill):
+    """chip pass, hand-coded or learned: a :class:`~ssl_marl.skills.passing.PassSkill`
+    (target, kick bookkeeping, ball-lost and time-out failures) whose actions have the
+    chip entry (6 values; 0 while it does not kick).
+
+    :attr:`task_action` is the task's (omega, kick, speed, elevation) of the last
+    :meth:`act`: for the hand-coded skill the speed and elevation of the kick it plans
+    on every step, also while it still turns (an env action carries them only on the
+    kick), so demonstrations map every state to the kick it leads to."""
+
+    name = "chip_pass"
+
+    def act(self, world: WorldState, robot: int) -> np.ndarray:
+        self.task_action: np.ndarray | None = None
+        a = super().act(world, robot)
+        a = a if len(a) == 6 else np.append(a, np.float32(0.0))
+        if self.task_action is None:
+            self.task_action = chip_pass_task_action(a, self.rp)
+        return a
+
+
+class ChipPassBaseline(ChipPassSkill, PassBaseline):
+    """Hand-coded chip pass: turn with the ball towards the target as the hand-coded
+    pass does (:class:`~ssl_marl.skills.passing.PassBaseline`), then kick the
+    :func:`chip_kick` over the lane's blocker (:func:`lane_blocker`, its distance along
+    the lane from the ball) landing ``land_short`` (m) short of the receiver's face;
+    where no chip fits (a short pass, a blocker too near) the flat pass."""
+
+    def __init__(self, field: FieldGeometry, robot: RobotParams | None = None, ball: BallParams | None = None,
+                 target=None, target_vel=None, max_time_s=None, land_short: float = 0.6, clearance: float = 0.05,
+                 **pass_kwargs) -> None:
+        super().__init__(field, robot, ball, target, target_vel, max_time_s, **pass_kwargs)
+        self.land_short, self.clearance = land_short, clearance
+
+    def chip(self, world: WorldState) -> ChipKick | None:
+        """The chip over the lane's blocker to the current target, or None when none fits."""
+        reach = self.rp.front_distance + self.bp.radius
+        ball, target = world.ball_pos.astype(float), np.asarray(self.target, float)
+        d = target - ball
+        length = float(np.hypot(*d))
+        if length < 1e-9:
+            return None
+        blocker = float((lane_blocker(world, target) - ball) @ (d / length))
+        try:
+            return chip_kick(blocker, length - reach, self.rp, self.bp, self.clearance, self.land_short)
+        except ValueError:
+            return None
+
+    def aim(self, world: WorldState, robot: int) -> tuple[np.ndarray, bool]:
+        action, kicks = super().aim(world, robot)
+        kick = self.chip(world)
+        speed, angle = (self.plan(world)[1], 0.0) if kick is None else (kick.speed, kick.angle)
+        self.task_action = np.array([action[2], 1.0 if kicks else -1.0, pass_speed_action(speed, self.rp),
+                                     2.0 * angle / self.rp.chip_angle_max - 1.0], dtype=np.float32)
+        if not kicks:
+            return np.append(action, np.float32(0.0)), False
+        return make_action(omega=float(action[2]), dribble=True, kick=speed / self.rp.kick_speed_max,
+                           chip=angle / self.rp.chip_angle_max), True
+
+
+class LearnedChipPass(ChipPassSkill):
+    """Learned chip pass: the trained actor maps :func:`chip_pass_features` to (omega,
+    kick, speed, elevation)."""
+
+    def __init__(self, field: FieldGeometry, robot: RobotParams | None = None, ball: BallParams | None = None,
+                 target=None, target_vel=None, max_time_s=None, checkpoint: str | Path | None = None,
+                 policy=None) -> None:
+        super().__init__(field, robot, ball, target, target_vel, max_time_s)
+        if policy is None:
+            from .learned import load_policy
+
+            policy = load_policy("chip_pass", checkpoint)[0]
+        self.policy = policy
+
+    def aim(self, world: WorldState, robot: int) -> tuple[np.ndarray, bool]:
+        a4 = np.clip(self.policy(chip_pass_features(world, robot, self.target, self.target_vel)), -1.0, 1.0)
+        self.task_action = a4.astype(np.float32)
+        a = expand_chip_pass_action(a4, self.rp)
+        return a, bool(a[4] > 0)
+
+
+__all__ = ["CHIP_PASS_ACTIONS", "CHIP_PASS_NAMES", "CHIP_PASS_SPEC", "ChipKick", "ChipPassBaseline", "ChipPassSkill",
+           "LearnedChipPass", "chip_elevation", "chip_kick", "chip_pass_features",
+           "chip_pass_task_action", "expand_chip_pass_action", "lane_blocker"]

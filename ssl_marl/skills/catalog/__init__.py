@@ -10,7 +10,7 @@ from __future__ import annotations
 import importlib
 
 #: catalog modules, in registry order (the order of CLI choices and tables)
-MODULES = ("go_to_ball", "aim_to_shoot", "pass_ball", "receive", "redirect", "drive_forward", "move_to_point")
+MODULES = ("go_to_ball", "aim_to_shoot", "pass_ball", "receive", "redirect", "chip_pass", "drive_forward", "move_to_point")
 
 for _name in MODULES:
     importlib.import_module(f"{__name__}.{_name}")
