@@ -17,7 +17,8 @@ from ssl_marl.skills.checkpoint import save_actor
 from ssl_marl.skills.networks import Actor
 from ssl_marl.skills.redirect import (REDIRECT_AIM_NAMES, REDIRECT_AIM_POST_MARGIN, REDIRECT_SPEC_AIM, LearnedRedirect,
                                       RedirectBaseline, redirect_aim_features, redirect_aim_of, redirect_aim_point)
-from ssl_marl.skills.redirect_task import RedirectEnv, redirect_baseline_demos, redirect_skill_action
+from ssl_marl.skills.redirect_task import (RedirectEnv, redirect_baseline_all_demos, redirect_baseline_demos,
+                                           redirect_skill_action)
 from ssl_marl.skills.registry import get_skill, get_task
 
 FIELD, RP, BP = FieldGeometry.from_name("div_b"), RobotParams(kick_on_contact=True), BallParams()
@@ -97,6 +98,9 @@ def test_hand_coded_aims_through_the_aim_env_score_without_a_goalie(deflection):
     assert all(a.shape == (1,) and -1.0 <= a[0] <= 1.0 for a in actions)
     rows = list(redirect_baseline_demos(30, seed=1, action_form="aim"))
     assert all(r.obs.shape == (21,) and r.action.shape == (1,) for r in rows)
+    rows = list(redirect_baseline_all_demos(400, seed=1, action_form="aim"))  # failures kept
+    ends = [r.reward for r in rows if r.terminated or r.truncated]
+    assert len(rows) == 400 and ends and set(ends) <= {-1.0, 1.0} and -1.0 in ends
 
 
 def test_registry_and_a_checkpoint_of_the_aim_form(tmp_path):
@@ -147,4 +151,4 @@ def test_the_trainer_config_loads():
     cfg = load_config(REPO / "train" / "configs" / "redirect.json")
     assert cfg.skill == "redirect" and cfg.env_kwargs == {"action_form": "aim"}
     assert cfg.bc_anneal_samples >= cfg.total_samples and cfg.ddpg.bc_weight > 0
-    assert cfg.checkpoint_interval == 1000
+    assert cfg.checkpoint_interval == 1000 and cfg.demo_fn.endswith(":redirect_baseline_all_demos")

@@ -305,5 +305,27 @@ def redirect_baseline_demos(n_steps: int, seed: int = 0, **env_kwargs: Any):
     return successful_skill_demos(env, skill, redirect_skill_action, n_steps, seed)
 
 
+def redirect_baseline_all_demos(n_steps: int, seed: int = 0, **env_kwargs: Any):
+    """As :func:`redirect_baseline_demos`, but every episode, failures too: the critic
+    sees what the hand-coded choices lead to (with ``action_form="aim"``: where the
+    hand-coded aim point lets the goalie save)."""
+    from .demos import Transition
+
+    env = RedirectEnv(**env_kwargs)
+    skill = RedirectBaseline(env.field, env.robot_params, env.ball_params)
+    rng = np.random.default_rng(seed)
+    produced = 0
+    while produced < n_steps:
+        obs, _ = env.reset(seed=int(rng.integers(2 ** 31)))
+        skill.reset()
+        done = False
+        while not done and produced < n_steps:
+            action = redirect_skill_action(env, skill)
+            next_obs, reward, terminated, truncated, info = env.step(action)
+            yield Transition(obs, action, float(reward), next_obs, bool(terminated), bool(truncated), info)
+            produced += 1
+            obs, done = next_obs, terminated or truncated
+
+
 __all__ = ["GOALIE_REF", "KEEPER", "REDIRECTOR", "RedirectEnv", "RedirectTask", "redirect_aim_observation_bounds",
-           "redirect_baseline_demos", "redirect_observation_bounds", "redirect_skill_action"]
+           "redirect_baseline_all_demos", "redirect_baseline_demos", "redirect_observation_bounds", "redirect_skill_action"]
