@@ -106,6 +106,7 @@ def test_hand_coded_aims_through_the_aim_env_score_without_a_goalie(deflection):
 def test_registry_and_a_checkpoint_of_the_aim_form(tmp_path):
     t = get_task("redirect")
     assert t.spec_versions["aim"] == REDIRECT_SPEC_AIM and t.default_mapping == "direct"
+    assert t.names_of("aim") == (REDIRECT_AIM_NAMES, ("aim_y",)) and len(t.names_of()[0]) == 14
     with pytest.raises(ValueError, match="aim action"):
         t.to_env_action(np.zeros(1), "aim")
     actor = Actor(21, 1, (16, 16))

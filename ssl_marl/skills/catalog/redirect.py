@@ -12,8 +12,9 @@ from __future__ import annotations
 
 import functools
 
-from ..redirect import (REDIRECT_ACTION_FORMS, REDIRECT_ACTIONS, REDIRECT_NAMES, RedirectBaseline,
-                        expand_redirect_action, redirect_features, redirect_task_action)
+from ..redirect import (REDIRECT_ACTION_FORMS, REDIRECT_ACTIONS, REDIRECT_AIM_ACTIONS, REDIRECT_AIM_NAMES,
+                        REDIRECT_NAMES, RedirectBaseline, expand_redirect_action, redirect_features,
+                        redirect_task_action)
 from ..registry import PRETRAINED_DIR, SkillDef, SkillTaskDef, direct_env_action, register
 
 _ACTOR = PRETRAINED_DIR / "redirect.pt"
@@ -54,6 +55,7 @@ SKILL = register(SkillDef(
         # "direct" first: the task env's default (what eval-skill drives); training uses
         # action_form="aim" (train/configs/redirect.json)
         spec_versions=dict(REDIRECT_ACTION_FORMS),
+        form_names={"aim": (REDIRECT_AIM_NAMES, REDIRECT_AIM_ACTIONS)},
         demo_fn="ssl_marl.skills.redirect_task:redirect_baseline_demos",
         train_config="redirect",
         drive=_drive,
