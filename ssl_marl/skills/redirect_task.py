@@ -328,4 +328,5 @@ def redirect_baseline_all_demos(n_steps: int, seed: int = 0, **env_kwargs: Any):
 
 
 __all__ = ["GOALIE_REF", "KEEPER", "REDIRECTOR", "RedirectEnv", "RedirectTask", "redirect_aim_observation_bounds",
-           "redirect_baseline_all_demos", "redirect_baseline_demos", "redirect_observation_bounds", "redirect_skill_action"]
+           "redirect_baseline_all_demos", "redirect_baseline_demos", "redirect_observation_bounds",
+           "redirect_skill_action"]
