@@ -36,13 +36,13 @@ kicker is always armed at full strength, the dribbler off.
 The ``aim`` form's state (``redirect/v3``, 21 values) is the 14 above followed by
 seven team-frame values (+x towards the opponent goal; m, m/s):
 
-=====  ======================  =======================================================
+======  ======================  =======================================================
  14-15  robot_fx, robot_fy      robot position
  16-17  keeper_fx, keeper_fy    the keeper's position (:func:`keeper_position`)
  18-19  keeper_fvx, keeper_fvy  the keeper's velocity (zero when the opponents have none)
-  20    hand_aim_y              y of the hand-coded aim point (:func:`open_goal_target`
+   20   hand_aim_y              y of the hand-coded aim point (:func:`open_goal_target`
                                 from the robot's position)
-=====  ======================  =======================================================
+======  ======================  =======================================================
 """
 
 from __future__ import annotations
