@@ -153,3 +153,4 @@ def test_the_trainer_config_loads():
     assert cfg.skill == "redirect" and cfg.env_kwargs == {"action_form": "aim"}
     assert cfg.bc_anneal_samples >= cfg.total_samples and cfg.ddpg.bc_weight > 0
     assert cfg.checkpoint_interval == 1000 and cfg.demo_fn.endswith(":redirect_baseline_all_demos")
+    assert [v.get("realism") for v in cfg.env_variants] == ["none", "realistic"] and cfg.num_envs == 2
