@@ -24,9 +24,9 @@ from ssl_marl.skills.registry import get_skill, learned_skills, task_skills  # n
 ENV_IDS = {s.name: s.task.env_id for s in task_skills()}  # every skill task, from the registry
 
 
-def _observations(env_id: str, n: int, seed: int = 10_000) -> np.ndarray:
+def _observations(env_id: str, n: int, seed: int = 10_000, **env_kwargs) -> np.ndarray:
     """n observations from random-action episodes of the skill env (reset on episode end)."""
-    env = gym.make(env_id)
+    env = gym.make(env_id, **env_kwargs)
     env.action_space.seed(seed)
     obs, _ = env.reset(seed=seed)
     out = []
@@ -46,7 +46,9 @@ def test_exported_actor_matches_pytorch(skill, tmp_path, capsys):
     assert "->" in capsys.readouterr().out
 
     actor, meta = load_actor(get_skill(skill).actor)
-    obs = _observations(ENV_IDS[skill], 1000)
+    task = get_skill(skill).task
+    mapping = task.mapping_of(meta["obs_spec"])  # a form with a state of its own: its env's action_form
+    obs = _observations(ENV_IDS[skill], 1000, **({"action_form": mapping} if mapping in task.form_names else {}))
     with torch.no_grad():
         expected = actor(torch.from_numpy(obs)).numpy()
     sess = ort.InferenceSession(str(out), providers=["CPUExecutionProvider"])

@@ -37,22 +37,28 @@ from .checkpoint import load_actor
 INPUT_NAME, OUTPUT_NAME = "obs", "action"
 
 
-def _task_names(skill: str) -> tuple[tuple[str, ...] | None, tuple[str, ...] | None]:
-    """(feature names, action names) of a registered skill's task, or (None, None)."""
+def _task_names(skill: str, spec: str) -> tuple[tuple[str, ...] | None, tuple[str, ...] | None]:
+    """(feature names, action names) of a registered skill's task under the action
+    mapping of ``spec``, or (None, None)."""
     from .registry import get_skill
 
     try:
         task = get_skill(skill).task
     except ValueError:
         return None, None
-    return (None, None) if task is None else (tuple(task.feature_names), tuple(task.action_names))
+    if task is None:
+        return None, None
+    try:
+        return task.names_of(task.mapping_of(spec))
+    except ValueError:  # a spec the task does not list: its default names
+        return tuple(task.feature_names), tuple(task.action_names)
 
 
 def onnx_metadata(meta: dict[str, Any]) -> dict[str, str]:
     """The ``metadata_props`` (str -> str) written for a checkpoint's metadata."""
     skill = str(meta.get("skill"))
     obs_dim, act_dim = int(meta["obs_dim"]), int(meta["act_dim"])
-    names, action_names = _task_names(skill)
+    names, action_names = _task_names(skill, str(meta.get("obs_spec")))
     props = {
         "ssl_marl.skill": skill,
         "ssl_marl.obs_spec": str(meta.get("obs_spec")),

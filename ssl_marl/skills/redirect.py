@@ -25,11 +25,24 @@ State (spec ``redirect/v1``, 14 values, float32; robot frame: +x forward, +y lef
   13   closing_speed       ball speed minus the robot's speed along the ball's direction
 ====  ==================  ==========================================================
 
-Action (two forms, as the receive's): ``direct`` (``redirect/v1``): (vx, vy, omega),
-robot frame, fractions of the robot's limits; ``residual`` (``redirect/v2``): a
-correction (at most :data:`REDIRECT_RESIDUAL_SCALE` of each limit) added to
-:class:`RedirectBaseline`'s (vx, vy, omega). The kicker is always armed at full
-strength, the dribbler off.
+Action (three forms): ``direct`` (``redirect/v1``): (vx, vy, omega), robot frame,
+fractions of the robot's limits; ``residual`` (``redirect/v2``): a correction (at most
+:data:`REDIRECT_RESIDUAL_SCALE` of each limit) added to :class:`RedirectBaseline`'s
+(vx, vy, omega); ``aim`` (``redirect/v3``): one value, the aim point's y along the goal
+mouth (:func:`redirect_aim_point`: -1 / +1 = :data:`REDIRECT_AIM_POST_MARGIN` inside the
+right / left post), which :class:`RedirectBaseline`'s contact planner executes. The
+kicker is always armed at full strength, the dribbler off.
+
+The ``aim`` form's state (``redirect/v3``, 21 values) is the 14 above followed by
+seven team-frame values (+x towards the opponent goal; m, m/s):
+
+======  ======================  =======================================================
+ 14-15  robot_fx, robot_fy      robot position
+ 16-17  keeper_fx, keeper_fy    the keeper's position (:func:`keeper_position`)
+ 18-19  keeper_fvx, keeper_fvy  the keeper's velocity (zero when the opponents have none)
+   20   hand_aim_y              y of the hand-coded aim point (:func:`open_goal_target`
+                                from the robot's position)
+======  ======================  =======================================================
 """
 
 from __future__ import annotations
@@ -52,13 +65,19 @@ from .receive_task import robot_travel_time
 
 REDIRECT_SPEC = "redirect/v1"
 REDIRECT_SPEC_RESIDUAL = "redirect/v2"
+REDIRECT_SPEC_AIM = "redirect/v3"
 #: action forms (the registry's action-mapping names) -> spec strings; "direct" first (the default)
-REDIRECT_ACTION_FORMS = {"direct": REDIRECT_SPEC, "residual": REDIRECT_SPEC_RESIDUAL}
+REDIRECT_ACTION_FORMS = {"direct": REDIRECT_SPEC, "residual": REDIRECT_SPEC_RESIDUAL, "aim": REDIRECT_SPEC_AIM}
 #: largest correction (fraction of each velocity / turn-rate limit) a residual action adds
 REDIRECT_RESIDUAL_SCALE = 0.5
 REDIRECT_NAMES = ("ball_x", "ball_y", "ball_vx", "ball_vy", "robot_vx", "robot_vy", "robot_omega", "target_x",
                   "target_y", "keeper_x", "keeper_y", "line_offset", "gap", "closing_speed")
 REDIRECT_ACTIONS = ("vx", "vy", "omega")
+REDIRECT_AIM_NAMES = REDIRECT_NAMES + ("robot_fx", "robot_fy", "keeper_fx", "keeper_fy", "keeper_fvx", "keeper_fvy",
+                                      "hand_aim_y")
+REDIRECT_AIM_ACTIONS = ("aim_y",)
+#: distance (m) inside each post of the outermost aim points (the hand-coded aim's margin)
+REDIRECT_AIM_POST_MARGIN = 0.04
 #: the kick strength a redirect arms (full: kick_speed_max)
 REDIRECT_KICK = 1.0
 
@@ -78,6 +97,16 @@ def keeper_position(world: WorldState, field: FieldGeometry) -> np.ndarray:
     if len(opp) == 0:
         return goal
     return opp[int(np.argmin(np.hypot(*(opp - goal).T)))].astype(float)
+
+
+def keeper_velocity(world: WorldState, field: FieldGeometry) -> np.ndarray:
+    """Team-frame velocity (m/s) of the robot :func:`keeper_position` picks (zero when
+    the opponents have no robot)."""
+    goal = np.array([field.half_length, 0.0])
+    opp = world.opponents(world.frame)
+    if len(opp.pos) == 0:
+        return np.zeros(2)
+    return opp.vel[int(np.argmin(np.hypot(*(opp.pos - goal).T)))].astype(float)
 
 
 def open_goal_target(from_xy: np.ndarray, world: WorldState, field: FieldGeometry, rp: RobotParams,
@@ -111,6 +140,38 @@ def redirect_features(world: WorldState, robot: int, field: FieldGeometry, robot
         to_robot_frame(world.ball_pos, pos, h), rotate_to_robot(world.ball_vel, h), rotate_to_robot(ts.vel[robot], h),
         [float(ts.omega[robot])], to_robot_frame(target, pos, h),
         to_robot_frame(keeper_position(world, field), pos, h), [offset, gap, closing]]).astype(np.float32)
+
+
+def redirect_aim_features(world: WorldState, robot: int, field: FieldGeometry, robot_params: RobotParams,
+                          ball_params: BallParams) -> np.ndarray:
+    """The 21 ``redirect/v3`` state values (float32): :func:`redirect_features` and the
+    seven team-frame values of the module's second table."""
+    pos = world.team(world.frame).pos[robot]
+    hand_aim = open_goal_target(pos, world, field, robot_params, ball_params)
+    return np.concatenate([redirect_features(world, robot, field, robot_params, ball_params), pos,
+                           keeper_position(world, field), keeper_velocity(world, field),
+                           [hand_aim[1]]]).astype(np.float32)
+
+
+def redirect_aim_point(action1: np.ndarray, field: FieldGeometry,
+                       post_margin: float = REDIRECT_AIM_POST_MARGIN) -> np.ndarray:
+    """The ``aim`` action (one value, clipped to [-1, 1]) -> the team-frame aim point
+    (half_length, a * (goal_width / 2 - post_margin)) (m); ValueError for NaN or inf."""
+    a = np.asarray(action1, dtype=np.float64).reshape(1)
+    if not np.isfinite(a).all():
+        raise ValueError(f"redirect aim action contains NaN or inf: {a.tolist()}")
+    half = field.goal_width / 2.0 - post_margin
+    return np.array([field.half_length, float(np.clip(a[0], -1.0, 1.0)) * half])
+
+
+def redirect_aim_of(target: np.ndarray | None, field: FieldGeometry,
+                    post_margin: float = REDIRECT_AIM_POST_MARGIN) -> np.ndarray:
+    """Inverse of :func:`redirect_aim_point` (float32 (1,), clipped to [-1, 1]); 0 (the
+    goal centre) when ``target`` is None."""
+    if target is None:
+        return np.zeros(1, dtype=np.float32)
+    half = field.goal_width / 2.0 - post_margin
+    return np.array([np.clip(float(target[1]) / half, -1.0, 1.0)], dtype=np.float32)
 
 
 def redirect_task_action(action5: np.ndarray) -> np.ndarray:
@@ -160,10 +221,13 @@ class RedirectSkill(SkillBase):
 class RedirectBaseline(RedirectSkill):
     """Hand-coded redirect.
 
-    * Aim point: :func:`open_goal_target` seen from the contact point.
+    * Aim point: :func:`open_goal_target` seen from the contact point, or ``aim`` (a
+      team-frame point, m) when it is set (the ``aim`` action form sets it each step).
     * Contact point Q on the ball's predicted path (:mod:`ssl_marl.physics.ball_model`):
       the first point, from the robot's projection onto the line on, that the robot can
-      reach (:func:`robot_travel_time` + ``margin_s``) before the ball does; the robot's
+      reach (:func:`robot_travel_time` + ``margin_s``) before the ball does (0.1 s,
+      hand-tuned on development episodes: a longer margin meets fast passes later, farther
+      from the goal, and the goalie saves more of those shots); the robot's
       centre goes to ``Q - (front_distance + ball radius) * heading``, heading = the
       direction from Q to the aim point, so the face meets the ball square on the path.
     * Motion: straight to that spot braking in time (``approach_speed``), at most
@@ -174,16 +238,29 @@ class RedirectBaseline(RedirectSkill):
     """
 
     def __init__(self, field: FieldGeometry, robot: RobotParams | None = None, ball: BallParams | None = None,
-                 margin_s: float = 0.25, gain: float = 6.0, turn_gain: float = 8.0, slow_ball: float = 0.3,
+                 margin_s: float = 0.1, gain: float = 6.0, turn_gain: float = 8.0, slow_ball: float = 0.3,
                  ds: float = 0.05) -> None:
         super().__init__(field, robot, ball)
         self.margin_s, self.gain, self.turn_gain, self.slow_ball, self.ds = margin_s, gain, turn_gain, slow_ball, ds
         self._fetch = GoToBallBaseline(field, self.rp, self.bp)
         self._contact: np.ndarray | None = None  #: the contact point chosen (team frame, m)
+        self.aim: np.ndarray | None = None  #: fixed aim point (team frame, m); None: open_goal_target
+        self.last_target: np.ndarray | None = None  #: the aim point of the last plan (None: no plan)
 
     def reset(self) -> None:
         super().reset()
         self._contact = None
+        self.last_target = None
+
+    def _target(self, q: np.ndarray, world: WorldState) -> np.ndarray:
+        """The aim point (team frame, m) for a contact at ``q``."""
+        if self.aim is not None:
+            return self.aim
+        return open_goal_target(q, world, self.field, self.rp, self.bp)
+
+    def aim_action(self) -> np.ndarray:
+        """The last plan's aim point as an ``aim`` action (:func:`redirect_aim_of`)."""
+        return redirect_aim_of(self.last_target, self.field)
 
     def contact_plan(self, world: WorldState, robot: int) -> tuple[np.ndarray, float] | None:
         """(robot centre target (m), heading (rad)) for the contact, or None when the
@@ -203,7 +280,7 @@ class RedirectBaseline(RedirectSkill):
             d = self._contact - world.ball_pos
             s_c = float(d @ u)
             if abs(float(u[0] * d[1] - u[1] * d[0])) < 0.1 and 0.0 < s_c < s_stop:
-                tgt = open_goal_target(self._contact, world, self.field, self.rp, self.bp)
+                tgt = self.last_target = self._target(self._contact, world)
                 h = math.atan2(tgt[1] - self._contact[1], tgt[0] - self._contact[0])
                 return self._contact - reach * np.array([math.cos(h), math.sin(h)]), h
         plan = None
@@ -211,10 +288,11 @@ class RedirectBaseline(RedirectSkill):
             q = world.ball_pos + u * s
             if not bool(self.field.in_field(q, 0.05)):
                 break
-            tgt = open_goal_target(q, world, self.field, self.rp, self.bp)
+            tgt = self._target(q, world)
             h = math.atan2(tgt[1] - q[1], tgt[0] - q[0])
             centre = q - reach * np.array([math.cos(h), math.sin(h)])
             plan = (centre, h)
+            self.last_target = tgt
             self._contact = q
             t_ball = ball_model.time_to_distance(v, s, self.bp, sliding=False)
             if robot_travel_time(float(np.hypot(*(centre - pos))), self.rp) + self.margin_s <= t_ball:
@@ -224,6 +302,7 @@ class RedirectBaseline(RedirectSkill):
     def control(self, world: WorldState, robot: int) -> np.ndarray:
         plan = self.contact_plan(world, robot)
         if plan is None:
+            self.last_target = None
             a = self._fetch.approach(world, robot)
             a[3], a[4] = -1.0, REDIRECT_KICK
             return a
@@ -245,8 +324,9 @@ class RedirectBaseline(RedirectSkill):
 class LearnedRedirect(RedirectSkill):
     """Learned redirect: the trained actor maps :func:`redirect_features` to (vx, vy,
     omega); the checkpoint's spec picks the action form (``redirect/v2``: a correction of
-    :class:`RedirectBaseline`'s action). With ``policy`` given directly, ``action_form``
-    says which."""
+    :class:`RedirectBaseline`'s action; ``redirect/v3``: the actor maps
+    :func:`redirect_aim_features` to the aim point, :class:`RedirectBaseline`'s contact
+    planner moves the robot). With ``policy`` given directly, ``action_form`` says which."""
 
     def __init__(self, field: FieldGeometry, robot: RobotParams | None = None, ball: BallParams | None = None,
                  checkpoint: str | Path | None = None, policy=None, action_form: str = "direct") -> None:
@@ -257,16 +337,33 @@ class LearnedRedirect(RedirectSkill):
             policy, meta = load_policy("redirect", checkpoint)
             action_form = next(k for k, v in REDIRECT_ACTION_FORMS.items() if v == meta["obs_spec"])
         self.policy, self.action_form = policy, check_redirect_action_form(action_form)
-        self._base = RedirectBaseline(field, self.rp, self.bp) if self.action_form == "residual" else None
+        self._base = RedirectBaseline(field, self.rp, self.bp) if self.action_form != "direct" else None
+
+    def reset(self) -> None:
+        super().reset()
+        if self._base is not None:
+            self._base.reset()
+
+    def aim_action(self) -> np.ndarray:
+        """The ``aim`` form's last aim as an action (:func:`redirect_aim_of`); ValueError
+        for the other forms, which choose no aim point."""
+        if self.action_form != "aim":
+            raise ValueError(f"a {self.action_form!r} learned redirect chooses no aim point")
+        return self._base.aim_action()
 
     def control(self, world: WorldState, robot: int) -> np.ndarray:
+        if self.action_form == "aim":
+            aim = self.policy(redirect_aim_features(world, robot, self.field, self.rp, self.bp))
+            self._base.aim = redirect_aim_point(aim, self.field)
+            return self._base.control(world, robot)
         a3 = self.policy(redirect_features(world, robot, self.field, self.rp, self.bp))
         if self._base is not None:
             a3 = redirect_residual_action(self._base.task_action(world, robot), a3)
         return expand_redirect_action(a3)
 
 
-__all__ = ["LearnedRedirect", "REDIRECT_ACTIONS", "REDIRECT_ACTION_FORMS", "REDIRECT_NAMES", "REDIRECT_SPEC",
-           "REDIRECT_SPEC_RESIDUAL", "RedirectBaseline", "RedirectSkill", "expand_redirect_action",
-           "keeper_position", "open_goal_target", "redirect_features", "redirect_residual_action",
-           "redirect_residual_of", "redirect_task_action"]
+__all__ = ["LearnedRedirect", "REDIRECT_ACTIONS", "REDIRECT_ACTION_FORMS", "REDIRECT_AIM_ACTIONS", "REDIRECT_AIM_NAMES",
+           "REDIRECT_AIM_POST_MARGIN", "REDIRECT_NAMES", "REDIRECT_SPEC", "REDIRECT_SPEC_AIM", "REDIRECT_SPEC_RESIDUAL",
+           "RedirectBaseline", "RedirectSkill", "expand_redirect_action", "keeper_position", "keeper_velocity",
+           "open_goal_target", "redirect_aim_features", "redirect_aim_of", "redirect_aim_point", "redirect_features",
+           "redirect_residual_action", "redirect_residual_of", "redirect_task_action"]

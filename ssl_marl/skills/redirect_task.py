@@ -27,7 +27,8 @@ from ..physics.state import WorldState
 from .passing_features import check_options, check_point
 from .receive_task import ball_out, positive
 from .redirect import (REDIRECT_ACTION_FORMS, RedirectBaseline, check_redirect_action_form, expand_redirect_action,
-                       redirect_features, redirect_residual_action, redirect_residual_of)
+                       redirect_aim_features, redirect_aim_point, redirect_features, redirect_residual_action,
+                       redirect_residual_of)
 from .registry import resolve_ref
 from .robot_env import Judgement, RobotSkillEnv, SkillDriver, SkillTask, Start
 
@@ -48,19 +49,35 @@ def redirect_observation_bounds(field: FieldGeometry, robot: RobotParams) -> tup
     return np.array(low, dtype=np.float32), np.array(high, dtype=np.float32)
 
 
+def redirect_aim_observation_bounds(field: FieldGeometry, robot: RobotParams) -> tuple[np.ndarray, np.ndarray]:
+    """(low, high) float32 bounds of the 21 ``redirect/v3`` values: the 14 of
+    :func:`redirect_observation_bounds`, positions within the observable extent, the
+    keeper's velocity within the robot speed cap, the aim's y within the goal mouth."""
+    low, high = redirect_observation_bounds(field, robot)
+    x, y = position_extent(field)
+    v = speed_caps(robot)[0]
+    g = field.goal_width / 2.0
+    extra_high = np.array([x, y, x, y, v, v, g], dtype=np.float32)
+    return np.concatenate([low, -extra_high]), np.concatenate([high, extra_high])
+
+
 class RedirectTask(SkillTask):
     """redirect: meet a moving ball and kick it on into the opponent goal (+x, team
     frame) past the defending goalie, without stopping it.
 
     Observation
         ``Box(-inf, inf, (14,), float32)`` (bounded in ``bind``), spec ``redirect/v1``:
-        :func:`ssl_marl.skills.redirect.redirect_features`.
+        :func:`ssl_marl.skills.redirect.redirect_features`; ``action_form="aim"``: 21
+        values, :func:`ssl_marl.skills.redirect.redirect_aim_features`.
     Action
         ``Box(-1, 1, (3,), float32)``, kicker always armed at full strength, dribbler
         off; ``action_form``: ``"direct"`` (spec ``redirect/v1``, default): (vx, vy,
         omega), robot frame, fractions of the robot's limits; ``"residual"`` (spec
         ``redirect/v2``): a correction added to :class:`RedirectBaseline`'s action in the
-        state the robot sees (0 = the hand-coded redirect).
+        state the robot sees (0 = the hand-coded redirect); ``"aim"`` (spec
+        ``redirect/v3``): ``Box(-1, 1, (1,))``, the aim point's y along the goal mouth
+        (:func:`ssl_marl.skills.redirect.redirect_aim_point`), executed by
+        :class:`RedirectBaseline`'s contact planner (which stops once it has kicked).
     Reward
         Sparse: +1 on success, -1 on failure, else 0 (``info["reward_terms"]``).
     Spawn
@@ -103,8 +120,9 @@ class RedirectTask(SkillTask):
             raise ValueError(f"max_deflection must lie in [0, pi] rad, got {max_deflection!r}")
         self.max_deflection = float(max_deflection)
         self.max_side_offset, self.heading_noise = float(max_side_offset), float(heading_noise)
-        self.observation_space = gymnasium.spaces.Box(-np.inf, np.inf, (14,), np.float32)
-        self.action_space = gymnasium.spaces.Box(-1.0, 1.0, (3,), np.float32)
+        aim = self.action_form == "aim"
+        self.observation_space = gymnasium.spaces.Box(-np.inf, np.inf, (21 if aim else 14,), np.float32)
+        self.action_space = gymnasium.spaces.Box(-1.0, 1.0, (1 if aim else 3,), np.float32)
         self._seen: WorldState | None = None
         self.kick_t: float | None = None
 
@@ -113,8 +131,10 @@ class RedirectTask(SkillTask):
         if not 0 < self.speed_range[0] <= self.speed_range[1] <= robot.kick_speed_max:
             raise ValueError(f"speed_range must satisfy 0 < lo <= hi <= {robot.kick_speed_max} m/s, "
                              f"got {self.speed_range!r}")
-        self.observation_space = gymnasium.spaces.Box(*redirect_observation_bounds(field, robot), (14,), np.float32)
+        bounds = redirect_aim_observation_bounds if self.action_form == "aim" else redirect_observation_bounds
+        self.observation_space = gymnasium.spaces.Box(*bounds(field, robot), self.observation_space.shape, np.float32)
         self._base = RedirectBaseline(field, robot, ball)
+        self._planner = RedirectBaseline(field, robot, ball)  # executes the aim form's aim points
         # in front of the goal, outside the opponent defense area (0.2 m margin)
         self.spawn_x = (field.half_length - 2.5, field.half_length - field.defense_depth - 0.2)
         self.spawn_half_y = 1.5
@@ -159,6 +179,7 @@ class RedirectTask(SkillTask):
 
     def begin(self) -> None:
         self.kick_t = None
+        self._planner.reset()
 
     def begin_step(self, seen: WorldState, robot: int) -> None:
         self._seen = seen
@@ -168,9 +189,14 @@ class RedirectTask(SkillTask):
         return self._base.task_action(seen, robot)
 
     def observe(self, seen: WorldState, robot: int) -> np.ndarray:
+        if self.action_form == "aim":
+            return redirect_aim_features(seen, robot, self.field, self.robot_params, self.ball_params)
         return redirect_features(seen, robot, self.field, self.robot_params, self.ball_params)
 
     def env_action(self, action: np.ndarray) -> np.ndarray:
+        if self.action_form == "aim":
+            self._planner.aim = redirect_aim_point(action, self.field)
+            return self._planner.act(self._seen, 0)
         a = np.clip(action, -1.0, 1.0)
         if self.action_form == "residual":
             a = redirect_residual_action(self.base_action(self._seen), a)
@@ -246,7 +272,12 @@ class RedirectEnv(RobotSkillEnv, EzPickle):
 
     def from_direct(self, action3: np.ndarray) -> np.ndarray:
         """This env's action for a direct (vx, vy, omega) action: itself, or the residual
-        correction from the hand-coded redirect's action."""
+        correction from the hand-coded redirect's action; ValueError for the ``aim`` form
+        (an aim point is not a function of a motion: :func:`redirect_skill_action` takes
+        it from the skill)."""
+        if self.task.action_form == "aim":
+            raise ValueError("an aim action is not a function of a (vx, vy, omega) action; "
+                             "use redirect_skill_action with a skill that has aim_action()")
         if self.task.action_form == "direct":
             return np.asarray(action3, dtype=np.float32)
         return redirect_residual_of(self.base_action(), action3)
@@ -254,14 +285,19 @@ class RedirectEnv(RobotSkillEnv, EzPickle):
 
 def redirect_skill_action(env: RedirectEnv, skill: Any) -> np.ndarray:
     """One step of a redirect skill (hand-coded or learned) in its task env: its (5,)
-    action's (vx, vy, omega), as a correction when the env takes residual actions."""
+    action's (vx, vy, omega), as a correction when the env takes residual actions; with
+    ``action_form="aim"`` the aim point the skill planned this step (its ``aim_action()``)."""
+    if env.task.action_form == "aim":
+        skill.act(env.seen(), 0)
+        return np.asarray(skill.aim_action(), dtype=np.float32)
     return env.from_direct(np.asarray(skill.act(env.seen(), 0), dtype=np.float32)[:3])
 
 
 def redirect_baseline_demos(n_steps: int, seed: int = 0, **env_kwargs: Any):
     """``n_steps`` redirect transitions (obs (14,), action (3,)) from
     :class:`RedirectBaseline` on the task's own spawns; successful episodes only (with
-    ``action_form="residual"`` the actions are zero corrections)."""
+    ``action_form="residual"`` the actions are zero corrections; with ``"aim"`` obs (21,)
+    and the hand-coded aim points as actions (1,))."""
     from .demos import successful_skill_demos
 
     env = RedirectEnv(**env_kwargs)
@@ -269,5 +305,28 @@ def redirect_baseline_demos(n_steps: int, seed: int = 0, **env_kwargs: Any):
     return successful_skill_demos(env, skill, redirect_skill_action, n_steps, seed)
 
 
-__all__ = ["GOALIE_REF", "KEEPER", "REDIRECTOR", "RedirectEnv", "RedirectTask", "redirect_baseline_demos",
-           "redirect_observation_bounds", "redirect_skill_action"]
+def redirect_baseline_all_demos(n_steps: int, seed: int = 0, **env_kwargs: Any):
+    """As :func:`redirect_baseline_demos`, but every episode, failures too: the critic
+    sees what the hand-coded choices lead to (with ``action_form="aim"``: where the
+    hand-coded aim point lets the goalie save)."""
+    from .demos import Transition
+
+    env = RedirectEnv(**env_kwargs)
+    skill = RedirectBaseline(env.field, env.robot_params, env.ball_params)
+    rng = np.random.default_rng(seed)
+    produced = 0
+    while produced < n_steps:
+        obs, _ = env.reset(seed=int(rng.integers(2 ** 31)))
+        skill.reset()
+        done = False
+        while not done and produced < n_steps:
+            action = redirect_skill_action(env, skill)
+            next_obs, reward, terminated, truncated, info = env.step(action)
+            yield Transition(obs, action, float(reward), next_obs, bool(terminated), bool(truncated), info)
+            produced += 1
+            obs, done = next_obs, terminated or truncated
+
+
+__all__ = ["GOALIE_REF", "KEEPER", "REDIRECTOR", "RedirectEnv", "RedirectTask", "redirect_aim_observation_bounds",
+           "redirect_baseline_all_demos", "redirect_baseline_demos", "redirect_observation_bounds",
+           "redirect_skill_action"]

@@ -62,6 +62,9 @@ class SkillTaskDef:
         drive: how the evaluation protocol drives a :class:`Skill` object in the task env,
             ``(env, skill) -> task action``; None: ``to_task_action(skill.act(env.seen(), 0))``.
             Tasks whose skill needs per-step inputs from the task (the pass's target) set it.
+        form_names: action-mapping name -> (feature names, action names) for a mapping
+            whose state or action differs from ``feature_names`` / ``action_names`` (the
+            redirect's ``aim`` form); the others use those two.
     """
 
     env_id: str
@@ -75,11 +78,21 @@ class SkillTaskDef:
     demo_fn: str | None = None
     train_config: str | None = None
     drive: Callable[[Any, Any], np.ndarray] | None = None
+    form_names: Mapping[str, tuple[tuple[str, ...], tuple[str, ...]]] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         if not self.spec_versions:
             raise ValueError(f"{self.env_id}: spec_versions needs at least one action mapping")
+        unknown = set(self.form_names) - set(self.spec_versions)
+        if unknown:
+            raise ValueError(f"{self.env_id}: form_names names unknown action mappings {sorted(unknown)}")
         object.__setattr__(self, "spec_versions", MappingProxyType(dict(self.spec_versions)))
+        object.__setattr__(self, "form_names", MappingProxyType(dict(self.form_names)))
+
+    def names_of(self, mapping: str | None = None) -> tuple[tuple[str, ...], tuple[str, ...]]:
+        """(feature names, action names) of an action mapping (default: the first)."""
+        mapping = self.mapping_of(self.spec_of(mapping))
+        return self.form_names.get(mapping, (tuple(self.feature_names), tuple(self.action_names)))
 
     def skill_action(self, env: Any, skill: Any) -> np.ndarray:
         """The task action of ``skill`` (a :class:`Skill` object) acting for the task's
