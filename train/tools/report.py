@@ -32,6 +32,7 @@ SKILLS_RANDOMIZED = ["go_to_ball_baseline_randomized_tracker", "go_to_ball_learn
 PASSING_SKILLS = ["pass_baseline", "pass_baseline_realistic", "pass_learned", "pass_learned_realistic",
                   "receive_baseline", "receive_baseline_realistic", "receive_baseline_realistic_tracker",
                   "receive_learned", "receive_learned_realistic", "receive_baseline_div_a", "receive_learned_div_a"]
+REDIRECT_SKILLS = ["redirect_baseline", "redirect_baseline_realistic", "redirect_learned", "redirect_learned_realistic"]
 CHIP_PASS_SKILLS = ["chip_pass_baseline", "chip_pass_baseline_realistic", "chip_pass_learned",
                     "chip_pass_learned_realistic"]
 PASS_ENDURANCE = ["pass_endurance_baseline", "pass_endurance_baseline_realistic", "pass_endurance_learned_pass",
@@ -73,6 +74,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "tracker_pairs": lambda r: t.tracker_pairs(r, TRACKER_PAIRS),
     "passing_skills": lambda r: t.skills(r, PASSING_SKILLS),
     "pass_endurance": lambda r: t.drills(r, PASS_ENDURANCE),
+    "redirect_skills": lambda r: t.skills(r, REDIRECT_SKILLS),
     "chip_pass_skills": lambda r: t.skills(r, CHIP_PASS_SKILLS),
     "chip_pass_selection": lambda r: t.selection(r, ["chip_pass_bc2k_s0", "chip_pass_bc100_s0"]),
     "passing_series": lambda r: t.series(r, PASSING_SERIES),

@@ -149,6 +149,15 @@ def series(results: Path, names: Iterable[str]) -> Lines:
     return rows
 
 
+def _team_label(team: Any) -> str:
+    """A series' team: its kind, and the skills a team file or ``--*-skill`` option ran
+    hand-coded in a learned-skill team (``attack-learned, hand-coded pass``)."""
+    if not isinstance(team, dict):
+        return str(team)
+    swapped = [k.replace("_", "-") for k, v in team.get("skills", {}).items() if v == "baseline"]
+    return team["kind"] + (f", hand-coded {' + '.join(swapped)}" if swapped else "")
+
+
 def series_600(results: Path, names: Iterable[str]) -> Lines:
     """One row per series of long matches (``results/<name>.json``): W-D-L, win rate and
     goal difference per 600 s with their 95 % intervals
@@ -170,7 +179,7 @@ def series_600(results: Path, names: Iterable[str]) -> Lines:
 
         def frac(c: int, a: int) -> str:
             return f"{c} of {a}" + (f" ({100 * c / a:.0f} %)" if a else "")
-        rows.append(f"| `{n}` | {s['blue']} vs {s['yellow']} | {cfg['field']}, {cfg['realism']} | "
+        rows.append(f"| `{n}` | {_team_label(s['blue'])} vs {_team_label(s['yellow'])} | {cfg['field']}, {cfg['realism']} | "
                     f"{min(seeds)}-{max(seeds)} | {s['matches']} | {s['wins']}-{s['draws']}-{s['losses']} | "
                     f"{100 * st['win_rate']:.0f} % [{100 * wlo:.0f}, {100 * whi:.0f}] | "
                     f"{s['goals_for']}-{s['goals_against']} ({s['goals_for'] / k:.2f}-{s['goals_against'] / k:.2f}) | "
