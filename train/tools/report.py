@@ -50,6 +50,8 @@ SERIES_600_SSL = ["match_passing_learned_vs_baseline_600_plain", "match_passing_
 ATTACK_SERIES = ["match_attack_learned_vs_baseline_600", "match_attack_learned_vs_passing_learned_600",
                  "match_attack_learned_selfplay_600", "match_attack_learned_vs_baseline_600_realistic",
                  "match_attack_learned_vs_baseline_600_div_a_11v11", "match_attack_learned_vs_attack_baseline_600"]
+ATTACK_SKILL_SWAPS = ["match_attack_learned_vs_attack_baseline_600", "tuning/swap_aim_to_shoot_baseline",
+                      "tuning/swap_pass_receive_baseline", "tuning/swap_go_to_ball_baseline"]
 SET_PIECE_SERIES = ["match_attack_learned_vs_baseline_600_ssl_058d181", "match_attack_learned_vs_baseline_600_ssl"]
 KEEPAWAY = [("random", "keepaway_random"), ("always-hold", "keepaway_always-hold"),
             ("hand-coded", "keepaway_handcoded"), ("learned (shipped `keepaway.pt`, MAPPO seed 1)", "keepaway_learned")]
@@ -81,6 +83,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "series_600_formats": lambda r: t.series_600(r, SERIES_600_SSL),
     "attack_series": lambda r: t.series_600(r, ATTACK_SERIES),
     "set_piece_series": lambda r: t.set_piece_series(r, SET_PIECE_SERIES),
+    "attack_skill_swaps": lambda r: t.series_600(r, ATTACK_SKILL_SWAPS),
     "league_anchors": lambda r: t.league(r, "league_anchors"),
     "passing_contested_kick": lambda r: t.tuning(r, [("`contested_kick` on", "passing_contested_kick.json",
                                                       "contested_kick_on"),
