@@ -40,6 +40,7 @@ from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState
 from .features import to_robot_frame
+from .navigation import line_frame
 from .passing import PassBaseline, PassSkill
 from .passing_features import pass_features, pass_kick_speed, pass_speed_action
 
@@ -99,21 +100,16 @@ def lane_blocker(world: WorldState, target: np.ndarray, half_width: float = LANE
     lane's midpoint when none stands there (a chip then clears an imagined robot
     midway)."""
     ball = world.ball_pos.astype(float)
-    d = np.asarray(target, float) - ball
-    length = float(np.hypot(*d))
-    if length < 1e-9:
-        return ball.copy()
-    u = d / length
     opp = world.opponents(world.frame).pos
-    if len(opp):
-        rel = opp - ball
-        along = rel @ u
-        cross = np.abs(rel[:, 0] * u[1] - rel[:, 1] * u[0])
-        inside = (along > LANE_END_MARGIN) & (along < length - LANE_END_MARGIN) & (cross < half_width)
-        if inside.any():
-            k = int(np.flatnonzero(inside)[np.argmin(cross[inside])])
-            return opp[k].astype(float)
-    return ball + 0.5 * d
+    frame = line_frame(ball, target, opp.reshape(-1, 2))
+    if frame is None:
+        return ball.copy()
+    _, length, along, cross = frame
+    cross = np.abs(cross)
+    inside = (along > LANE_END_MARGIN) & (along < length - LANE_END_MARGIN) & (cross < half_width)
+    if inside.any():
+        return opp[int(np.flatnonzero(inside)[np.argmin(cross[inside])])].astype(float)
+    return ball + 0.5 * (np.asarray(target, float) - ball)
 
 
 def chip_pass_features(world: WorldState, robot: int, target: np.ndarray, target_vel: np.ndarray | None = None
@@ -162,9 +158,10 @@ class ChipPassSkill(PassSkill):
     kick), so demonstrations map every state to the kick it leads to."""
 
     name = "chip_pass"
+    task_action: np.ndarray | None = None
 
     def act(self, world: WorldState, robot: int) -> np.ndarray:
-        self.task_action: np.ndarray | None = None
+        self.task_action = None
         a = super().act(world, robot)
         a = a if len(a) == 6 else np.append(a, np.float32(0.0))
         if self.task_action is None:
@@ -188,14 +185,12 @@ class ChipPassBaseline(ChipPassSkill, PassBaseline):
     def chip(self, world: WorldState) -> ChipKick | None:
         """The chip over the lane's blocker to the current target, or None when none fits."""
         reach = self.rp.front_distance + self.bp.radius
-        ball, target = world.ball_pos.astype(float), np.asarray(self.target, float)
-        d = target - ball
-        length = float(np.hypot(*d))
-        if length < 1e-9:
+        frame = line_frame(world.ball_pos, self.target, lane_blocker(world, self.target))
+        if frame is None:
             return None
-        blocker = float((lane_blocker(world, target) - ball) @ (d / length))
+        _, length, blocker, _ = frame
         try:
-            return chip_kick(blocker, length - reach, self.rp, self.bp, self.clearance, self.land_short)
+            return chip_kick(float(blocker), length - reach, self.rp, self.bp, self.clearance, self.land_short)
         except ValueError:
             return None
 

@@ -24,7 +24,7 @@ from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState
 from .chip_pass import (CHIP_PASS_SPEC, ChipPassBaseline, chip_pass_features, chip_pass_task_action,
                         expand_chip_pass_action)
-from .demos import Transition, successful_skill_demos
+from .demos import Transition, skill_demos
 from .pass_tasks import PassReceiverDriver, PassTask
 from .passing_features import check_options, check_point
 from .receive_task import PASSER, RECEIVER, passing_observation_bounds
@@ -210,7 +210,7 @@ def chip_pass_baseline_demos(n_steps: int, seed: int = 0, **env_kwargs: Any) -> 
     successful episodes only."""
     env = ChipPassEnv(**env_kwargs)
     skill = ChipPassBaseline(env.field, env.robot_params, env.ball_params)
-    return successful_skill_demos(env, skill, chip_pass_skill_action, n_steps, seed)
+    return skill_demos(env, skill, chip_pass_skill_action, n_steps, seed)
 
 
 __all__ = ["BLOCKER", "ChipLayoutDriver", "ChipPassEnv", "ChipPassTask", "chip_pass_baseline_demos",

@@ -77,15 +77,17 @@ def aim_to_shoot_baseline_demos(n_steps: int, seed: int = 0, post_margin: float 
 
     env = AimToShootEnv(**env_kwargs)
     skill = AimToShootBaseline(env.field, env.robot_params, env.ball_params, post_margin=post_margin)
-    yield from successful_skill_demos(env, skill, lambda e, sk: task_action("aim-to-shoot", sk.act(e.seen(), 0)),
+    yield from skill_demos(env, skill, lambda e, sk: task_action("aim-to-shoot", sk.act(e.seen(), 0)),
                                       n_steps, seed)
 
 
-def successful_skill_demos(env: Any, skill: Any, act: Callable[[Any, Any], np.ndarray], n_steps: int,
-                           seed: int) -> Iterator[Transition]:
+def skill_demos(env: Any, skill: Any, act: Callable[[Any, Any], np.ndarray], n_steps: int, seed: int,
+                successful_only: bool = True) -> Iterator[Transition]:
     """``n_steps`` transitions of ``skill`` (a :class:`~ssl_marl.skills.base.Skill`) acting
     in task env ``env`` through ``act(env, skill) -> task action``, from the task's own
-    random spawns (episode seeds drawn from ``seed``); only successful episodes are kept."""
+    random spawns (episode seeds drawn from ``seed``); only successful episodes are kept
+    unless ``successful_only`` is False (then failures too, e.g. for a critic to see what
+    the hand-coded choices lead to)."""
     rng = np.random.default_rng(seed)
     produced = 0
     while produced < n_steps:
@@ -99,7 +101,7 @@ def successful_skill_demos(env: Any, skill: Any, act: Callable[[Any, Any], np.nd
             obs = next_obs
             if terminated or truncated:
                 break
-        if not info["is_success"]:
+        if successful_only and not info["is_success"]:
             continue
         for tr in episode[: n_steps - produced]:
             yield tr

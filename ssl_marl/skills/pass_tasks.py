@@ -24,7 +24,7 @@ from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState
 from .base import make_action
-from .demos import Transition, successful_skill_demos
+from .demos import Transition, skill_demos
 from .features import BALL_LOST_DISTANCE, dribbler_ball_distance
 from .motion import velocity_command
 from .passing import PassBaseline, ReceiveBaseline
@@ -280,7 +280,7 @@ def pass_baseline_demos(n_steps: int, seed: int = 0, **env_kwargs: Any) -> Itera
     on the task's own spawns; successful episodes only."""
     env = PassEnv(**env_kwargs)
     skill = PassBaseline(env.field, env.robot_params, env.ball_params)
-    return successful_skill_demos(env, skill, lambda e, sk: skill_task_action("pass", e, sk), n_steps, seed)
+    return skill_demos(env, skill, lambda e, sk: skill_task_action("pass", e, sk), n_steps, seed)
 
 
 def receive_baseline_demos(n_steps: int, seed: int = 0, **env_kwargs: Any) -> Iterator[Transition]:
@@ -289,7 +289,7 @@ def receive_baseline_demos(n_steps: int, seed: int = 0, **env_kwargs: Any) -> It
     the actions are the (zero) corrections of the env's own hand-coded receive."""
     env = ReceiveEnv(**env_kwargs)
     skill = ReceiveBaseline(env.field, env.robot_params, env.ball_params)
-    return successful_skill_demos(env, skill, lambda e, sk: skill_task_action("receive", e, sk), n_steps, seed)
+    return skill_demos(env, skill, lambda e, sk: skill_task_action("receive", e, sk), n_steps, seed)
 
 
 __all__ = ["PassEnv", "PassReceiverDriver", "PassTask", "make_task_env", "pass_baseline_demos",

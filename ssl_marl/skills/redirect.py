@@ -89,24 +89,29 @@ def check_redirect_action_form(form: str) -> str:
     return form
 
 
-def keeper_position(world: WorldState, field: FieldGeometry) -> np.ndarray:
-    """Team-frame position (m) of the opponent nearest the opponent goal's centre
-    (+x), or that centre when the opponents have no robot."""
-    goal = np.array([field.half_length, 0.0])
+def keeper_index(world: WorldState, field: FieldGeometry) -> int | None:
+    """Index among the opponents of the one nearest the opponent goal's centre (+x,
+    team frame), or None when the opponents have no robot."""
     opp = world.opponents(world.frame).pos
     if len(opp) == 0:
-        return goal
-    return opp[int(np.argmin(np.hypot(*(opp - goal).T)))].astype(float)
+        return None
+    return int(np.argmin(np.hypot(*(opp - np.array([field.half_length, 0.0])).T)))
+
+
+def keeper_position(world: WorldState, field: FieldGeometry) -> np.ndarray:
+    """Team-frame position (m) of the opponent :func:`keeper_index` picks, or the
+    opponent goal's centre when the opponents have no robot."""
+    k = keeper_index(world, field)
+    if k is None:
+        return np.array([field.half_length, 0.0])
+    return world.opponents(world.frame).pos[k].astype(float)
 
 
 def keeper_velocity(world: WorldState, field: FieldGeometry) -> np.ndarray:
-    """Team-frame velocity (m/s) of the robot :func:`keeper_position` picks (zero when
+    """Team-frame velocity (m/s) of the opponent :func:`keeper_index` picks (zero when
     the opponents have no robot)."""
-    goal = np.array([field.half_length, 0.0])
-    opp = world.opponents(world.frame)
-    if len(opp.pos) == 0:
-        return np.zeros(2)
-    return opp.vel[int(np.argmin(np.hypot(*(opp.pos - goal).T)))].astype(float)
+    k = keeper_index(world, field)
+    return np.zeros(2) if k is None else world.opponents(world.frame).vel[k].astype(float)
 
 
 def open_goal_target(from_xy: np.ndarray, world: WorldState, field: FieldGeometry, rp: RobotParams,
@@ -364,6 +369,6 @@ class LearnedRedirect(RedirectSkill):
 
 __all__ = ["LearnedRedirect", "REDIRECT_ACTIONS", "REDIRECT_ACTION_FORMS", "REDIRECT_AIM_ACTIONS", "REDIRECT_AIM_NAMES",
            "REDIRECT_AIM_POST_MARGIN", "REDIRECT_NAMES", "REDIRECT_SPEC", "REDIRECT_SPEC_AIM", "REDIRECT_SPEC_RESIDUAL",
-           "RedirectBaseline", "RedirectSkill", "expand_redirect_action", "keeper_position", "keeper_velocity",
+           "RedirectBaseline", "RedirectSkill", "expand_redirect_action", "keeper_index", "keeper_position", "keeper_velocity",
            "open_goal_target", "redirect_aim_features", "redirect_aim_of", "redirect_aim_point", "redirect_features",
            "redirect_residual_action", "redirect_residual_of", "redirect_task_action"]

@@ -298,33 +298,22 @@ def redirect_baseline_demos(n_steps: int, seed: int = 0, **env_kwargs: Any):
     :class:`RedirectBaseline` on the task's own spawns; successful episodes only (with
     ``action_form="residual"`` the actions are zero corrections; with ``"aim"`` obs (21,)
     and the hand-coded aim points as actions (1,))."""
-    from .demos import successful_skill_demos
+    from .demos import skill_demos
 
     env = RedirectEnv(**env_kwargs)
     skill = RedirectBaseline(env.field, env.robot_params, env.ball_params)
-    return successful_skill_demos(env, skill, redirect_skill_action, n_steps, seed)
+    return skill_demos(env, skill, redirect_skill_action, n_steps, seed)
 
 
 def redirect_baseline_all_demos(n_steps: int, seed: int = 0, **env_kwargs: Any):
     """As :func:`redirect_baseline_demos`, but every episode, failures too: the critic
     sees what the hand-coded choices lead to (with ``action_form="aim"``: where the
     hand-coded aim point lets the goalie save)."""
-    from .demos import Transition
+    from .demos import skill_demos
 
     env = RedirectEnv(**env_kwargs)
     skill = RedirectBaseline(env.field, env.robot_params, env.ball_params)
-    rng = np.random.default_rng(seed)
-    produced = 0
-    while produced < n_steps:
-        obs, _ = env.reset(seed=int(rng.integers(2 ** 31)))
-        skill.reset()
-        done = False
-        while not done and produced < n_steps:
-            action = redirect_skill_action(env, skill)
-            next_obs, reward, terminated, truncated, info = env.step(action)
-            yield Transition(obs, action, float(reward), next_obs, bool(terminated), bool(truncated), info)
-            produced += 1
-            obs, done = next_obs, terminated or truncated
+    return skill_demos(env, skill, redirect_skill_action, n_steps, seed, successful_only=False)
 
 
 __all__ = ["GOALIE_REF", "KEEPER", "REDIRECTOR", "RedirectEnv", "RedirectTask", "redirect_aim_observation_bounds",
