@@ -35,7 +35,7 @@ def test_evaluate_checkpoint(tmp_path, capsys):
     res = load("evaluate_checkpoint").main(["--episodes", "4", "--out", str(tmp_path)])
     assert res["learned"]["episodes"] == 4 and res["learned"]["seed"] == 10_000
     assert json.loads((tmp_path / "learned" / "results.json").read_text())["episodes"] == 4
-    assert "go_to_ball (go_to_ball/v1)" in capsys.readouterr().out
+    assert "go_to_ball (go_to_ball/v2)" in capsys.readouterr().out
 
 
 def test_train_skill_curve(tmp_path, capsys):

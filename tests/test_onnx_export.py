@@ -47,8 +47,9 @@ def test_exported_actor_matches_pytorch(skill, tmp_path, capsys):
 
     actor, meta = load_actor(get_skill(skill).actor)
     task = get_skill(skill).task
-    mapping = task.mapping_of(meta["obs_spec"])  # a form with a state of its own: its env's action_form
-    obs = _observations(ENV_IDS[skill], 1000, **({"action_form": mapping} if mapping in task.form_names else {}))
+    mapping = task.mapping_of(meta["obs_spec"])  # a form with a state of its own: the env option that selects it
+    option = {"go_to_ball": "state"}.get(skill, "action_form")
+    obs = _observations(ENV_IDS[skill], 1000, **({option: mapping} if mapping in task.form_names else {}))
     with torch.no_grad():
         expected = actor(torch.from_numpy(obs)).numpy()
     sess = ort.InferenceSession(str(out), providers=["CPUExecutionProvider"])

@@ -26,10 +26,12 @@ def _to_robot(px: np.ndarray, py: np.ndarray, pos: np.ndarray, c: np.ndarray, s:
     return c * dx + s * dy, -s * dx + c * dy
 
 
-def go_to_ball_features_batch(pos, heading, vel, omega, ball_pos, field: FieldGeometry) -> np.ndarray:
-    """(K, 14) float32: :func:`ssl_marl.skills.features.go_to_ball_features` per world."""
+def go_to_ball_features_batch(pos, heading, vel, omega, ball_pos, field: FieldGeometry,
+                              ball_vel: np.ndarray | None = None) -> np.ndarray:
+    """(K, 14) float32: :func:`ssl_marl.skills.features.go_to_ball_features` per world;
+    with ``ball_vel`` (K, 2) given, (K, 16): its ``"ball_velocity"`` state."""
     c, s = np.cos(heading), np.sin(heading)
-    out = np.empty((pos.shape[0], 14))
+    out = np.empty((pos.shape[0], 14 if ball_vel is None else 16))
     out[:, 0], out[:, 1] = _to_robot(ball_pos[:, 0], ball_pos[:, 1], pos, c, s)
     out[:, 2] = c * vel[:, 0] + s * vel[:, 1]
     out[:, 3] = -s * vel[:, 0] + c * vel[:, 1]
@@ -39,6 +41,9 @@ def go_to_ball_features_batch(pos, heading, vel, omega, ball_pos, field: FieldGe
     x, y = np.clip(pos[:, 0], -L2, L2), np.clip(pos[:, 1], -W2, W2)
     for j, (px, py) in enumerate(((x, W2), (x, -W2), (-L2, y), (L2, y))):
         out[:, 6 + 2 * j], out[:, 7 + 2 * j] = _to_robot(px, py, pos, c, s)
+    if ball_vel is not None:
+        out[:, 14] = c * ball_vel[:, 0] + s * ball_vel[:, 1]
+        out[:, 15] = -s * ball_vel[:, 0] + c * ball_vel[:, 1]
     return out.astype(np.float32)
 
 

@@ -1,7 +1,9 @@
 """Demonstration generators for replay burn-in (paper, section 5.1).
 
 * go-to-ball: the robot spawns at a random position *facing the ball* and drives
-  straight forward at full speed until it touches it.
+  straight forward at full speed until it touches it (:func:`go_to_ball_demos`); for a
+  task whose ball may be rolling, the hand-coded skill's successful episodes, which lead
+  the ball by its velocity (:func:`go_to_ball_baseline_demos`).
 * aim-to-shoot: the robot spawns near the opponent goal (1-2.5 m in front of it),
   facing a point between the posts, and kicks at full strength at once.
 
@@ -49,6 +51,20 @@ def go_to_ball_demos(n_steps: int, seed: int = 0, **env_kwargs: Any) -> Iterator
     env = GoToBallEnv(**env_kwargs)
     forward = np.array([1.0, 0.0, 0.0], dtype=np.float32)
     return _run(env, n_steps, seed, lambda e, rng: {"face_ball": True}, lambda obs: forward)
+
+
+def go_to_ball_baseline_demos(n_steps: int, seed: int = 0, **env_kwargs: Any) -> Iterator[Transition]:
+    """``n_steps`` go-to-ball transitions of the hand-coded skill
+    (:class:`~ssl_marl.skills.baseline.GoToBallBaseline`, which leads a rolling ball by its
+    velocity) from the task's own spawns (``env_kwargs``: e.g. ``rolling``, ``state``);
+    successful episodes only."""
+    from .baseline import GoToBallBaseline
+
+    from .features import go_to_ball_task_action
+
+    env = GoToBallEnv(**env_kwargs)
+    skill = GoToBallBaseline(env.field, env.robot_params, env.ball_params)
+    return skill_demos(env, skill, lambda e, sk: go_to_ball_task_action(sk.act(e.seen(), 0)), n_steps, seed)
 
 
 def aim_to_shoot_demos(n_steps: int, seed: int = 0, **env_kwargs: Any) -> Iterator[Transition]:

@@ -23,7 +23,12 @@ from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState, wrap_angle
 
-GO_TO_BALL_SPEC = "go_to_ball/v1"
+GO_TO_BALL_SPEC = "go_to_ball/v1"  #: the paper's 14-value state
+#: go-to-ball spec per state form (same action): "default" = the paper's state (v1);
+#: "ball_velocity" = the paper's state and the ball's velocity in the robot frame (v2),
+#: which lets a policy lead a rolling ball. A learned actor stores the spec it was trained on.
+GO_TO_BALL_SPECS = {"default": GO_TO_BALL_SPEC, "ball_velocity": "go_to_ball/v2"}
+GO_TO_BALL_STATES = tuple(GO_TO_BALL_SPECS)
 BALL_LOST_DISTANCE = 0.05  # m: d_{d-b} beyond which a held ball counts as lost (aim-to-shoot, clearing)
 #: aim-to-shoot spec per kick-action mapping (same observation, different meaning of the kick
 #: action): v1 = the paper's "kick strength" (kick at strength a_k when a_k > 0), v2 = any
@@ -52,6 +57,8 @@ GO_TO_BALL_ACTIONS = ("vx", "vy", "omega")
 AIM_TO_SHOOT_ACTIONS = ("omega", "dribble", "kick")
 GO_TO_BALL_NAMES = ("ball_x", "ball_y", "robot_vx", "robot_vy", "robot_omega", "dist_robot_ball",
                     "top_x", "top_y", "bottom_x", "bottom_y", "left_x", "left_y", "right_x", "right_y")
+#: the ``ball_velocity`` state (go_to_ball/v2): the paper's 14 values, then the ball's velocity
+GO_TO_BALL_V2_NAMES = GO_TO_BALL_NAMES + ("ball_vx", "ball_vy")
 AIM_TO_SHOOT_NAMES = ("ball_x", "ball_y", "ball_vx", "ball_vy", "robot_omega", "dist_robot_goal",
                       "sin_left_post", "cos_left_post", "sin_right_post", "cos_right_post")
 
@@ -75,22 +82,36 @@ def rotate_to_robot(vec: np.ndarray, heading: float) -> np.ndarray:
     return np.array([c * vec[0] + s * vec[1], -s * vec[0] + c * vec[1]])
 
 
-def go_to_ball_features(world: WorldState, robot: int, field: FieldGeometry) -> np.ndarray:
-    """The paper's 14 go-to-ball state values (float32).
+def check_go_to_ball_state(state: str) -> str:
+    """``state`` if it names a go-to-ball state form, else ValueError."""
+    if state not in GO_TO_BALL_SPECS:
+        raise ValueError(f"go-to-ball state must be one of {GO_TO_BALL_STATES}, got {state!r}")
+    return state
+
+
+def go_to_ball_features(world: WorldState, robot: int, field: FieldGeometry, state: str = "default") -> np.ndarray:
+    """The go-to-ball state values (float32): 14 (``state="default"``, the paper's,
+    spec go_to_ball/v1) or 16 (``"ball_velocity"``, spec go_to_ball/v2).
 
     ``(P_x^B, P_y^B, V_x^R, V_y^R, omega^R, d_{r-b}, x_top, y_top, x_bottom, y_bottom,
     x_left, y_left, x_right, y_right)``: ball position, robot velocity (both in the
     robot frame, m and m/s), angular velocity (rad/s), robot-ball distance (m), and the
     closest points of the top (+y), bottom (-y), left (-x) and right (+x) field lines
     to the robot, in the robot frame (m). Top/bottom/left/right refer to the team frame.
+    ``"ball_velocity"`` appends ``(V_x^B, V_y^B)``, the ball's velocity in the robot
+    frame (m/s).
     """
+    check_go_to_ball_state(state)
     ts = _team(world)
     pos, h = ts.pos[robot], float(ts.heading[robot])
     ball = to_robot_frame(world.ball_pos, pos, h)
     vel = rotate_to_robot(ts.vel[robot], h)
     edges = to_robot_frame(field.edge_closest_points(pos), pos, h)
     dist = float(np.hypot(*(world.ball_pos - pos)))
-    return np.concatenate([ball, vel, [ts.omega[robot], dist], edges.ravel()]).astype(np.float32)
+    parts = [ball, vel, [ts.omega[robot], dist], edges.ravel()]
+    if state == "ball_velocity":
+        parts.append(rotate_to_robot(world.ball_vel, h))
+    return np.concatenate(parts).astype(np.float32)
 
 
 def goal_post_angles(world: WorldState, robot: int, field: FieldGeometry) -> tuple[float, float]:
@@ -198,9 +219,10 @@ def go_to_ball_task_action(action5: np.ndarray) -> np.ndarray:
 
 def go_to_ball_env_action(action3: np.ndarray, mapping: str | None = None) -> np.ndarray:
     """go-to-ball's (3,) task action (clipped to [-1, 1]) -> the full (5,) env action,
-    dribbler on. ``mapping``: only "default" (or None) exists."""
-    if mapping not in (None, "default"):
-        raise ValueError(f"go-to-ball has one action mapping, 'default'; got {mapping!r}")
+    dribbler on. ``mapping``: a state form (:data:`GO_TO_BALL_STATES`) or None; every
+    form has this one action."""
+    if mapping is not None:
+        check_go_to_ball_state(mapping)
     a = np.clip(np.asarray(action3, dtype=np.float64), -1.0, 1.0)
     return make_action(a[0], a[1], a[2], dribble=True)
 

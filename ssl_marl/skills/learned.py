@@ -16,7 +16,8 @@ from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState
 from .base import AimToShootSkill, GoToBallSkill
-from .features import aim_to_shoot_env_action, aim_to_shoot_features, go_to_ball_env_action, go_to_ball_features
+from .features import (aim_to_shoot_env_action, aim_to_shoot_features, check_go_to_ball_state, go_to_ball_env_action,
+                       go_to_ball_features)
 from .registry import get_skill, learned_skills
 
 
@@ -72,15 +73,22 @@ def load_policy(skill: str, checkpoint: str | Path | None = None) -> tuple[Numpy
 
 
 class LearnedGoToBall(GoToBallSkill):
-    """Learned go-to-ball (paper's DDPG skill). Succeeds when the ball is on the dribbler."""
+    """Learned go-to-ball (paper's DDPG skill). Succeeds when the ball is on the dribbler.
+    The actor reads the state it was trained on: the checkpoint's spec (``go_to_ball/v1``:
+    the paper's state, ``go_to_ball/v2``: with the ball's velocity) picks it; with
+    ``policy`` given directly, ``state`` does."""
 
     def __init__(self, field: FieldGeometry, robot: RobotParams | None = None, ball: BallParams | None = None,
-                 checkpoint: str | Path | None = None, policy: NumpyActor | None = None) -> None:
+                 checkpoint: str | Path | None = None, policy: NumpyActor | None = None,
+                 state: str = "default") -> None:
         super().__init__(field, robot, ball)
-        self.policy = policy if policy is not None else load_policy("go_to_ball", checkpoint)[0]
+        if policy is None:
+            policy, meta = load_policy("go_to_ball", checkpoint)
+            state = get_skill("go_to_ball").task.mapping_of(meta["obs_spec"])
+        self.policy, self.state = policy, check_go_to_ball_state(state)
 
     def approach(self, world: WorldState, robot: int) -> np.ndarray:
-        return go_to_ball_env_action(self.policy(go_to_ball_features(world, robot, self.field)))
+        return go_to_ball_env_action(self.policy(go_to_ball_features(world, robot, self.field, self.state)))
 
 
 class LearnedAimToShoot(AimToShootSkill):

@@ -34,7 +34,6 @@ from ..envs.batched_env import BatchedSSLEnv
 from ..envs.tracking import resolve_tracker
 from .batched_features import (aim_to_shoot_features_batch, aim_to_shoot_reward_batch, dribbler_ball_distance_batch,
                                go_to_ball_features_batch, go_to_ball_reward_batch)
-from .features import aim_to_shoot_features, go_to_ball_features
 from .wrappers import AimToShootEnv, GoToBallEnv
 
 TASKS = {"go-to-ball": GoToBallEnv, "aim-to-shoot": AimToShootEnv}
@@ -238,14 +237,14 @@ class SkillVectorEnv(VectorEnv):
     def _features(self, live: np.ndarray) -> None:
         ph = self.batched.physics
         if self._realism:  # what the robot sees: per world, the single env's pure functions
-            fn = go_to_ball_features if self.task == "go-to-ball" else aim_to_shoot_features
             for i in live.tolist():
-                self._obs[i] = fn(self.batched.vision_state(i, "blue"), 0, self.field)
+                self._obs[i] = self.envs[i].task.observe(self.batched.vision_state(i, "blue"), 0)
             return
         pos, hd = ph.pos[live, 0], ph.heading[live, 0]
         if self.task == "go-to-ball":
+            ball_vel = ph.ball_vel[live] if self.envs[0].task.state == "ball_velocity" else None
             self._obs[live] = go_to_ball_features_batch(pos, hd, ph.vel[live, 0], ph.omega[live, 0], ph.ball_pos[live],
-                                                        self.field)
+                                                        self.field, ball_vel)
         else:
             self._obs[live] = aim_to_shoot_features_batch(pos, hd, ph.omega[live, 0], ph.ball_pos[live],
                                                           ph.ball_vel[live], self.field)

@@ -26,9 +26,9 @@ from ..physics.field import FieldGeometry
 from ..physics.params import RobotParams
 from ..physics.state import WorldState
 from .base import make_action
-from .features import (BALL_LOST_DISTANCE, GO_TO_BALL_SPEC, ORIENTATION_FORMS, aim_to_shoot_env_action,
-                       aim_to_shoot_features, aim_to_shoot_reward, aim_to_shoot_spec, dribbler_ball_distance,
-                       go_to_ball_env_action, go_to_ball_features, go_to_ball_reward)
+from .features import (BALL_LOST_DISTANCE, GO_TO_BALL_SPECS, ORIENTATION_FORMS, aim_to_shoot_env_action,
+                       aim_to_shoot_features, aim_to_shoot_reward, aim_to_shoot_spec, check_go_to_ball_state,
+                       dribbler_ball_distance, go_to_ball_env_action, go_to_ball_features, go_to_ball_reward)
 from .registry import get_task
 from .robot_env import Judgement, OneRobotSkillEnv, SkillTask, Start
 
@@ -36,18 +36,21 @@ AGENT = "blue_0"
 
 
 
-def skill_observation_bounds(skill: str, field: FieldGeometry, robot: RobotParams) -> tuple[np.ndarray, np.ndarray]:
+def skill_observation_bounds(skill: str, field: FieldGeometry, robot: RobotParams,
+                             state: str = "default") -> tuple[np.ndarray, np.ndarray]:
     """(low, high) float32 bounds of a skill task's observation (``"go-to-ball"`` or
-    ``"aim-to-shoot"``), from the same rules as the full-field env
-    (:mod:`ssl_marl.envs.observation`): any robot-frame point lies within D, the
-    largest distance between two observable positions; velocities within the speed
-    caps x safety factor; distances in [0, D]; sin/cos in [-1, 1]."""
+    ``"aim-to-shoot"``; ``state``: go-to-ball's state form), from the same rules as the
+    full-field env (:mod:`ssl_marl.envs.observation`): any robot-frame point lies within
+    D, the largest distance between two observable positions; velocities within the
+    speed caps x safety factor; distances in [0, D]; sin/cos in [-1, 1]."""
     x, y = position_extent(field)
     d = math.hypot(2 * x, 2 * y)
     v, w, vb = speed_caps(robot)
-    if skill == "go-to-ball":  # ball xy, robot v, omega, dist, 4 closest line points
+    if skill == "go-to-ball":  # ball xy, robot v, omega, dist, 4 closest line points (, ball v)
         high = [d, d, v, v, w, d] + [d] * 8
         low = [-d, -d, -v, -v, -w, 0.0] + [-d] * 8
+        if check_go_to_ball_state(state) == "ball_velocity":
+            high, low = high + [vb, vb], low + [-vb, -vb]
     elif skill == "aim-to-shoot":  # ball xy, ball v, omega, dist to goal, sin/cos of the post angles
         high = [d, d, vb, vb, w, d, 1, 1, 1, 1]
         low = [-d, -d, -vb, -vb, -w, 0.0, -1, -1, -1, -1]
@@ -60,7 +63,9 @@ class GoToBallTask(SkillTask):
     """go-to-ball: drive to the ball and get it on the dribbler (paper, section 4.3).
 
     Observation
-        ``Box(-inf, inf, (14,), float32)``: the paper's state, see
+        ``Box(-inf, inf, (14,), float32)``: the paper's state (``state="default"``, spec
+        go_to_ball/v1), or ``(16,)``: the paper's state and the ball's velocity
+        (``state="ball_velocity"``, spec go_to_ball/v2); see
         :func:`ssl_marl.skills.features.go_to_ball_features` (robot frame, m, m/s, rad/s).
     Action
         ``Box(-1, 1, (3,), float32)``: (vx, vy, omega) in the robot frame as fractions of
@@ -72,29 +77,49 @@ class GoToBallTask(SkillTask):
     Termination
         Success (terminated, ``info["is_success"] = True``) when the ball is on the
         dribbler. Failure (truncated, ``failure_reason = "timeout"``) at ``max_time_s``
-        (10 s). Spawn: ball uniformly on the field (0.1 m inside the lines), robot at a
-        uniformly random position and heading at least 0.3 m from the ball. Reset
-        options (team frame): ``ball_pos``, ``robot_pose``, ``face_ball``.
+        (10 s).
+    Spawn
+        The paper's: the ball at rest uniformly on the field (0.1 m inside the lines), the
+        robot at a uniformly random position and heading at least 0.3 m from the ball.
+        With probability ``rolling`` an episode starts instead with the ball rolling, as
+        in a match after a pass, a shot or a rebound: the ball at least 1 m inside the
+        lines, moving at ``U(rolling_speed)`` m/s in a uniformly random direction, the
+        robot ``U(1, 4)`` m from it in a uniformly random direction (kept 0.2 m inside
+        the lines) with a uniformly random heading. Reset options (team frame):
+        ``ball_pos``, ``robot_pose``, ``face_ball`` (a paper's spawn with those fixed).
     """
 
-    spec_version = GO_TO_BALL_SPEC
-
-    def __init__(self, max_time_s: float = 10.0, orientation_form: str = "gaussian") -> None:
+    def __init__(self, max_time_s: float = 10.0, orientation_form: str = "gaussian", state: str = "default",
+                 rolling: float = 0.0, rolling_speed: tuple[float, float] = (0.5, 4.0)) -> None:
         if orientation_form not in ORIENTATION_FORMS:
             raise ValueError(f"orientation_form must be one of {ORIENTATION_FORMS}, got {orientation_form!r}")
         if not (math.isfinite(max_time_s) and max_time_s > 0):
             raise ValueError(f"max_time_s must be positive, got {max_time_s!r}")
+        if not (isinstance(rolling, (int, float)) and 0.0 <= rolling <= 1.0):
+            raise ValueError(f"rolling must be a probability in [0, 1], got {rolling!r}")
+        speeds = tuple(rolling_speed) if isinstance(rolling_speed, (tuple, list)) else ()
+        if len(speeds) != 2 or not all(isinstance(v, (int, float)) and math.isfinite(v) for v in speeds) \
+                or not 0.0 <= speeds[0] <= speeds[1]:
+            raise ValueError(f"rolling_speed must be (low, high) m/s with 0 <= low <= high, got {rolling_speed!r}")
+        lo, hi = speeds
         self.max_time_s = max_time_s
         self.orientation_form = orientation_form
-        self.observation_space = gymnasium.spaces.Box(-np.inf, np.inf, (14,), np.float32)  # bounded in bind()
+        self.state = check_go_to_ball_state(state)
+        self.spec_version = GO_TO_BALL_SPECS[state]
+        self.rolling, self.rolling_speed = float(rolling), (float(lo), float(hi))
+        self._obs_dim = 16 if state == "ball_velocity" else 14
+        self.observation_space = gymnasium.spaces.Box(-np.inf, np.inf, (self._obs_dim,), np.float32)  # bounded in bind()
         self.action_space = gymnasium.spaces.Box(-1.0, 1.0, (3,), np.float32)
 
     def bind(self, field, robot, ball, dt) -> None:
         super().bind(field, robot, ball, dt)
-        self.observation_space = gymnasium.spaces.Box(*skill_observation_bounds("go-to-ball", field, robot),
-                                                      (14,), np.float32)
+        self.observation_space = gymnasium.spaces.Box(*skill_observation_bounds("go-to-ball", field, robot, self.state),
+                                                      (self._obs_dim,), np.float32)
 
     def sample_start(self, rng: np.random.Generator, options: dict) -> Start:
+        fixed = any(options.get(k) is not None for k in ("ball_pos", "robot_pose")) or options.get("face_ball")
+        if not fixed and self.rolling > 0.0 and (self.rolling >= 1.0 or rng.random() < self.rolling):
+            return self._rolling_start(rng)
         f = self.field
         ball = options.get("ball_pos")
         if ball is None:
@@ -108,8 +133,18 @@ class GoToBallTask(SkillTask):
             pose = (xy[0], xy[1], heading)
         return Start(np.asarray(pose, float), np.asarray(ball, float))
 
+    def _rolling_start(self, rng: np.random.Generator) -> Start:
+        f = self.field
+        ball = f.random_free_point(rng, margin=1.0)
+        ang = rng.uniform(-math.pi, math.pi)
+        robot = ball + rng.uniform(1.0, 4.0) * np.array([math.cos(ang), math.sin(ang)])
+        robot = np.clip(robot, [-f.half_length + 0.2, -f.half_width + 0.2], [f.half_length - 0.2, f.half_width - 0.2])
+        d = rng.uniform(-math.pi, math.pi)
+        vel = rng.uniform(*self.rolling_speed) * np.array([math.cos(d), math.sin(d)])
+        return Start(np.array([robot[0], robot[1], rng.uniform(-math.pi, math.pi)]), ball, vel)
+
     def observe(self, seen: WorldState, robot: int) -> np.ndarray:
-        return go_to_ball_features(seen, robot, self.field)
+        return go_to_ball_features(seen, robot, self.field, self.state)
 
     def env_action(self, action: np.ndarray) -> np.ndarray:
         return go_to_ball_env_action(action)
@@ -240,10 +275,12 @@ class GoToBallEnv(OneRobotSkillEnv):
     """``ssl_marl/GoToBall-v0``: :class:`GoToBallTask` over a one-robot env (see
     :class:`~ssl_marl.skills.robot_env.OneRobotSkillEnv` for the env options)."""
 
-    def __init__(self, max_time_s: float = 10.0, orientation_form: str = "gaussian", **kwargs: Any) -> None:
-        task = GoToBallTask(max_time_s, orientation_form)
+    def __init__(self, max_time_s: float = 10.0, orientation_form: str = "gaussian", state: str = "default",
+                 rolling: float = 0.0, rolling_speed: tuple[float, float] = (0.5, 4.0), **kwargs: Any) -> None:
+        task = GoToBallTask(max_time_s, orientation_form, state, rolling, rolling_speed)
         super().__init__(task, **kwargs)
-        EzPickle.__init__(self, max_time_s=max_time_s, orientation_form=orientation_form, **kwargs)
+        EzPickle.__init__(self, max_time_s=max_time_s, orientation_form=orientation_form, state=state,
+                          rolling=rolling, rolling_speed=rolling_speed, **kwargs)
 
 
 class AimToShootEnv(OneRobotSkillEnv):

@@ -390,3 +390,60 @@ def set_piece_series(results: Path, names: Iterable[str]) -> Lines:
                     f"{sp} | {b['goals_set_piece'] if counted else '-'} | {b['shots']} | "
                     f"{b['passes_completed']} of {b['passes_attempted']} |")
     return rows
+
+
+# ------------------------------------------------------------------ go-to-ball, rolling ball
+#: the probe's named policies as the rolling-ball tables print them (the records ran before the
+#: ball-velocity actor was shipped, so their "learned" is the paper-state actor)
+ROLLING_LABELS = {"baseline": "hand-coded", "learned": "paper state (`go_to_ball/v1`)"}
+
+
+def _rolling_rows(path: Path) -> dict[str, dict[str, Any]]:
+    return {r["policy"]: r for r in json.loads(path.read_text())["rows"]}
+
+
+def _penalised_time(row: dict[str, Any], limit_s: float) -> float:
+    """Mean time to the ball with failures counted at the episode limit (s)."""
+    rate = row["success_rate"]
+    return rate * (row["mean_time_s"] or 0.0) + (1.0 - rate) * limit_s
+
+
+def rolling_probe(results: Path, entries: Iterable[tuple[str, str]]) -> Lines:
+    """One row per (record, policy) of ``benchmarks/go_to_ball_rolling_probe.py``;
+    ``entries``: (record under ``results/``, {policy: label} as JSON)."""
+    rows = _head("record", "field", "realism", "policy", "episodes", "success [95% CI]", "mean time to the ball (s)")
+    for name, labels in entries:
+        d = json.loads((results / name).read_text())
+        for policy, label in json.loads(labels).items():
+            r = _rolling_rows(results / name)[policy]
+            lo, hi = wilson_interval(r["success"], r["episodes"])
+            rows.append(f"| `{name}` | {d['field']} | {d['realism']} | {label} | {r['episodes']} | "
+                        f"{_rate(r['success_rate'], [lo, hi])} | {r['mean_time_s']:.2f} |")
+    return rows
+
+
+def rolling_selection(results: Path, by_field: dict[str, list[str]]) -> Lines:
+    """Checkpoint validation on the rolling-ball probe, per field (records under
+    ``results/``): success and mean time per field, and the mean over the fields of the
+    time with failures counted at the limit (the lowest is chosen)."""
+    fields = sorted(by_field)
+    merged: dict[str, dict[str, dict[str, Any]]] = {}
+    limit = 0.0
+    for f in fields:
+        for name in by_field[f]:
+            d = json.loads((results / name).read_text())
+            limit = d["max_time_s"]
+            for policy, r in _rolling_rows(results / name).items():
+                merged.setdefault(policy, {})[f] = r
+    cands = {p: v for p, v in merged.items() if p.endswith(".pt") and len(v) == len(fields)}
+    score = {p: sum(_penalised_time(v[f], limit) for f in fields) / len(fields) for p, v in cands.items()}
+    best = min(score, key=score.get)
+    rows = _head("policy", *(f"{f}: success, time (s)" for f in fields), "time, failures at the limit (s)", "chosen")
+    for p, v in merged.items():
+        if len(v) != len(fields):
+            continue
+        label = ROLLING_LABELS.get(p) or f"{int(Path(p).stem.split('-')[-1]) // 1000}k"
+        s = sum(_penalised_time(v[f], limit) for f in fields) / len(fields)
+        cells = " | ".join(f"{v[f]['success_rate']:.3f}, {v[f]['mean_time_s']:.2f}" for f in fields)
+        rows.append(f"| {label} | {cells} | {s:.3f} | {'**yes**' if p == best else ''} |")
+    return rows
