@@ -54,7 +54,8 @@ ATTACK_SERIES = ["match_attack_learned_vs_baseline_600", "match_attack_learned_v
                  "match_attack_learned_vs_baseline_600_div_a_11v11", "match_attack_learned_vs_attack_baseline_600"]
 ATTACK_SKILL_SWAPS = ["match_attack_learned_vs_attack_baseline_600", "tuning/swap_none_all_learned",
                       "tuning/swap_aim_to_shoot_baseline",
-                      "tuning/swap_pass_receive_baseline", "tuning/swap_go_to_ball_baseline"]
+                      "tuning/swap_pass_receive_baseline", "tuning/swap_go_to_ball_baseline",
+                      "tuning/swap_go_to_ball_rolling"]
 SET_PIECE_SERIES = ["match_attack_learned_vs_baseline_600_ssl_058d181", "match_attack_learned_vs_baseline_600_ssl"]
 KEEPAWAY = [("random", "keepaway_random"), ("always-hold", "keepaway_always-hold"),
             ("hand-coded", "keepaway_handcoded"), ("learned (shipped `keepaway.pt`, MAPPO seed 1)", "keepaway_learned")]

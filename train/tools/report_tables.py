@@ -151,11 +151,16 @@ def series(results: Path, names: Iterable[str]) -> Lines:
 
 def _team_label(team: Any) -> str:
     """A series' team: its kind, and the skills a team file or ``--*-skill`` option ran
-    hand-coded in a learned-skill team (``attack-learned, hand-coded pass``)."""
+    hand-coded in a learned-skill team (``attack-learned, hand-coded pass``) or from an
+    actor file (``attack-learned, go-to-ball actor-000740001.pt``)."""
     if not isinstance(team, dict):
         return str(team)
-    swapped = [k.replace("_", "-") for k, v in team.get("skills", {}).items() if v == "baseline"]
-    return team["kind"] + (f", hand-coded {' + '.join(swapped)}" if swapped else "")
+    skills = team.get("skills", {})
+    swapped = [k.replace("_", "-") for k, v in skills.items() if v == "baseline"]
+    files = [f"{k.replace('_', '-')} `{Path(v).name}`" for k, v in skills.items()
+             if isinstance(v, str) and v.endswith(".pt")]
+    return team["kind"] + (f", hand-coded {' + '.join(swapped)}" if swapped else "") + \
+        "".join(f", {f}" for f in files)
 
 
 def series_600(results: Path, names: Iterable[str]) -> Lines:
