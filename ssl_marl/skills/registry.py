@@ -54,8 +54,9 @@ class SkillTaskDef:
         to_task_action: a skill's full (5,) env action -> the task's action.
         to_env_action: the task's action (and an action-mapping name) -> the full (5,) env action.
         spec_versions: action-mapping name -> observation/action spec string stored in a
-            learned actor's metadata (``{"default": "go_to_ball/v1"}``; aim-to-shoot has
-            two kick mappings, v1 and v2). The first entry is the default mapping.
+            learned actor's metadata (``{"default": "pass/v1"}``; aim-to-shoot has two kick
+            mappings, v1 and v2, go-to-ball two state forms). The first entry is the default
+            mapping.
         demo_fn: ``"module:function"`` yielding demonstration transitions for replay burn-in.
         train_config: name of the default trainer config (``train/configs/<name>.json``);
             resolved by ``train``, never imported here.
