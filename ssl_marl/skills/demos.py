@@ -59,7 +59,6 @@ def go_to_ball_baseline_demos(n_steps: int, seed: int = 0, **env_kwargs: Any) ->
     velocity) from the task's own spawns (``env_kwargs``: e.g. ``rolling``, ``state``);
     successful episodes only."""
     from .baseline import GoToBallBaseline
-
     from .features import go_to_ball_task_action
 
     env = GoToBallEnv(**env_kwargs)
