@@ -52,7 +52,8 @@ SERIES_600_SSL = ["match_passing_learned_vs_baseline_600_plain", "match_passing_
 ATTACK_SERIES = ["match_attack_learned_vs_baseline_600", "match_attack_learned_vs_passing_learned_600",
                  "match_attack_learned_selfplay_600", "match_attack_learned_vs_baseline_600_realistic",
                  "match_attack_learned_vs_baseline_600_div_a_11v11", "match_attack_learned_vs_attack_baseline_600",
-                 "match_attack_learned_vs_attack_baseline_600_79000"]
+                 "match_attack_learned_vs_attack_baseline_600_79000", "match_attack_learned_vs_attack_baseline_600_realistic",
+                 "match_attack_learned_vs_attack_baseline_600_div_a_11v11"]
 ATTACK_SKILL_SWAPS = ["match_attack_learned_vs_attack_baseline_600", "tuning/swap_none_all_learned",
                       "tuning/swap_aim_to_shoot_baseline",
                       "tuning/swap_pass_receive_baseline", "tuning/swap_go_to_ball_baseline",
