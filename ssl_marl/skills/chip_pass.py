@@ -36,6 +36,7 @@ from pathlib import Path
 import numpy as np
 
 from ..envs.actions import make_action
+from ..physics.ball_flight import launch
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState
@@ -80,7 +81,7 @@ def chip_kick(blocker_distance: float, receiver_distance: float, rp: RobotParams
     angles = np.linspace(math.radians(15.0), rp.chip_angle_max, 46)[:, None]
     speeds = np.linspace(1.0, rp.kick_speed_max, 56)[None, :]
     landing = 2.0 * speeds ** 2 * np.sin(angles) * np.cos(angles) / g
-    vh, vv = speeds * np.cos(angles), speeds * np.sin(angles)
+    vh, vv = launch(speeds, angles)
     t = xs[:, None, None] / vh[None]
     low = np.min(vv[None] * t - 0.5 * g * t * t, axis=0)  # the ball's lowest point over the body
     ok = (landing <= receiver_distance - land_short) & (landing > xs[-1] + land_short) & (low >= rp.height + clearance)
@@ -137,14 +138,20 @@ def expand_chip_pass_action(action4: np.ndarray, rp: RobotParams) -> np.ndarray:
                        chip=chip_elevation(a[3], rp) / rp.chip_angle_max)
 
 
+def chip_pass_task_values(omega: float, kicks: bool, speed_action: float, chip: float) -> np.ndarray:
+    """The task's (omega, kick, speed, elevation) (float32) from the turn rate entry, whether
+    it kicks, the speed entry and the chip entry (elevation / ``chip_angle_max``, [0, 1])."""
+    return np.array([omega, 1.0 if kicks else -1.0, speed_action, 2.0 * chip - 1.0], dtype=np.float32)
+
+
 def chip_pass_task_action(action6: np.ndarray, rp: RobotParams) -> np.ndarray:
     """A chip-pass skill's (6,) action projected onto the task's (omega, kick, speed,
     elevation) (a 5-entry action is a flat one)."""
     a = np.asarray(action6, dtype=np.float64)
-    kick = a[4] > 0
-    speed = pass_speed_action(a[4] * rp.kick_speed_max, rp) if kick else 0.0
+    if a[4] <= 0:
+        return chip_pass_task_values(a[2], False, 0.0, 0.0)
     chip = float(np.clip(a[5], 0.0, 1.0)) if len(a) > 5 else 0.0
-    return np.array([a[2], 1.0 if kick else -1.0, speed, 2.0 * chip - 1.0 if kick else -1.0], dtype=np.float32)
+    return chip_pass_task_values(a[2], True, pass_speed_action(a[4] * rp.kick_speed_max, rp), chip)
 
 
 class ChipPassSkill(PassSkill):
@@ -198,8 +205,8 @@ class ChipPassBaseline(ChipPassSkill, PassBaseline):
         action, kicks = super().aim(world, robot)
         kick = self.chip(world)
         speed, angle = (self.plan(world)[1], 0.0) if kick is None else (kick.speed, kick.angle)
-        self.task_action = np.array([action[2], 1.0 if kicks else -1.0, pass_speed_action(speed, self.rp),
-                                     2.0 * angle / self.rp.chip_angle_max - 1.0], dtype=np.float32)
+        self.task_action = chip_pass_task_values(action[2], kicks, pass_speed_action(speed, self.rp),
+                                                 angle / self.rp.chip_angle_max)
         if not kicks:
             return np.append(action, np.float32(0.0)), False
         return make_action(omega=float(action[2]), dribble=True, kick=speed / self.rp.kick_speed_max,
@@ -229,4 +236,4 @@ class LearnedChipPass(ChipPassSkill):
 
 __all__ = ["CHIP_PASS_ACTIONS", "CHIP_PASS_NAMES", "CHIP_PASS_SPEC", "ChipKick", "ChipPassBaseline", "ChipPassSkill",
            "LearnedChipPass", "chip_elevation", "chip_kick", "chip_pass_features",
-           "chip_pass_task_action", "expand_chip_pass_action", "lane_blocker"]
+           "chip_pass_task_action", "chip_pass_task_values", "expand_chip_pass_action", "lane_blocker"]

@@ -107,14 +107,14 @@ class GoToBallTask(SkillTask):
         self.state = check_go_to_ball_state(state)
         self.spec_version = GO_TO_BALL_SPECS[state]
         self.rolling, self.rolling_speed = float(rolling), (float(lo), float(hi))
-        self._obs_dim = 16 if state == "ball_velocity" else 14
-        self.observation_space = gymnasium.spaces.Box(-np.inf, np.inf, (self._obs_dim,), np.float32)  # bounded in bind()
+        n_obs = len(get_task("go_to_ball").names_of(state)[0])
+        self.observation_space = gymnasium.spaces.Box(-np.inf, np.inf, (n_obs,), np.float32)  # bounded in bind()
         self.action_space = gymnasium.spaces.Box(-1.0, 1.0, (3,), np.float32)
 
     def bind(self, field, robot, ball, dt) -> None:
         super().bind(field, robot, ball, dt)
         self.observation_space = gymnasium.spaces.Box(*skill_observation_bounds("go-to-ball", field, robot, self.state),
-                                                      (self._obs_dim,), np.float32)
+                                                      self.observation_space.shape, np.float32)
 
     def sample_start(self, rng: np.random.Generator, options: dict) -> Start:
         fixed = any(options.get(k) is not None for k in ("ball_pos", "robot_pose")) or options.get("face_ball")

@@ -40,8 +40,7 @@ PASS_ENDURANCE = ["pass_endurance_baseline", "pass_endurance_baseline_realistic"
 TACTIC = ["tactic_baseline", "tactic_baseline_realistic", "tactic_learned", "tactic_learned_realistic"]
 DRIBBLE = [f"tactic_dribble_{s}_{r}_{f}" for s in ("baseline", "learned") for r in ("none", "realistic")
            for f in ("div_b", "div_a")]
-ROLLING_POLICIES = ('{"baseline": "hand-coded", "learned": "paper state (`go_to_ball/v1`)", '
-                    '"runs/gtb_rolling_s0/actors/actor-000740001.pt": "ball velocity (`go_to_ball/v2`, shipped)"}')
+ROLLING_ACTOR = {"runs/gtb_rolling_s0/actors/actor-000740001.pt": "ball velocity (`go_to_ball/v2`, shipped)"}
 TRACKER_PAIRS = [("go-to-ball, baseline", "go_to_ball_baseline", "go_to_ball_baseline"),
                  ("aim-to-shoot, baseline", "aim_to_shoot_baseline", "aim_to_shoot_baseline"),
                  ("aim-to-shoot, learned", "aim_to_shoot_learned", "aim_to_shoot_learned"),
@@ -52,7 +51,8 @@ SERIES_600_SSL = ["match_passing_learned_vs_baseline_600_plain", "match_passing_
 ATTACK_SERIES = ["match_attack_learned_vs_baseline_600", "match_attack_learned_vs_passing_learned_600",
                  "match_attack_learned_selfplay_600", "match_attack_learned_vs_baseline_600_realistic",
                  "match_attack_learned_vs_baseline_600_div_a_11v11", "match_attack_learned_vs_attack_baseline_600",
-                 "match_attack_learned_vs_attack_baseline_600_79000", "match_attack_learned_vs_attack_baseline_600_realistic",
+                 "match_attack_learned_vs_attack_baseline_600_79000",
+                 "match_attack_learned_vs_attack_baseline_600_realistic",
                  "match_attack_learned_vs_attack_baseline_600_div_a_11v11"]
 ATTACK_SKILL_SWAPS = ["match_attack_learned_vs_attack_baseline_600", "tuning/swap_none_all_learned",
                       "tuning/swap_aim_to_shoot_baseline",
@@ -93,8 +93,9 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "go_to_ball_rolling_selection": lambda r: t.rolling_selection(r, {
         f: [f"tuning/go_to_ball_rolling_val5000_{f}.json", f"tuning/go_to_ball_rolling_val5000_{f}_2.json"]
         for f in ("div_b", "div_a")}),
-    "go_to_ball_rolling": lambda r: t.rolling_probe(r, [(f"go_to_ball_rolling/probe_{f}_{m}.json", ROLLING_POLICIES)
-                                                        for f in ("div_b", "div_a") for m in ("none", "realistic")]),
+    "go_to_ball_rolling": lambda r: t.rolling_probe(r, [f"go_to_ball_rolling/probe_{f}_{m}.json"
+                                                        for f in ("div_b", "div_a") for m in ("none", "realistic")],
+                                                    ROLLING_ACTOR),
     "league_anchors": lambda r: t.league(r, "league_anchors"),
     "passing_contested_kick": lambda r: t.tuning(r, [("`contested_kick` on", "passing_contested_kick.json",
                                                       "contested_kick_on"),

@@ -413,16 +413,17 @@ def _penalised_time(row: dict[str, Any], limit_s: float) -> float:
     return rate * (row["mean_time_s"] or 0.0) + (1.0 - rate) * limit_s
 
 
-def rolling_probe(results: Path, entries: Iterable[tuple[str, str]]) -> Lines:
-    """One row per (record, policy) of ``benchmarks/go_to_ball_rolling_probe.py``;
-    ``entries``: (record under ``results/``, {policy: label} as JSON)."""
+def rolling_probe(results: Path, names: Iterable[str], actor_labels: dict[str, str]) -> Lines:
+    """One row per (record, policy) of ``benchmarks/go_to_ball_rolling_probe.py`` (records
+    under ``results/``); the named policies as :data:`ROLLING_LABELS` print them, actor
+    files as ``actor_labels`` does."""
+    labels = {**ROLLING_LABELS, **actor_labels}
     rows = _head("record", "field", "realism", "policy", "episodes", "success [95% CI]", "mean time to the ball (s)")
-    for name, labels in entries:
+    for name in names:
         d = json.loads((results / name).read_text())
-        for policy, label in json.loads(labels).items():
-            r = _rolling_rows(results / name)[policy]
+        for r in d["rows"]:
             lo, hi = wilson_interval(r["success"], r["episodes"])
-            rows.append(f"| `{name}` | {d['field']} | {d['realism']} | {label} | {r['episodes']} | "
+            rows.append(f"| `{name}` | {d['field']} | {d['realism']} | {labels[r['policy']]} | {r['episodes']} | "
                         f"{_rate(r['success_rate'], [lo, hi])} | {r['mean_time_s']:.2f} |")
     return rows
 
@@ -440,15 +441,12 @@ def rolling_selection(results: Path, by_field: dict[str, list[str]]) -> Lines:
             limit = d["max_time_s"]
             for policy, r in _rolling_rows(results / name).items():
                 merged.setdefault(policy, {})[f] = r
-    cands = {p: v for p, v in merged.items() if p.endswith(".pt") and len(v) == len(fields)}
-    score = {p: sum(_penalised_time(v[f], limit) for f in fields) / len(fields) for p, v in cands.items()}
-    best = min(score, key=score.get)
+    score = {p: sum(_penalised_time(v[f], limit) for f in fields) / len(fields)
+             for p, v in merged.items() if len(v) == len(fields)}
+    best = min((p for p in score if p.endswith(".pt")), key=score.get)
     rows = _head("policy", *(f"{f}: success, time (s)" for f in fields), "time, failures at the limit (s)", "chosen")
-    for p, v in merged.items():
-        if len(v) != len(fields):
-            continue
+    for p, s in score.items():
         label = ROLLING_LABELS.get(p) or f"{int(Path(p).stem.split('-')[-1]) // 1000}k"
-        s = sum(_penalised_time(v[f], limit) for f in fields) / len(fields)
-        cells = " | ".join(f"{v[f]['success_rate']:.3f}, {v[f]['mean_time_s']:.2f}" for f in fields)
+        cells = " | ".join(f"{merged[p][f]['success_rate']:.3f}, {merged[p][f]['mean_time_s']:.2f}" for f in fields)
         rows.append(f"| {label} | {cells} | {s:.3f} | {'**yes**' if p == best else ''} |")
     return rows
