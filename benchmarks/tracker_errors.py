@@ -164,7 +164,7 @@ def run_tactic(episodes: int, seed: int, acc: Acc, flags: dict, progress: bool) 
 def run_match(seconds: float, seed: int, acc: Acc, flags: dict, progress: bool) -> dict:
     from tqdm import tqdm
 
-    from ssl_marl.runners.match import start_options
+    from ssl_marl.envs.referee import match_start_options
     from ssl_marl.plays.team import TeamSpec, build_team
 
     env = TrackedVisionEnv(parallel_env(n_blue=6, n_yellow=6, field="div_b", realism="realistic",
@@ -172,7 +172,7 @@ def run_match(seconds: float, seed: int, acc: Acc, flags: dict, progress: bool) 
     cfg = env.config
     ctrls = [build_team(TeamSpec(skills="baseline"), team, 6, env.field, cfg.robot, cfg.ball, seed=seed + k, dt=cfg.dt)
              for k, team in enumerate(("blue", "yellow"))]
-    env.reset(seed=seed, options=start_options(env, seed, 0.05))
+    env.reset(seed=seed, options=match_start_options(env, seed, 0.05))
     history = {0: to_team_frame(env.world_state(), "blue")}
     kicks = goals = steps = 0
 

@@ -84,7 +84,8 @@ def test_redirect_without_a_target_is_an_ordinary_receive_and_supports_emit_six_
 
 def test_attack_team_plays_a_short_match_in_a_chip_env():
     from ssl_marl.runners.controllers import CHIP_KINDS, team_spec
-    from ssl_marl.runners.match import fit_action, play_match
+    from ssl_marl.envs.actions import fit_action
+    from ssl_marl.runners.match import play_match
 
     assert "attack-learned" in CHIP_KINDS and team_spec("attack-baseline").plays.__name__ == "attack_plays"
     assert fit_action(np.zeros(5, np.float32), 6).shape == (6,)

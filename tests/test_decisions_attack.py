@@ -279,7 +279,7 @@ def test_match_with_a_policy_decider_uses_it(tmp_path):
     r = play_match(blue="passing-baseline", yellow="baseline", blue_decision=pol, robots=3, seconds=4.0, seed=2,
                    progress=False, start_jitter_m=0.0)
     assert r.config["decision"]["blue"] == "_Fixed" and r.config["decision"]["yellow"] is None
-    with pytest.raises(ValueError, match="needs a passing team"):
+    with pytest.raises(ValueError, match="needs a passing or attacking team"):
         play_match(blue="baseline", blue_decision=pol, seconds=1.0, progress=False)
 
 
@@ -295,7 +295,7 @@ def test_cli_decision_errors(tmp_path, capsys):
     import torch
 
     rc, err = _cli(["--blue", "learned", "--blue-decision", "handcoded"], capsys)
-    assert rc == 2 and "needs a passing team" in err
+    assert rc == 2 and "needs a passing or attacking team" in err
     rc, err = _cli(["--blue", "passing-baseline", "--blue-decision", str(tmp_path / "missing.pt")], capsys)
     assert rc == 2 and "does not exist" in err
     bad = tmp_path / "keepaway_actor.pt"

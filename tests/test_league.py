@@ -12,6 +12,7 @@ pytest.importorskip("openskill")
 
 from ssl_marl.cli import main  # noqa: E402
 from ssl_marl.runners import league as lg  # noqa: E402
+from ssl_marl.decisions import pfsp  # noqa: E402
 from ssl_marl.runners.league import LeagueConfig  # noqa: E402
 
 STRENGTH = {"baseline": 3, "passing-baseline": 1, "idle": 0}
@@ -119,20 +120,20 @@ def test_cli_league_real_matches(tmp_path, capsys):
 
 
 def test_pfsp_weights():
-    w = lg.pfsp_weights([0.0, 0.5, 1.0])
+    w = pfsp.pfsp_weights([0.0, 0.5, 1.0])
     assert w == pytest.approx([0.8, 0.2, 0.0])
-    assert lg.pfsp_weights([0.5, 0.9], "even") == pytest.approx([0.25, 0.09] / np.sum([0.25, 0.09]))
-    assert lg.pfsp_weights([1.0, 1.0]) == pytest.approx([0.5, 0.5])
+    assert pfsp.pfsp_weights([0.5, 0.9], "even") == pytest.approx([0.25, 0.09] / np.sum([0.25, 0.09]))
+    assert pfsp.pfsp_weights([1.0, 1.0]) == pytest.approx([0.5, 0.5])
     for bad in ([], [1.5], [float("nan")]):
         with pytest.raises(ValueError):
-            lg.pfsp_weights(bad)
+            pfsp.pfsp_weights(bad)
     with pytest.raises(ValueError, match="kind"):
-        lg.pfsp_weights([0.5], "easy")
+        pfsp.pfsp_weights([0.5], "easy")
     rng = np.random.default_rng(0)
-    draws = [lg.sample_opponent(["strong", "weak"], [0.1, 0.9], rng) for _ in range(400)]
+    draws = [pfsp.sample_opponent(["strong", "weak"], [0.1, 0.9], rng) for _ in range(400)]
     assert draws.count("strong") > 300
     with pytest.raises(ValueError):
-        lg.sample_opponent(["a"], [0.1, 0.2], rng)
+        pfsp.sample_opponent(["a"], [0.1, 0.2], rng)
 
 
 def test_win_probabilities_from_the_matrix(fake, tmp_path):

@@ -100,7 +100,7 @@ class PlayBrain:
     def decide(self, det: Detections) -> dict[int, np.ndarray] | None:
         """Normalised actions {robot id: (6,)} (the env's chip layout; a team's five-entry
         actions get a flat chip entry) for a detection set (None: not a new frame)."""
-        from ..runners.match import fit_action
+        from ..envs.actions import fit_action
 
         world = self.vision.update(det)
         if world is None:

@@ -11,7 +11,7 @@ Frames and units: the env works in metres in the field frame (blue attacks +x); 
 simulation protocol and grSim use metres too (grSim's replacement heading is in
 degrees); vision is converted to mm by :mod:`.vision_codec`. Commands are the env's
 six-entry chip layout (:mod:`.command_codec`); our teams' five-entry actions get a flat
-chip entry (:func:`ssl_marl.runners.match.fit_action`).
+chip entry (:func:`ssl_marl.envs.actions.fit_action`).
 """
 
 from __future__ import annotations
@@ -115,9 +115,9 @@ class BridgeWorld:
     # ------------------------------------------------------------ lifecycle
     def reset(self) -> None:
         """Start the match (seeded kickoff formation) and forget all commands."""
-        from ..runners.match import start_options
+        from ..envs.referee import match_start_options
 
-        self.env.reset(seed=self.config.seed, options=start_options(self.env, self.config.seed,
+        self.env.reset(seed=self.config.seed, options=match_start_options(self.env, self.config.seed,
                                                                     self.config.start_jitter_m))
         for ctrl in self.controllers.values():
             if hasattr(ctrl, "reset"):
@@ -138,7 +138,7 @@ class BridgeWorld:
     def step(self, now_us: int) -> tuple[list[dict], bool]:
         """Advance one control period; (env events, referee command changed). ``now_us``
         stamps a new referee command (Unix µs). No-op once the match is over."""
-        from ..runners.match import fit_action
+        from ..envs.actions import fit_action
 
         if self.finished:
             return [], False

@@ -36,9 +36,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                    help="as --skill, for the yellow team only (wins over --skill)")
     for side in ("blue", "yellow"):
         m.add_argument(f"--{side}-decision", default=None, metavar="DECISION",
-                       help=f"{side} passing team's ball-carrier decision (shoot / pass / dribble): handcoded (the "
-                            "cost decision), learned (the shipped Attack 3v2 actor) or PATH to a decision actor "
-                            "checkpoint; needs a passing team (default: the team kind's own, learned for "
+                       help=f"{side} passing or attacking team's ball-carrier decision: handcoded (the cost "
+                            "decision), learned (the shipped actor: Attack 3v2 for passing-* teams, the attack "
+                            "drill's for attack-* teams) or PATH to a decision actor checkpoint of that task; needs "
+                            "a passing-* or attack-* team (default: the team kind's own, learned for "
                             "passing-learned-decision, else handcoded)")
     m.add_argument("--robots", type=robots, default=6, help="robots per team, 1-11 (default 6)")
     m.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")

@@ -7,10 +7,12 @@ Registries (names used by ``ssl-marl eval-task`` and the trainers):
 
 * :data:`DECISION_TASKS`: task name -> factory ``(**kwargs) -> DecisionEnv``
   ("keepaway": :class:`~ssl_marl.decisions.keepaway.env.KeepawayEnv`; "attack-3v2":
-  ``ssl_marl.decisions.attack:Attack3v2Env``).
+  ``ssl_marl.decisions.attack:Attack3v2Env``, the passing play's options; "attack-drill":
+  ``ssl_marl.decisions.attack_drill:AttackDrillEnv``, the attacking plays' options).
 * :data:`HANDCODED_POLICIES`: task name -> the task's hand-coded benchmark policy class
   ("keepaway": ``HandcodedKeepawayPolicy``; "attack-3v2":
-  ``ssl_marl.decisions.attack:HandcodedAttackPolicy``).
+  ``ssl_marl.decisions.attack:HandcodedAttackPolicy``; "attack-drill":
+  ``ssl_marl.decisions.attack_drill:HandcodedAttackDrillPolicy``).
 * :data:`DECISION_POLICIES`: policy name -> factory ``(task, seed=0, actor=None) ->
   DecisionPolicy`` ("random", "always-hold" (keepaway only), "handcoded", "learned"
   (``ssl_marl.decisions.learned``, the shipped actor or ``actor``)).
@@ -30,11 +32,13 @@ from typing import Any, Callable
 _TASK_SPECS: dict[str, str] = {
     "keepaway": "ssl_marl.decisions.keepaway.env:KeepawayEnv",
     "attack-3v2": "ssl_marl.decisions.attack:Attack3v2Env",
+    "attack-drill": "ssl_marl.decisions.attack_drill:AttackDrillEnv",
 }
 #: task name -> "module:hand-coded benchmark policy class" (constructor takes no required arguments)
 _HANDCODED_SPECS: dict[str, str] = {
     "keepaway": "ssl_marl.decisions.keepaway.policies:HandcodedKeepawayPolicy",
     "attack-3v2": "ssl_marl.decisions.attack:HandcodedAttackPolicy",
+    "attack-drill": "ssl_marl.decisions.attack_drill:HandcodedAttackDrillPolicy",
 }
 
 

@@ -164,9 +164,8 @@ class Attack3v2Env(DecisionEnv):
         cfg = self.engine.config
         self.rp, self.bp = cfg.robot, cfg.ball
         self.decision_params = self.passing.decision
-        self.decider = DrillDecider()
-        attack = TeamSpec(plays=functools.partial(drill_attack_plays, self.passing), skills=self.skills,
-                          decider=self.decider)
+        self.decider = self.make_decider()
+        attack = TeamSpec(plays=self.attack_plays_factory(), skills=self.skills, decider=self.decider)
         self.blue = build_team(attack, "blue", N_ATTACKERS + 1, self.field, self.rp, self.bp, dt=self.dt)
         self.coordinator = coordinator_of(self.blue.selector.plays)
         self.decider.coordinator = self.coordinator
@@ -176,6 +175,14 @@ class Attack3v2Env(DecisionEnv):
         self._request_mask: np.ndarray | None = None
 
     # ------------------------------------------------------------ hooks
+    def make_decider(self) -> DrillDecider:
+        """The attackers' carrier decider, answered by the agents."""
+        return DrillDecider()
+
+    def attack_plays_factory(self) -> Any:
+        """The attackers' :class:`~ssl_marl.plays.team.PlaysFactory` (``ball``, ``decider`` keywords)."""
+        return functools.partial(drill_attack_plays, self.passing)
+
     def make_task(self) -> AttackTask:
         return AttackTask(self.rules, self.spawn)
 

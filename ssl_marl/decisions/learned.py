@@ -34,6 +34,9 @@ _TRAIN_CMD = {
                 "python -m train.mappo_export runs/mappo_keepaway_s0 --out ssl_marl/decisions/pretrained/keepaway.pt",
     "attack-3v2": "python -m train mappo --task attack-3v2 --seed 0 --out runs/mappo_attack_s0 && "
                   "python -m train.mappo_export runs/mappo_attack_s0 --out ssl_marl/decisions/pretrained/attack_3v2.pt",
+    "attack-drill": "python -m train mappo --task attack-drill --seed 0 --out runs/mappo_attack_drill_s0 && "
+                    "python -m train.mappo_export runs/mappo_attack_drill_s0 --out "
+                    "ssl_marl/decisions/pretrained/attack_drill.pt",
 }
 
 

@@ -1,4 +1,4 @@
-"""The learned attack decision in full matches: a DecisionPolicy as the passing play's carrier decider.
+"""The learned attack decisions in full matches: a DecisionPolicy as the passing or attacking plays' carrier decider.
 
 :class:`PolicyCarrierDecider` adapts any object with the decision-policy interface
 (``act(env, agent, obs, info) -> int``, :mod:`ssl_marl.decisions.policies`; e.g.
@@ -10,11 +10,18 @@ same functions the drill uses), asks the policy, and turns the option into the p
 play's handshake, or dribble toward a point). Restarts (kickoff, free kicks) stay with
 the cost decision (the drill never trains them).
 
+:class:`PolicyAttackDecider` does the same for the attacking plays
+(:mod:`ssl_marl.plays.attack_play`) with the attack drill's observation, mask and options
+(:mod:`ssl_marl.decisions.attack_drill_features`: shot, flat / chip pass, pass into a
+redirect, dribble); it is an :class:`~ssl_marl.plays.attack_play.AttackDecider`, so the
+chosen pass reaches the passer and receiver roles as the cost decision's does.
+
 :func:`make_match_decider` resolves the CLI's ``--blue-decision`` / ``--yellow-decision``
 values: ``handcoded`` (None: the play's default cost decision), ``learned`` (the shipped
-actor, ``ssl_marl/decisions/pretrained/attack_3v2.pt``) or an actor checkpoint path. A
-missing actor or one built for another observation size / option count fails here, with
-the offending field named, before a match starts.
+actor of the team's decision task: ``attack_3v2.pt`` for the passing plays,
+``attack_drill.pt`` for the attacking plays, in ``ssl_marl/decisions/pretrained/``) or an
+actor checkpoint path. A missing actor or one built for another observation size / option
+count fails here, with the offending field named, before a match starts.
 """
 
 from __future__ import annotations
@@ -25,33 +32,53 @@ from typing import Any
 import gymnasium
 import numpy as np
 
+from ..plays.attack_decision import AttackParams
+from ..plays.attack_play import AttackDecider
 from ..plays.pass_decision import Decision
 from ..plays.pass_coordinator import CarrierRequest, CostDecider
-from .attack_features import (ATTACK_OBS_DIM, ATTACK_OPTIONS, N_ATTACK_OPTIONS, OBS_BOUND, attack_action_mask,
+from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, attack_drill_mask,
+                                    attack_drill_observation, option_play_decision, slot_passes)
+from .attack_features import (ATTACK_OBS_DIM, ATTACK_OPTIONS, OBS_BOUND, attack_action_mask,
                               attack_observation, option_decision)
 
 TASK = "attack-3v2"
+#: the attacking plays' decision task
+DRILL_TASK = "attack-drill"
+#: task -> (observation size, option names) a match decider feeds its policy
+TASK_SPACES: dict[str, tuple[int, tuple[str, ...]]] = {TASK: (ATTACK_OBS_DIM, ATTACK_OPTIONS),
+                                                       DRILL_TASK: (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS)}
 DECISION_CHOICES = ("handcoded", "learned")
 AGENT = "attacker_0"
 
 
 class AttackSpecEnv:
-    """The observation / action interface of the Attack 3v2 task without a simulator:
-    what a policy's ``reset(env)`` checks in a match (spaces, option names)."""
+    """The observation / action interface of a carrier-decision task (``task``: a key of
+    :data:`TASK_SPACES`) without a simulator: what a policy's ``reset(env)`` checks in a
+    match (spaces, option names)."""
 
-    name = TASK
     possible_agents = (AGENT,)
     agents = (AGENT,)
-    option_names = ATTACK_OPTIONS
-    n_options = N_ATTACK_OPTIONS
-    task_name = TASK
     episode_seed = None
 
+    def __init__(self, task: str = TASK) -> None:
+        self.name = self.task_name = task
+        self.obs_dim, self.option_names = TASK_SPACES[task]
+        self.n_options = len(self.option_names)
+
     def observation_space(self, agent: str) -> gymnasium.spaces.Box:
-        return gymnasium.spaces.Box(-OBS_BOUND, OBS_BOUND, (ATTACK_OBS_DIM,), np.float32)
+        return gymnasium.spaces.Box(-OBS_BOUND, OBS_BOUND, (self.obs_dim,), np.float32)
 
     def action_space(self, agent: str) -> gymnasium.spaces.Discrete:
-        return gymnasium.spaces.Discrete(N_ATTACK_OPTIONS)
+        return gymnasium.spaces.Discrete(self.n_options)
+
+
+def ask_policy(policy: Any, spec_env: AttackSpecEnv, obs: np.ndarray, mask: np.ndarray, where: str) -> int:
+    """The policy's option for ``obs`` under ``mask``; ValueError for an illegal one."""
+    a = int(policy.act(spec_env, AGENT, obs, {"decision": True, "action_mask": mask, "elapsed_s": 0.0}))
+    if not (0 <= a < spec_env.n_options) or not mask[a]:
+        raise ValueError(f"{where}: the policy chose option {a}, not legal under mask {mask.tolist()} "
+                         f"({spec_env.option_names})")
+    return a
 
 
 class PolicyCarrierDecider:
@@ -80,38 +107,68 @@ class PolicyCarrierDecider:
         args = (ctx.world, ctx.team, request.carrier, ctx.field, ctx.robot, request.ball, request.params)
         obs = attack_observation(*args, candidates=request.candidates)
         mask = attack_action_mask(*args, candidates=request.candidates)
-        a = int(self.policy.act(self.spec_env, AGENT, obs,
-                                {"decision": True, "action_mask": mask, "elapsed_s": 0.0}))
-        if not (0 <= a < N_ATTACK_OPTIONS) or not mask[a]:
-            raise ValueError(f"PolicyCarrierDecider: the policy chose option {a}, not legal under mask "
-                             f"{mask.tolist()} ({ATTACK_OPTIONS})")
+        a = ask_policy(self.policy, self.spec_env, obs, mask, "PolicyCarrierDecider")
         self.decisions += 1
         return option_decision(a, *args, candidates=request.candidates)
 
 
-def default_actor_path() -> Path:
-    """The shipped attack actor (``learned.pretrained_path("attack-3v2")`` where the
-    learned-decision module exists); FileNotFoundError when absent."""
-    try:
-        from .learned import pretrained_path
-    except ImportError:  # the learned-decision module is not in this checkout
-        pretrained_path = None
-    if pretrained_path is not None:
-        return Path(pretrained_path(TASK))
-    here = Path(__file__).resolve().parent / "pretrained"
-    for name in ("attack_3v2.pt", "attack-3v2.pt"):
-        if (here / name).is_file():
-            return here / name
-    raise FileNotFoundError(f"no shipped attack decision actor under {here} (attack_3v2.pt); train one with "
-                            f"the MAPPO trainer (python -m train ... attack-3v2) or pass an actor path")
+class PolicyAttackDecider(AttackDecider):
+    """The attacking plays' carrier decision from a decision policy of the attack drill
+    (module docstring); restarts (set pieces) stay with the cost decision.
+
+    Attributes:
+        policy: the decision policy; asked only with a legal-option mask.
+        decisions: number of decisions the policy made.
+    """
+
+    def __init__(self, policy: Any, params: AttackParams | None = None) -> None:
+        if not callable(getattr(policy, "act", None)):
+            raise TypeError(f"PolicyAttackDecider: policy must have act(env, agent, obs, info), got {policy!r}")
+        super().__init__(params)
+        self.policy = policy
+        self.spec_env = AttackSpecEnv(DRILL_TASK)
+        self.decisions = 0
+        if callable(getattr(policy, "reset", None)):
+            policy.reset(self.spec_env)
+
+    def decide(self, request: CarrierRequest) -> Decision:
+        if request.restart or not request.on_ball:
+            return super().decide(request)
+        ctx = request.ctx
+        params = AttackParams(**{**vars(self.params), "decision": request.params})
+        args = (ctx.world, ctx.team, request.carrier, ctx.field, ctx.robot, request.ball, params)
+        passes = slot_passes(*args, candidates=request.candidates)
+        obs = attack_drill_observation(*args, candidates=request.candidates, passes=passes)
+        a = ask_policy(self.policy, self.spec_env, obs, attack_drill_mask(passes), "PolicyAttackDecider")
+        self.decisions += 1
+        d, option = option_play_decision(a, ctx.ball, ctx.field, passes)
+        if option is not None:
+            self.option = option
+        return d
 
 
-def check_actor_file(path: str | Path, where: str = "decision") -> dict:
+def decision_task(kind: Any) -> str:
+    """The decision task of a team kind: :data:`DRILL_TASK` for the attacking plays'
+    kinds (``attack-*``), :data:`TASK` otherwise."""
+    return DRILL_TASK if isinstance(kind, str) and kind.startswith("attack-") else TASK
+
+
+def default_actor_path(task: str = TASK) -> Path:
+    """The shipped actor of decision task ``task`` (``learned.pretrained_path``);
+    FileNotFoundError saying how to train one when it is absent."""
+    from .learned import pretrained_path
+
+    return Path(pretrained_path(task))
+
+
+def check_actor_file(path: str | Path, where: str = "decision", task: str = TASK) -> dict:
     """Read an actor checkpoint's header (``torch.load(weights_only=True)``) and check
-    it is an attack-3v2 actor: ValueError naming the field (obs_dim, n_options, task)
-    that does not fit; FileNotFoundError for a missing file. Returns the header."""
+    it is an actor of ``task`` (a key of :data:`TASK_SPACES`): ValueError naming the
+    field (obs_dim, n_options, task) that does not fit; FileNotFoundError for a missing
+    file. Returns the header."""
     import torch
 
+    obs_dim, options = TASK_SPACES[task]
     path = Path(path)
     if not path.is_file():
         raise FileNotFoundError(f"{where}: actor file {str(path)!r} does not exist")
@@ -121,37 +178,38 @@ def check_actor_file(path: str | Path, where: str = "decision") -> dict:
         raise ValueError(f"{where}: {path} is not a readable decision actor checkpoint ({exc})") from None
     if not isinstance(ck, dict):
         raise ValueError(f"{where}: {path} is not a decision actor checkpoint (expected a dict)")
-    if "obs_dim" in ck and int(ck["obs_dim"]) != ATTACK_OBS_DIM:
-        raise ValueError(f"{where}: {path} has obs_dim={int(ck['obs_dim'])}, the attack-3v2 observation has "
-                         f"{ATTACK_OBS_DIM} values (an actor for another task?)")
-    if "n_options" in ck and int(ck["n_options"]) != N_ATTACK_OPTIONS:
-        raise ValueError(f"{where}: {path} has n_options={int(ck['n_options'])}, attack-3v2 has "
-                         f"{N_ATTACK_OPTIONS} options {ATTACK_OPTIONS}")
-    if "task" in ck and ck["task"] not in (TASK, None):
-        raise ValueError(f"{where}: {path} has task={ck['task']!r}, expected {TASK!r}")
+    if "obs_dim" in ck and int(ck["obs_dim"]) != obs_dim:
+        raise ValueError(f"{where}: {path} has obs_dim={int(ck['obs_dim'])}, the {task} observation has "
+                         f"{obs_dim} values (an actor for another task?)")
+    if "n_options" in ck and int(ck["n_options"]) != len(options):
+        raise ValueError(f"{where}: {path} has n_options={int(ck['n_options'])}, {task} has "
+                         f"{len(options)} options {options}")
+    if "task" in ck and ck["task"] not in (task, None):
+        raise ValueError(f"{where}: {path} has task={ck['task']!r}, expected {task!r}")
     return ck
 
 
-def make_match_decider(spec: Any, where: str = "decision") -> Any:
-    """The carrier decider for a ``--*-decision`` value: None / ``"handcoded"`` -> None
-    (the play's default cost decision); ``"learned"`` -> the shipped actor; a path -> that
-    actor; a decider object (with ``decide``) or a policy object (with ``act``) as is /
-    wrapped."""
+def make_match_decider(spec: Any, where: str = "decision", task: str = TASK) -> Any:
+    """The carrier decider for a ``--*-decision`` value of a team whose decision task is
+    ``task`` (:data:`TASK`: the passing plays; :data:`DRILL_TASK`: the attacking plays):
+    None / ``"handcoded"`` -> None (the play's default cost decision); ``"learned"`` ->
+    the task's shipped actor; a path -> that actor; a decider object (with ``decide``) as
+    is; a policy object (with ``act``) wrapped."""
+    if task not in TASK_SPACES:
+        raise ValueError(f"{where}: unknown decision task {task!r}; expected one of {tuple(TASK_SPACES)}")
     if spec is None or spec == "handcoded":
         return None
     if not isinstance(spec, (str, Path)):
         if callable(getattr(spec, "decide", None)):
             return spec
-        return PolicyCarrierDecider(spec)
-    path = default_actor_path() if spec == "learned" else Path(spec)
-    check_actor_file(path, where)
-    try:
-        from .learned import LearnedDecisionPolicy
-    except ImportError as exc:
-        raise ImportError(f"{where}: the learned-decision module (ssl_marl.decisions.learned) is not available "
-                          f"({exc})") from None
-    return PolicyCarrierDecider(LearnedDecisionPolicy(str(path), task=TASK))
+        return PolicyAttackDecider(spec) if task == DRILL_TASK else PolicyCarrierDecider(spec)
+    path = default_actor_path(task) if spec == "learned" else Path(spec)
+    check_actor_file(path, where, task)
+    from .learned import LearnedDecisionPolicy
+
+    policy = LearnedDecisionPolicy(str(path), task=task)
+    return PolicyAttackDecider(policy) if task == DRILL_TASK else PolicyCarrierDecider(policy)
 
 
-__all__ = ["PolicyCarrierDecider", "AttackSpecEnv", "make_match_decider", "default_actor_path", "check_actor_file",
-           "DECISION_CHOICES"]
+__all__ = ["PolicyCarrierDecider", "PolicyAttackDecider", "AttackSpecEnv", "ask_policy", "decision_task", "make_match_decider",
+           "default_actor_path", "check_actor_file", "DECISION_CHOICES", "TASK", "DRILL_TASK", "TASK_SPACES"]

@@ -35,6 +35,13 @@ def action_dim(chip_kicks: bool) -> int:
     return CHIP_ACTION_DIM if chip_kicks else ACTION_DIM
 
 
+def fit_action(action: np.ndarray, dim: int) -> np.ndarray:
+    """``action`` with ``dim`` entries: a 5-entry action in a chip env (``dim`` 6) gets a
+    flat chip entry (0); an action of ``dim`` entries is returned as it is."""
+    a = np.asarray(action, np.float32)
+    return a if a.shape[-1] == dim else np.append(a, np.zeros(dim - a.shape[-1], np.float32))
+
+
 def make_action(vx: float = 0.0, vy: float = 0.0, omega: float = 0.0, dribble: bool = False,
                 kick: float = 0.0, chip: float | None = None) -> np.ndarray:
     """Build a normalised (5,) action, clipping each entry to [-1, 1]; with ``chip`` (the

@@ -27,6 +27,7 @@ ball last), its fouls and the seeded placement of restarts are
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -144,3 +145,22 @@ def kickoff_poses(field: FieldGeometry, n_blue: int, n_yellow: int) -> np.ndarra
     yellow[:, 0:2] *= -1.0
     yellow[:, 2] = np.pi
     return np.concatenate([blue, yellow]).reshape(n_blue + n_yellow, 3)
+
+
+def match_start_options(env: Any, seed: int, jitter_m: float) -> dict | None:
+    """A match's reset options: the kickoff formation (field frame) with each robot moved
+    by a seeded normal jitter of ``jitter_m`` (m; clipped at 2x, kept in its own half)
+    and turned by up to 0.2 rad; None for ``jitter_m`` 0."""
+    if not jitter_m:
+        return None
+    rng = np.random.default_rng([int(seed), 0x5EED])
+    cfg = env.config
+    poses = kickoff_poses(env.field, cfg.n_blue, cfg.n_yellow)
+    robots = {}
+    for name, (x0, y0, h0) in zip(env.possible_agents, poses.tolist()):
+        dxy = np.clip(rng.normal(0.0, jitter_m, 2), -2 * jitter_m, 2 * jitter_m)
+        x, y = x0 + dxy[0], y0 + dxy[1]
+        x = min(x, -0.05) if name.startswith("blue") else max(x, 0.05)  # stay in the own half
+        h = h0 + float(np.clip(rng.normal(0.0, jitter_m), -0.2, 0.2))
+        robots[name] = (float(x), float(y), h)
+    return {"formation": "kickoff", "robots": robots}

@@ -240,6 +240,23 @@ def evaluate_redirects(p: np.ndarray, flat: tuple, teammates: np.ndarray, oppone
 
 
 # -------------------------------------------------------------- decision
+def evaluate_attack_passes(p: np.ndarray, carrier: int, teammates: np.ndarray, opponents: np.ndarray,
+                           field_geom: FieldGeometry, rp: RobotParams, bp: BallParams, params: AttackParams,
+                           candidates: tuple[int, ...], heading: float | None = None) -> tuple[AttackOption, ...]:
+    """Every pass of every kind from ``p`` to the ``candidates`` (teammate indices;
+    the carrier is skipped): the flat passes, then the chips, then the passes into a
+    redirect (module docstring; ``heading`` as in :func:`decide_attack`)."""
+    p = np.asarray(p, float)
+    mates = np.asarray(teammates, float).reshape(-1, 2)
+    opp = np.asarray(opponents, float).reshape(-1, 2)
+    points = {k: mates[k] for k in candidates if k != carrier}
+    flat = evaluate_passes(p, points, mates, opp, field_geom, rp, bp, params.decision, heading)
+    options = tuple(AttackOption(AttackChoice.PASS, o.teammate, o.point, o.kick_speed, 0.0, o.success, o.value)
+                    for o in flat)
+    options += evaluate_chips(p, points, mates, opp, field_geom, rp, bp, params)
+    return options + evaluate_redirects(p, flat, mates, opp, field_geom, rp, bp, params)
+
+
 def decide_attack(p: np.ndarray, carrier: int, teammates: np.ndarray, opponents: np.ndarray,
                   field_geom: FieldGeometry, rp: RobotParams | None = None, bp: BallParams | None = None,
                   params: AttackParams | None = None, candidates: tuple[int, ...] | None = None,
@@ -260,12 +277,7 @@ def decide_attack(p: np.ndarray, carrier: int, teammates: np.ndarray, opponents:
     if shot >= dp.shoot_threshold:
         return AttackDecision(AttackChoice.SHOOT, shot, keep)
     cands = candidates if candidates is not None else tuple(k for k in range(len(mates)) if k != carrier)
-    points = {k: mates[k] for k in cands if k != carrier}
-    flat = evaluate_passes(p, points, mates, opp, field_geom, rp, bp, dp, heading)
-    options = tuple(AttackOption(AttackChoice.PASS, o.teammate, o.point, o.kick_speed, 0.0, o.success, o.value)
-                    for o in flat)
-    options += evaluate_chips(p, points, mates, opp, field_geom, rp, bp, params)
-    options += evaluate_redirects(p, flat, mates, opp, field_geom, rp, bp, params)
+    options = evaluate_attack_passes(p, carrier, mates, opp, field_geom, rp, bp, params, cands, heading)
     choice, best = choose(shot, keep, options, dp)
     kind = {Choice.PASS: best.kind if best else None, Choice.SHOOT: AttackChoice.SHOOT,
             Choice.KEEP: AttackChoice.DRIBBLE}[choice]
@@ -274,4 +286,4 @@ def decide_attack(p: np.ndarray, carrier: int, teammates: np.ndarray, opponents:
 
 __all__ = ["AttackChoice", "AttackParams", "AttackOption", "AttackDecision", "chip_kick", "chip_margin",
            "evaluate_chips", "redirect_factor", "redirect_geometry", "evaluate_redirects",
-           "decide_attack"]
+           "evaluate_attack_passes", "decide_attack"]

@@ -17,8 +17,10 @@ A team is one of :data:`TEAM_KINDS`:
   play only in an env with chip kicks (:data:`CHIP_KINDS`; the match runner builds one);
 * ``"random"``: uniform random actions (seeded); ``"idle"``: zero actions.
 
-A passing team's carrier decision can also be chosen per team (``decision=``,
-``ssl-marl match --blue-decision handcoded|learned|PATH``).
+A passing or attacking team's carrier decision can also be chosen per team
+(``decision=``, ``ssl-marl match --blue-decision handcoded|learned|PATH``): a passing
+team's learned decision is an Attack 3v2 actor, an attacking team's an attack-drill actor
+(:mod:`ssl_marl.decisions.attack_drill`).
 
 :func:`team_spec` resolves an STP kind, its skill sources and its decision to a
 :class:`~ssl_marl.plays.team.TeamSpec` (loading a learned decider here: ``plays``
@@ -60,6 +62,9 @@ ATTACK_KINDS = ("attack-learned", "attack-baseline")
 CHIP_KINDS = ATTACK_KINDS
 #: team kinds whose carrier decision is learned by default
 LEARNED_DECISION_KINDS = ("passing-learned-decision",)
+#: team kinds whose carrier decision can be chosen (``decision=``): the passing plays'
+#: (decision task attack-3v2) and the attacking plays' (decision task attack-drill)
+DECISION_KINDS = PASSING_KINDS + ATTACK_KINDS
 TEAM_FILE_KEYS = ("kind", "skills")
 
 
@@ -187,9 +192,9 @@ def decision_spec(kind: Any, decision: Any = None, where: str = "team") -> Any:
     ("handcoded", "learned", an actor path or a decider / policy object), else
     "learned" for :data:`LEARNED_DECISION_KINDS` and None (the cost decision) otherwise.
     ValueError when a decision is given for a team without the passing plays."""
-    if decision is not None and not (isinstance(kind, str) and kind in PASSING_KINDS):
-        raise ValueError(f"{where}: a carrier decision ({decision!r}) needs a passing team "
-                         f"({' or '.join(PASSING_KINDS)}), not {kind!r}")
+    if decision is not None and not (isinstance(kind, str) and kind in DECISION_KINDS):
+        raise ValueError(f"{where}: a carrier decision ({decision!r}) needs a passing or attacking team "
+                         f"({' or '.join(DECISION_KINDS)}), not {kind!r}")
     if decision is None and isinstance(kind, str) and kind in LEARNED_DECISION_KINDS:
         return "learned"
     return decision
@@ -199,7 +204,7 @@ def decision_label(kind: Any, decision: Any = None) -> Any:
     """How a team's carrier decision appears in results: "handcoded", "learned", a
     path, a type name, or None for teams without the passing plays."""
     spec = decision_spec(kind, decision) if isinstance(kind, str) else decision
-    if not (isinstance(kind, str) and kind in PASSING_KINDS):
+    if not (isinstance(kind, str) and kind in DECISION_KINDS):
         return None
     if spec is None:
         return "handcoded"
@@ -211,9 +216,10 @@ def team_spec(kind: str, skills: Any = None, decision: Any = None, where: str = 
     :data:`STP_KINDS`).
 
     ``skills``: a :mod:`~ssl_marl.plays.skillset` spec that replaces the kind's skills
-    (see :func:`team_skills`). ``decision`` (passing kinds only): the ball carrier's
-    decision, "handcoded" (the cost decision, default), "learned" (the shipped attack
-    actor; default of "passing-learned-decision"), an actor path, or a decider /
+    (see :func:`team_skills`). ``decision`` (passing and attacking kinds): the ball
+    carrier's decision, "handcoded" (the cost decision, default), "learned" (the shipped
+    actor of the kind's decision task, attack-3v2 or attack-drill; default of
+    "passing-learned-decision"), an actor path, or a decider /
     decision-policy object (:func:`ssl_marl.decisions.match_decider.make_match_decider`,
     called once per spec: build one spec per team)."""
     from ..plays.team import TeamSpec
@@ -222,19 +228,19 @@ def team_spec(kind: str, skills: Any = None, decision: Any = None, where: str = 
         raise ValueError(f"{where}: a team spec needs an STP team ({' or '.join(STP_KINDS)}), not {kind!r}")
     decision = decision_spec(kind, decision, where=where)
     team_set = kind_skills(kind) if skills is None else skills
+    if kind not in DECISION_KINDS:
+        return TeamSpec(skills=team_set)
+    decider = None
+    if decision is not None:
+        from ..decisions.match_decider import decision_task, make_match_decider
+
+        decider = make_match_decider(decision, where=f"{where} decision", task=decision_task(kind))
     if kind in ATTACK_KINDS:
         from ..plays.attack_play import attack_plays
 
-        return TeamSpec(plays=attack_plays, skills=team_set)
-    if kind not in PASSING_KINDS:
-        return TeamSpec(skills=team_set)
+        return TeamSpec(plays=attack_plays, skills=team_set, decider=decider)
     from ..plays.passing_play import passing_plays
 
-    decider = None
-    if decision is not None:
-        from ..decisions.match_decider import make_match_decider
-
-        decider = make_match_decider(decision, where=f"{where} decision")
     return TeamSpec(plays=passing_plays, skills=team_set, decider=decider)
 
 

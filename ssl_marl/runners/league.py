@@ -17,10 +17,8 @@ a rerun with the same arguments plays only the missing matches; other arguments 
 same folder are an error. Ratings are recomputed from the stored matches in schedule
 order, so a resumed league rates exactly as an uninterrupted one.
 
-Opponent sampling for training against the league (:func:`pfsp_weights`,
-:func:`sample_opponent`) is prioritized fictitious self-play (Vinyals et al. 2019,
-"Grandmaster level in StarCraft II using multi-agent reinforcement learning", Nature
-575, Methods: "Prioritized fictitious self-play").
+Training draws its opponents from a league by prioritized fictitious self-play
+(:mod:`ssl_marl.decisions.pfsp`, used by :class:`~ssl_marl.decisions.attack_match.AttackMatchEnv`).
 """
 
 from __future__ import annotations
@@ -43,7 +41,6 @@ MATRIX_FILE = "matrix.png"
 #: colour schemes of the schedule: "alternate" (each pair once per round, colours swapped
 #: from round to round) or "both" (each ordered pair once per round: both colours)
 COLOURS = ("alternate", "both")
-PFSP_KINDS = ("hard", "even")
 
 
 @dataclass(frozen=True)
@@ -281,7 +278,7 @@ def win_probabilities(state: dict[str, Any], team: str) -> dict[str, float]:
 def ratings_markdown(state: dict[str, Any]) -> str:
     """The ratings table (Markdown) of a league state, sorted by ordinal."""
     c = state["config"]
-    lines = [f"# League ratings\n",
+    lines = ["# League ratings\n",
              f"{state['played']} of {state['scheduled']} matches of {c['seconds']:g} s ({c['match_format']} format, "
              f"{c['robots']} robots, {c['field']}, realism {c['realism']}), {c['rounds']} round(s), colours "
              f"{c['colours']}, seed {c['seed']}. Plackett-Luce ratings (openskill): ordinal = mu - 3 sigma.\n",
@@ -328,34 +325,3 @@ def write_matrix_plot(state: dict[str, Any], path: str | os.PathLike, dpi: int =
         warnings.simplefilter("ignore", UserWarning)
         fig.tight_layout()
     atomic_savefig(fig, path)
-
-
-def pfsp_weights(win_probs: Sequence[float], kind: str = "hard") -> np.ndarray:
-    """Prioritized fictitious self-play weights of opponents, normalised to sum 1.
-
-    ``win_probs[i]`` is the learner's probability of beating opponent i (in [0, 1]).
-    "hard": f(p) = (1 - p)^2 (stronger opponents more often); "even": f(p) = p (1 - p)
-    (opponents of the learner's level). Where every f is 0 the weights are uniform.
-    """
-    p = np.asarray(win_probs, dtype=float)
-    if p.ndim != 1 or p.size == 0:
-        raise ValueError(f"win_probs must be a non-empty sequence, got {win_probs!r}")
-    if not np.all(np.isfinite(p)) or np.any(p < 0) or np.any(p > 1):
-        raise ValueError(f"win probabilities must lie in [0, 1], got {list(p)}")
-    if kind == "hard":
-        f = (1.0 - p) ** 2
-    elif kind == "even":
-        f = p * (1.0 - p)
-    else:
-        raise ValueError(f"kind must be one of {PFSP_KINDS}, got {kind!r}")
-    total = f.sum()
-    return f / total if total > 0 else np.full(p.size, 1.0 / p.size)
-
-
-def sample_opponent(opponents: Sequence[Any], win_probs: Sequence[float], rng: np.random.Generator,
-                    kind: str = "hard") -> Any:
-    """One opponent drawn with :func:`pfsp_weights` (``rng`` makes the draw reproducible)."""
-    if len(opponents) != len(win_probs):
-        raise ValueError(f"{len(opponents)} opponents but {len(win_probs)} win probabilities")
-    return opponents[int(rng.choice(len(opponents), p=pfsp_weights(win_probs, kind)))]
-

@@ -36,30 +36,13 @@ from typing import Any
 
 import numpy as np
 
+from ..envs.actions import fit_action
+from ..envs.referee import match_start_options
 from ..envs.deadline import ControlDeadline
 from .controllers import (CHIP_KINDS, STP_KINDS, TEAM_KINDS, controller_label, decision_label, decision_spec,
                           make_controller)
 from .result import MatchResult
 from ..envs.animation import VideoSink
-
-
-def start_options(env: Any, seed: int, jitter_m: float) -> dict | None:
-    """Reset options: the kickoff formation (field frame) with seeded jitter, or None."""
-    if not jitter_m:
-        return None
-    from ..envs.referee import kickoff_poses
-
-    rng = np.random.default_rng([int(seed), 0x5EED])
-    cfg = env.config
-    poses = kickoff_poses(env.field, cfg.n_blue, cfg.n_yellow)
-    robots = {}
-    for name, (x0, y0, h0) in zip(env.possible_agents, poses.tolist()):
-        dxy = np.clip(rng.normal(0.0, jitter_m, 2), -2 * jitter_m, 2 * jitter_m)
-        x, y = x0 + dxy[0], y0 + dxy[1]
-        x = min(x, -0.05) if name.startswith("blue") else max(x, 0.05)  # stay in the own half
-        h = h0 + float(np.clip(rng.normal(0.0, jitter_m), -0.2, 0.2))
-        robots[name] = (float(x), float(y), h)
-    return {"formation": "kickoff", "robots": robots}
 
 
 #: env events counted in ``MatchResult.stats["referee"]`` when SSL game control is on
@@ -111,13 +94,6 @@ class MatchStats:
 
     def possession(self) -> dict[str, float]:
         return {k: v / max(self.steps, 1) for k, v in self.held.items()}
-
-
-def fit_action(action: np.ndarray, dim: int) -> np.ndarray:
-    """``action`` with ``dim`` entries: a 5-entry action in a chip env (``dim`` 6) gets a
-    flat chip entry (0); an action of ``dim`` entries is returned as it is."""
-    a = np.asarray(action, np.float32)
-    return a if a.shape[-1] == dim else np.append(a, np.zeros(dim - a.shape[-1], np.float32))
 
 
 def validate_match_args(blue: Any, yellow: Any, seconds: Any) -> None:
@@ -214,7 +190,7 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
     deadlines = {team: ControlDeadline(dt) for team in ctrls}
 
     t_start = time.perf_counter()
-    env.reset(seed=seed, options=start_options(env, seed, start_jitter_m))
+    env.reset(seed=seed, options=match_start_options(env, seed, start_jitter_m))
     prev = {team: {a: np.zeros(5, np.float32) for a in c.agents} for team, c in ctrls.items()}
     chip_dim = 6 if env_opts.get("chip_kicks") else 5
     act_time = {"blue": 0.0, "yellow": 0.0}

@@ -95,9 +95,9 @@ def _check_decisions(blue: Any, yellow: Any, match_kwargs: dict) -> None:
     for team, kind in (("blue", blue), ("yellow", yellow)):
         spec = decision_spec(kind, match_kwargs.get(f"{team}_decision"), team)
         if spec is not None:
-            from ..decisions.match_decider import make_match_decider
+            from ..decisions.match_decider import decision_task, make_match_decider
 
-            make_match_decider(spec, where=f"{team} decision")
+            make_match_decider(spec, where=f"{team} decision", task=decision_task(kind))
 
 
 def _check_teams(blue: Any, yellow: Any, match_kwargs: dict) -> None:

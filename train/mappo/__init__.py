@@ -1,4 +1,4 @@
-"""MAPPO for the multi-agent decision tasks (keepaway, attack-3v2, pass-and-score, toy tasks).
+"""MAPPO for the multi-agent decision tasks (keepaway, attack-3v2, attack-drill, pass-and-score, toy tasks).
 
 * :mod:`~train.mappo.algorithm` -- the networks, SMDP advantages and the PPO update, with
   :class:`~train.mappo.algorithm.MAPPOConfig` (the hyperparameters);

@@ -146,7 +146,7 @@ def save_bc_actor(agent: MAPPO, task: str, path: str | Path, **meta: Any) -> Pat
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(prog="python -m train.mappo_bc", description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--task", required=True, help="decision task (keepaway, attack-3v2)")
+    p.add_argument("--task", required=True, help="decision task (keepaway, attack-3v2, attack-drill)")
     p.add_argument("--policy", default="handcoded", help="benchmark policy to imitate (default handcoded)")
     p.add_argument("--episodes", type=int, default=300, help="demonstration episodes (default 300)")
     p.add_argument("--seed", type=int, default=100000, help="episode i uses seed SEED+i (default 100000)")

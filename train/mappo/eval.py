@@ -3,7 +3,7 @@
 ``python -m train.mappo_eval --task pass-and-score --actor RUN/actors/actor-N.pt --episodes 200 --seed 48000
 [--random] [--out results.json]``
 
-For the decision tasks (keepaway, attack-3v2) the project's evaluation is ``ssl-marl eval-task``;
+For the decision tasks (keepaway, attack-3v2, attack-drill) the project's evaluation is ``ssl-marl eval-task``;
 this one serves the toy tasks and the continuous drill (whose actor has a Gaussian head: the
 greedy action is its mean). Episode i uses seed ``seed + i``. Prints (and writes) the mean score
 with a 95 % interval (Wilson for 0/1 scores, else t) and the outcome counts.

@@ -54,6 +54,23 @@ def _attack_3v2(**kw: Any) -> Any:
     return _decision_task("attack-3v2")(**kw)
 
 
+def _attack_drill(**kw: Any) -> Any:
+    return _decision_task("attack-drill")(**kw)
+
+
+#: the league of the attack-match task: the hand-coded anchors, all with the shipped learned skills
+MATCH_LEAGUE = ("attack-learned", "passing-learned", "learned")
+
+
+def _attack_match(opponents: tuple[str, ...] = MATCH_LEAGUE, **kw: Any) -> Any:
+    """The attack-match task with ``opponents`` (team kinds) as the yellow league."""
+    from ssl_marl.decisions.attack_match import AttackMatchEnv
+    from ssl_marl.runners.controllers import team_spec
+
+    league = {kind: (lambda k=kind: team_spec(k, where=f"opponent {k}")) for kind in opponents}
+    return AttackMatchEnv(league, **kw)
+
+
 def _pass_and_score(**kw: Any) -> Any:
     from ssl_marl.envs.tasks.pass_and_score import PassAndScoreEnv
 
@@ -82,6 +99,20 @@ MARL_TASKS: dict[str, MARLTask] = {
                             "algo": {"hidden": [64, 64], "lr": 1e-3, "epochs": 10, "minibatches": 2,
                                      "gamma": 0.99, "tau_s": 0.1}},
                            "attack 3v2 (ssl_marl.decisions)"),
+    "attack-drill": MARLTask(_attack_drill, "goal",
+                             {"val_seed": 49000, "num_envs": 4, "rollout_steps": 16, "total_decisions": 1_500,
+                              "checkpoint_every": 2, "val_every": 8, "val_episodes": 40,
+                              "algo": {"hidden": [64, 64], "lr": 1e-3, "epochs": 10, "minibatches": 2,
+                                       "gamma": 0.99, "tau_s": 0.1}},
+                             "attack drill: the attacking plays' options, 3 attackers vs goalie and defender "
+                             "(ssl_marl.decisions)"),
+    "attack-match": MARLTask(_attack_match, "goal_diff",
+                             {"val_seed": 49500, "num_envs": 2, "rollout_steps": 32, "total_decisions": 2_000,
+                              "checkpoint_every": 2, "val_every": 0, "val_episodes": 4,
+                              "algo": {"hidden": [64, 64], "lr": 1e-4, "epochs": 4, "minibatches": 2,
+                                       "gamma": 0.99, "tau_s": 0.1}},
+                             "full 6v6 matches of 120 s: the attacking team's carrier decisions against a league "
+                             "drawn by PFSP (ssl_marl.decisions.attack_match)"),
     "pass-and-score": MARLTask(_pass_and_score, "success",
                                {"val_seed": 47000, "num_envs": 8, "rollout_steps": 128, "val_every": 25, "val_episodes": 20,
                                 "total_decisions": 300_000,

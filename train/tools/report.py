@@ -65,6 +65,14 @@ ATTACK = [("hand-coded (cost decision, shot threshold 0.25)", "attack_3v2_handco
           ("learned, the previous actor (trained without the snap shot)", "attack_3v2_learned_snap"),
           ("learned (shipped `attack_3v2.pt`: retrained with the snap shot, `mappo_attack_snap_bc_s0`)",
            "attack_3v2_learned_snap_retrained")]
+ATTACK_DRILL = [("hand-coded (the attacking plays' cost decision)", "attack_drill_handcoded"),
+                ("learned (shipped `attack_drill.pt`: cloned, then MAPPO `mappo_attack_drill_bc_s0`)",
+                 "attack_drill_learned")]
+ATTACK_DRILL_SELECTION = [("hand-coded", "tuning/attack_drill_handcoded_val49000"),
+                          ("cloned hand-coded decision (`bc_attack_drill.pt`)", "tuning/attack_drill_bc_val49000"),
+                          ("`mappo_attack_drill_bc_s0` at 1,678 decisions (shipped)", "tuning/attack_drill_s0_1678_val49000"),
+                          ("`mappo_attack_drill_bc_s0` at 2,020 decisions", "tuning/attack_drill_s0_2020_val49000"),
+                          ("`mappo_attack_drill_bc_s0` at 2,528 decisions", "tuning/attack_drill_s0_2528_val49000")]
 
 TABLES: dict[str, Callable[[Path], list[str]]] = {
     "skills_paper": lambda r: t.skills(r, SKILLS_PAPER),
@@ -109,6 +117,11 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
         ("all learned, self-play with the coordinator's counters", "selfplay_pass_counters.json", None)]),
     "keepaway": lambda r: t.keepaway(r, KEEPAWAY),
     "attack": lambda r: t.attack(r, ATTACK),
+    "attack_drill": lambda r: t.attack(r, ATTACK_DRILL),
+    "attack_drill_selection": lambda r: t.attack(r, ATTACK_DRILL_SELECTION),
+    "attack_drill_aim": lambda r: t.probe_rows(r / "tuning" / "attack_drill_aim.json", "rule"),
+    "mappo_attack_drill": lambda r: t.mappo_runs(r, [("mappo_attack_drill_bc_s0", "attack_drill_learned")],
+                                                 "attack_drill_handcoded", "goal"),
     "decision_tasks_realistic": lambda r: t.decision_tasks(r, "*_realistic*"),
     "mappo_keepaway": lambda r: t.mappo_runs(r, [("mappo_keepaway_s0", "keepaway_learned_s0"),
                                                  ("mappo_keepaway_s1", "keepaway_learned"),

@@ -262,6 +262,18 @@ def attack(results: Path, entries: Iterable[tuple[str, str]]) -> Lines:
     return rows
 
 
+def probe_rows(path: Path, key: str) -> Lines:
+    """A probe's rows (``{"rows": [{key, episodes, goal_rate, outcomes}, ...]}``): goal rate
+    with its 95 % Wilson interval and the outcomes, one line per row."""
+    d = json.loads(path.read_text())
+    rows = _head(key, "episodes", "goal rate [95 % Wilson]", "outcomes")
+    for r in d["rows"]:
+        n = r["episodes"]
+        lo, hi = wilson_interval(round(r["goal_rate"] * n), n)
+        rows.append(f"| `{r[key]}` | {n} | {_rate(r['goal_rate'], [lo, hi])} | {_counts(r['outcomes'])} |")
+    return rows
+
+
 def decision_tasks(results: Path, pattern: str) -> Lines:
     """Every ``ssl-marl eval-task`` record whose folder matches ``pattern`` (a glob under
     ``results``); one line saying so when there is none."""

@@ -1,0 +1,211 @@
+"""Attack drill: the attacking plays' carrier decision (shot, flat / chip pass, pass into a redirect, dribble) as a PettingZoo task.
+
+:class:`AttackDrillEnv` is :class:`~ssl_marl.decisions.attack.Attack3v2Env`'s scene, judge,
+agents and global state (three attackers ``attacker_0..2`` against a goalie and a defender on
+half a Division B field; outcomes, 15 s, +1 for a goal: :mod:`ssl_marl.envs.tasks.attack`) with
+the match's attacking plays in place of the passing play:
+
+* **Who plays what.** The attackers run the roles of the attacking plays
+  (:mod:`ssl_marl.plays.attack_play`: goalie, the chip passer, the redirect receiver, the
+  attacker aiming at the widest open part of the goal mouth, two supports on rated spots) with
+  the attacking plays' pass coordinator settings (``ATTACK_PASSING``, asked every tick:
+  ``decide_every=1``); the only change from a match is that the carrier's decision comes from
+  the agents (:class:`DrillAttackDecider`). The world is the chip env (``chip_kicks=True``);
+  the defence (the project's Goalie and Defender tactics, as in Attack 3v2) kicks flat.
+* **Options, mask, observation**: :mod:`ssl_marl.decisions.attack_drill_features` (10 options:
+  shoot, flat pass / chip / pass into a redirect to teammate slot 1 or 2, three dribbles; 48
+  values), the same functions a match's :class:`~ssl_marl.decisions.match_decider.PolicyAttackDecider`
+  uses. Decision points as in Attack 3v2: when the play asks for the carrier's decision the
+  carrier's agent gets ``infos[agent]["decision"] = True`` with the legal options.
+* **Benchmark.** :class:`HandcodedAttackDrillPolicy` is the attacking plays' cost decision
+  (:func:`~ssl_marl.plays.attack_decision.decide_attack`, the function the attacking team plays
+  in matches) on the same request, mapped to the options (keep -> ``dribble_goal``); a carrier
+  that has kept the ball for more than ``max_keep_s`` (0.8 s) shoots, as in the play.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+from typing import Any, Mapping
+
+import numpy as np
+
+from ..envs.actions import CHIP_ACTION_DIM, fit_action
+from ..physics.params import BallParams
+from ..plays.attack_decision import AttackOption, AttackParams, decide_attack
+from ..plays.attack_play import (ATTACK_PASSING, AttackDecider, AttackPrepare, SpotPlanner, chip_passer_role,
+                                 redirect_receiver_role, spot_support_role)
+from ..plays.pass_coordinator import CarrierRequest, PassCoordinator, PassingParams
+from ..plays.pass_decision import Choice, Decision
+from ..plays.passing_roles import passing_attacker_role
+from ..plays.play import Play, goalie_role
+from .attack import STALE_REQUEST_S, Attack3v2Env
+from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, DRIBBLE_GOAL_OPTION, SHOOT, SlotPasses,
+                                    attack_decision_option, attack_drill_mask, attack_drill_observation,
+                                    option_play_decision, slot_passes)
+from .attack_features import OBS_BOUND
+
+#: the drill's pass coordinator: the attacking plays' settings, asked every tick
+DRILL_PASSING = dataclasses.replace(ATTACK_PASSING, decide_every=1)
+
+
+class DrillAttackDecider(AttackDecider):
+    """The attacking plays' decider answered by the drill's agents: records the play's
+    request (the agent answers at its next step) and hands the answer (the coordinator's
+    decision and the chosen pass for the passer and receiver roles) to the play on the
+    next tick; until then the carrier holds its dribble."""
+
+    def __init__(self, params: AttackParams | None = None) -> None:
+        super().__init__(params)
+        self.coordinator: PassCoordinator | None = None
+        self.reset()
+
+    def reset(self) -> None:
+        self.request: CarrierRequest | None = None
+        self.answer: tuple[int, float, Decision, AttackOption | None] | None = None
+        self.option = None
+        self.last = None
+
+    def decide(self, request: CarrierRequest) -> Decision:
+        if self.answer is not None:
+            carrier, t_req, d, option = self.answer
+            self.answer = None
+            if carrier == request.carrier and request.t - t_req <= STALE_REQUEST_S + 1e-9:
+                self.request = None
+                if option is not None:
+                    self.option = option
+                return d
+        self.request = request
+        cur = self.coordinator.decision if self.coordinator is not None else None
+        if cur is not None and cur.choice is Choice.KEEP:  # hold the dribble until the answer comes
+            return dataclasses.replace(cur, commit_s=0.0)
+        return Decision(Choice.KEEP, 0.0, 0.0, dribble_speed=0.0)
+
+    def answer_with(self, decision: Decision, option: AttackOption | None) -> None:
+        req = self.request
+        if req is None:
+            raise RuntimeError("DrillAttackDecider: no request to answer")
+        self.answer = (req.carrier, req.t, decision, option)
+        self.request = None
+
+
+def drill_attacking_plays(passing: PassingParams, *, ball: BallParams | None,
+                          decider: AttackDecider | None) -> tuple[Play, ...]:
+    """The attackers' one play (a :class:`~ssl_marl.plays.team.PlaysFactory` once ``passing``
+    is bound): the attacking plays' offense roles (goalie, chip passer, redirect receiver,
+    attacker, two rated-spot supports) with a new coordinator and spot planner."""
+    dec = decider if decider is not None else AttackDecider()
+    coord = PassCoordinator(passing, ball, dec)
+    planner = SpotPlanner(ball=ball)
+    roles = (goalie_role(100), chip_passer_role(coord, dec, 95), redirect_receiver_role(coord, dec, 94),
+             passing_attacker_role(coord, 90, aim_open_goal=True), spot_support_role(0, planner, 80),
+             spot_support_role(1, planner, 70))
+    return (Play("attack_drill", lambda ctx: True, roles, prepare=AttackPrepare(coord, planner)),)
+
+
+class AttackDrillEnv(Attack3v2Env):
+    """The attack drill (module docstring). Arguments as :class:`~ssl_marl.decisions.attack.Attack3v2Env`
+    (``passing`` default :data:`DRILL_PASSING`) plus ``attack``: the attacking plays'
+    :class:`~ssl_marl.plays.attack_decision.AttackParams` (default: the match's)."""
+
+    task_name = "attack-drill"
+    option_names = ATTACK_DRILL_OPTIONS
+    default_option = SHOOT
+
+    def __init__(self, skills: str = "learned", attack: AttackParams | None = None, **kwargs: Any) -> None:
+        self.attack = attack or AttackParams()
+        kwargs.setdefault("passing", DRILL_PASSING)
+        self._passes: SlotPasses = {}
+        super().__init__(skills=skills, **kwargs)
+
+    def make_decider(self) -> DrillAttackDecider:
+        return DrillAttackDecider(self.attack)
+
+    def attack_plays_factory(self) -> Any:
+        return functools.partial(drill_attacking_plays, self.passing)
+
+    def engine_kwargs(self) -> dict:
+        return {**super().engine_kwargs(), "chip_kicks": True}
+
+    def attack_params(self, request: CarrierRequest) -> AttackParams:
+        """The attack decision's parameters for ``request`` (its decision parameters)."""
+        return dataclasses.replace(self.attack, decision=request.params)
+
+    def decision_agents(self) -> frozenset[str]:
+        req = self.decider.request
+        if req is None or not 1 <= req.carrier <= 3:
+            return frozenset()
+        params = self.attack_params(req)
+        args = (req.ctx.world, "blue", req.carrier, self.field, self.rp, self.bp, params)
+        self._passes = slot_passes(*args, candidates=req.candidates)
+        self._request_obs = attack_drill_observation(*args, candidates=req.candidates, passes=self._passes)
+        self._request_mask = attack_drill_mask(self._passes)
+        return frozenset({self.agent_of(req.carrier)})
+
+    def start_options(self, chosen: Mapping[str, int]) -> None:
+        req = self.decider.request
+        for agent, option in chosen.items():
+            d, o = option_play_decision(option, req.ctx.world.ball_pos, self.field, self._passes)
+            self.decider.answer_with(d, o)
+
+    def tick_actions(self) -> dict[str, np.ndarray]:
+        actions = super().tick_actions()
+        return {k: fit_action(v, CHIP_ACTION_DIM) for k, v in actions.items()}
+
+    def observe(self) -> dict[str, np.ndarray]:
+        world = self.engine.vision_state("blue")
+        out = {}
+        for a in self.possible_agents:
+            if a in self._deciding and self._request_obs is not None:
+                out[a] = self._request_obs
+            else:
+                out[a] = attack_drill_observation(world, "blue", self.robot_index(a), self.field, self.rp, self.bp,
+                                                  self.attack)
+        return out
+
+    def observation_bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        return (np.full(ATTACK_DRILL_OBS_DIM, -OBS_BOUND, np.float32),
+                np.full(ATTACK_DRILL_OBS_DIM, OBS_BOUND, np.float32))
+
+
+class HandcodedAttackDrillPolicy:
+    """The attacking plays' cost decision as an attack-drill policy (module docstring)."""
+
+    name = "handcoded"
+
+    def __init__(self, max_keep_s: float | None = None) -> None:
+        self.max_keep_s = max_keep_s
+        self.reset(None)
+
+    def reset(self, env: Any) -> None:
+        self._keep_since: float | None = None
+        self._carrier: int | None = None
+
+    def act(self, env: Any, agent: str, obs: np.ndarray, info: dict) -> int:
+        req = env.pending_request
+        if req is None:
+            raise ValueError(f"HandcodedAttackDrillPolicy: agent {agent!r} has no open decision request")
+        ctx = req.ctx
+        ours = ctx.world.team(ctx.team)
+        d = decide_attack(ctx.ball, req.carrier, ours.pos, ctx.opp_pos, ctx.field, ctx.robot, req.ball,
+                          env.attack_params(req), candidates=req.candidates, heading=req.heading)
+        option = attack_decision_option(d, ctx.world, ctx.team, req.carrier)
+        max_keep = self.max_keep_s if self.max_keep_s is not None else env.passing.max_keep_s
+        if req.carrier != self._carrier:
+            self._carrier, self._keep_since = req.carrier, None
+        if option == DRIBBLE_GOAL_OPTION:
+            if self._keep_since is None:
+                self._keep_since = req.t
+            if req.t - self._keep_since > max_keep:
+                option = SHOOT
+        else:
+            self._keep_since = None
+        mask = info.get("action_mask")
+        if mask is not None and not mask[option]:
+            return SHOOT
+        return option
+
+
+__all__ = ["AttackDrillEnv", "HandcodedAttackDrillPolicy", "DrillAttackDecider", "drill_attacking_plays",
+           "DRILL_PASSING"]
