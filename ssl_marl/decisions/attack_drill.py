@@ -44,7 +44,7 @@ from .attack import STALE_REQUEST_S, Attack3v2Env
 from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, DRIBBLE_GOAL_OPTION, SHOOT, SlotPasses,
                                     attack_decision_option, attack_drill_mask, attack_drill_observation,
                                     option_play_decision, slot_passes)
-from .attack_features import OBS_BOUND
+from .attack_features import ATTACK_OBS_DIM, OBS_BOUND, attack_observation
 
 #: the drill's pass coordinator: the attacking plays' settings, asked every tick
 DRILL_PASSING = dataclasses.replace(ATTACK_PASSING, decide_every=1)
@@ -104,7 +104,72 @@ def drill_attacking_plays(passing: PassingParams, *, ball: BallParams | None,
     return (Play("attack_drill", lambda ctx: True, roles, prepare=AttackPrepare(coord, planner)),)
 
 
-class AttackDrillEnv(Attack3v2Env):
+class AttackOptionsMixin:
+    """The carrier's attacking options as :class:`~ssl_marl.decisions.base.DecisionEnv` hooks,
+    shared by the drill and the full-match task: the :class:`DrillAttackDecider`'s open request
+    is the decision point of the carrier's agent (robot k is ``agent_of(k)``, field robots
+    1..``n_agents``), the mask and observation are the drill's features, the chosen option
+    answers the request. Non-deciding agents observe Attack 3v2's 40 values and zeros for the
+    pass values (only a deciding agent's observation is acted on). The env provides
+    ``decider``, ``attack``, ``blue``, ``yellow``, ``engine``, ``field``, ``rp``, ``bp``,
+    ``n_agents`` and ``agent_of``."""
+
+    _passes: SlotPasses
+    _request_obs: np.ndarray | None
+    _request_mask: np.ndarray | None
+
+    def attack_params(self, request: CarrierRequest) -> AttackParams:
+        """The attack decision's parameters for ``request`` (its decision parameters)."""
+        return dataclasses.replace(self.attack, decision=request.params)
+
+    @property
+    def pending_request(self) -> CarrierRequest | None:
+        """The play's open request for the carrier's decision (None: nobody decides)."""
+        return self.decider.request
+
+    def decision_agents(self) -> frozenset[str]:
+        req = self.decider.request
+        if req is None or not 1 <= req.carrier <= self.n_agents:
+            return frozenset()
+        args = (req.ctx.world, "blue", req.carrier, self.field, self.rp, self.bp, self.attack_params(req))
+        self._passes = slot_passes(*args, candidates=req.candidates)
+        self._request_obs = attack_drill_observation(*args, candidates=req.candidates, passes=self._passes)
+        self._request_mask = attack_drill_mask(self._passes)
+        return frozenset({self.agent_of(req.carrier)})
+
+    def action_mask(self, agent: str) -> np.ndarray:
+        return self._request_mask
+
+    def start_options(self, chosen: Mapping[str, int]) -> None:
+        req = self.decider.request
+        for agent, option in chosen.items():
+            d, o = option_play_decision(option, req.ctx.world.ball_pos, self.field, self._passes)
+            self.decider.answer_with(d, o)
+
+    def tick_actions(self) -> dict[str, np.ndarray]:
+        actions = self.blue.act(self.engine)
+        actions.update(self.yellow.act(self.engine))
+        return {k: fit_action(v, CHIP_ACTION_DIM) for k, v in actions.items()}
+
+    def observe(self) -> dict[str, np.ndarray]:
+        world = self.engine.vision_state("blue")
+        pad = np.zeros(ATTACK_DRILL_OBS_DIM - ATTACK_OBS_DIM, np.float32)
+        out = {}
+        for a in self.possible_agents:
+            if a in self._deciding and self._request_obs is not None:
+                out[a] = self._request_obs
+            else:
+                k = int(a.rsplit("_", 1)[1]) + 1
+                out[a] = np.concatenate([attack_observation(world, "blue", k, self.field, self.rp, self.bp,
+                                                            self.attack.decision), pad])
+        return out
+
+    def observation_bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        return (np.full(ATTACK_DRILL_OBS_DIM, -OBS_BOUND, np.float32),
+                np.full(ATTACK_DRILL_OBS_DIM, OBS_BOUND, np.float32))
+
+
+class AttackDrillEnv(AttackOptionsMixin, Attack3v2Env):
     """The attack drill (module docstring). Arguments as :class:`~ssl_marl.decisions.attack.Attack3v2Env`
     (``passing`` default :data:`DRILL_PASSING`) plus ``attack``: the attacking plays'
     :class:`~ssl_marl.plays.attack_decision.AttackParams` (default: the match's)."""
@@ -127,46 +192,6 @@ class AttackDrillEnv(Attack3v2Env):
 
     def engine_kwargs(self) -> dict:
         return {**super().engine_kwargs(), "chip_kicks": True}
-
-    def attack_params(self, request: CarrierRequest) -> AttackParams:
-        """The attack decision's parameters for ``request`` (its decision parameters)."""
-        return dataclasses.replace(self.attack, decision=request.params)
-
-    def decision_agents(self) -> frozenset[str]:
-        req = self.decider.request
-        if req is None or not 1 <= req.carrier <= 3:
-            return frozenset()
-        params = self.attack_params(req)
-        args = (req.ctx.world, "blue", req.carrier, self.field, self.rp, self.bp, params)
-        self._passes = slot_passes(*args, candidates=req.candidates)
-        self._request_obs = attack_drill_observation(*args, candidates=req.candidates, passes=self._passes)
-        self._request_mask = attack_drill_mask(self._passes)
-        return frozenset({self.agent_of(req.carrier)})
-
-    def start_options(self, chosen: Mapping[str, int]) -> None:
-        req = self.decider.request
-        for agent, option in chosen.items():
-            d, o = option_play_decision(option, req.ctx.world.ball_pos, self.field, self._passes)
-            self.decider.answer_with(d, o)
-
-    def tick_actions(self) -> dict[str, np.ndarray]:
-        actions = super().tick_actions()
-        return {k: fit_action(v, CHIP_ACTION_DIM) for k, v in actions.items()}
-
-    def observe(self) -> dict[str, np.ndarray]:
-        world = self.engine.vision_state("blue")
-        out = {}
-        for a in self.possible_agents:
-            if a in self._deciding and self._request_obs is not None:
-                out[a] = self._request_obs
-            else:
-                out[a] = attack_drill_observation(world, "blue", self.robot_index(a), self.field, self.rp, self.bp,
-                                                  self.attack)
-        return out
-
-    def observation_bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        return (np.full(ATTACK_DRILL_OBS_DIM, -OBS_BOUND, np.float32),
-                np.full(ATTACK_DRILL_OBS_DIM, OBS_BOUND, np.float32))
 
 
 class HandcodedAttackDrillPolicy:
@@ -207,5 +232,5 @@ class HandcodedAttackDrillPolicy:
         return option
 
 
-__all__ = ["AttackDrillEnv", "HandcodedAttackDrillPolicy", "DrillAttackDecider", "drill_attacking_plays",
-           "DRILL_PASSING"]
+__all__ = ["AttackDrillEnv", "AttackOptionsMixin", "HandcodedAttackDrillPolicy", "DrillAttackDecider",
+           "drill_attacking_plays", "DRILL_PASSING"]

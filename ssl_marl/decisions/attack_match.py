@@ -17,7 +17,7 @@ an actor trained in the drill continues here and plays the same way in ``ssl-mar
   stay with the cost decision, as in matches.
 * **Observations.** The deciding agent gets the drill's 48 values; the others get the 40 values
   of :func:`~ssl_marl.decisions.attack_features.attack_observation` and zeros for the pass values
-  (their observations are not used to decide).
+  (their observations are not used to decide; :class:`~ssl_marl.decisions.attack_drill.AttackOptionsMixin`).
 * **Reward.** The match task's team reward (``reward_scales``, default goals only): +1 to every
   blue agent for a goal scored, -1 for one conceded. An episode is ``seconds`` of play (default 120 s, truncated); its score is the goal
   difference (``goal_diff``), reported with ``goals_for``, ``goals_against`` and ``opponent``.
@@ -37,7 +37,6 @@ an actor trained in the drill continues here and plays the same way in ``ssl-mar
 from __future__ import annotations
 
 import csv
-import dataclasses
 import math
 from collections.abc import Callable, Mapping
 from pathlib import Path
@@ -45,7 +44,6 @@ from typing import Any
 
 import numpy as np
 
-from ..envs.actions import CHIP_ACTION_DIM, fit_action
 from ..envs.referee import match_start_options
 from ..envs.tasks.match import MatchTask
 from ..plays.attack_decision import AttackParams
@@ -54,10 +52,9 @@ from ..plays.pass_coordinator import CarrierRequest
 from ..plays.pass_decision import Decision
 from ..plays.skillset import team_skill_set
 from ..plays.team import TeamController, TeamSpec, build_team
-from .attack_drill import DrillAttackDecider
-from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, SHOOT, SlotPasses, attack_drill_mask,
-                                    attack_drill_observation, option_play_decision, slot_passes)
-from .attack_features import ATTACK_OBS_DIM, OBS_BOUND, attack_observation
+from .attack_drill import AttackOptionsMixin, DrillAttackDecider
+from .attack_drill_features import ATTACK_DRILL_OPTIONS, SHOOT, SlotPasses
+from .attack_features import OBS_BOUND
 from .base import DecisionEnv
 from .pfsp import pfsp_weights, win_probability
 
@@ -88,7 +85,7 @@ def improving_snapshots(run_dir: str | Path, max_snapshots: int = 3) -> list[Pat
     return out[-max_snapshots:] if max_snapshots > 0 else []
 
 
-class AttackMatchEnv(DecisionEnv):
+class AttackMatchEnv(AttackOptionsMixin, DecisionEnv):
     """Full matches as the attacking team's decision task (module docstring).
 
     Args:
@@ -212,52 +209,6 @@ class AttackMatchEnv(DecisionEnv):
         self.blue.reset()
         self.yellow.reset()
         self._request_obs = self._request_mask = None
-
-    @property
-    def pending_request(self) -> CarrierRequest | None:
-        """The play's open request for the carrier's decision (None: nobody decides)."""
-        return self.decider.request
-
-    def decision_agents(self) -> frozenset[str]:
-        req = self.decider.request
-        if req is None or not 1 <= req.carrier < self.robots:
-            return frozenset()
-        params = dataclasses.replace(self.attack, decision=req.params)
-        args = (req.ctx.world, "blue", req.carrier, self.field, self.rp, self.bp, params)
-        self._passes = slot_passes(*args, candidates=req.candidates)
-        self._request_obs = attack_drill_observation(*args, candidates=req.candidates, passes=self._passes)
-        self._request_mask = attack_drill_mask(self._passes)
-        return frozenset({self.agent_of(req.carrier)})
-
-    def action_mask(self, agent: str) -> np.ndarray:
-        return self._request_mask
-
-    def start_options(self, chosen: Mapping[str, int]) -> None:
-        req = self.decider.request
-        for agent, option in chosen.items():
-            d, o = option_play_decision(option, req.ctx.world.ball_pos, self.field, self._passes)
-            self.decider.answer_with(d, o)
-
-    def tick_actions(self) -> dict[str, np.ndarray]:
-        actions = self.blue.act(self.engine)
-        actions.update(self.yellow.act(self.engine))
-        return {k: fit_action(v, CHIP_ACTION_DIM) for k, v in actions.items()}
-
-    def observe(self) -> dict[str, np.ndarray]:
-        world = self.engine.vision_state("blue")
-        out = {}
-        for a in self.possible_agents:
-            if a in self._deciding and self._request_obs is not None:
-                out[a] = self._request_obs
-            else:
-                base = attack_observation(world, "blue", int(a.rsplit("_", 1)[1]) + 1, self.field, self.rp, self.bp,
-                                          self.attack.decision)
-                out[a] = np.concatenate([base, np.zeros(ATTACK_DRILL_OBS_DIM - ATTACK_OBS_DIM, np.float32)])
-        return out
-
-    def observation_bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        return (np.full(ATTACK_DRILL_OBS_DIM, -OBS_BOUND, np.float32),
-                np.full(ATTACK_DRILL_OBS_DIM, OBS_BOUND, np.float32))
 
     def _goals(self) -> tuple[int, int]:
         score = self.engine.score
