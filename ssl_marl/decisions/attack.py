@@ -274,6 +274,30 @@ class Attack3v2Env(DecisionEnv):
         return {"outcome": self.task.outcome, "goal": int(self.task.goal)}
 
 
+class KeepClock:
+    """The play's ``max_keep_s`` rule for a hand-coded decision policy: a carrier that has
+    kept (dribbled) the ball for more than ``max_keep_s`` since its first keep shoots."""
+
+    def __init__(self) -> None:
+        self.reset()
+
+    def reset(self) -> None:
+        self._keep_since: float | None = None
+        self._carrier: int | None = None
+
+    def expired(self, carrier: int, t: float, keeping: bool, max_keep_s: float) -> bool:
+        """Record the decision of ``carrier`` at time ``t`` (s; ``keeping``: a keep / dribble);
+        True when a keep has lasted longer than ``max_keep_s``."""
+        if carrier != self._carrier:
+            self._carrier, self._keep_since = carrier, None
+        if not keeping:
+            self._keep_since = None
+            return False
+        if self._keep_since is None:
+            self._keep_since = t
+        return t - self._keep_since > max_keep_s
+
+
 class HandcodedAttackPolicy:
     """The passing play's cost decision as an Attack 3v2 policy (module docstring)."""
 
@@ -282,11 +306,10 @@ class HandcodedAttackPolicy:
     def __init__(self, max_keep_s: float | None = None) -> None:
         self.max_keep_s = max_keep_s
         self.cost = CostDecider()
-        self.reset(None)
+        self.clock = KeepClock()
 
     def reset(self, env: Any) -> None:
-        self._keep_since: float | None = None
-        self._carrier: int | None = None
+        self.clock.reset()
 
     def act(self, env: Any, agent: str, obs: np.ndarray, info: dict) -> int:
         req = env.pending_request
@@ -294,15 +317,8 @@ class HandcodedAttackPolicy:
             raise ValueError(f"HandcodedAttackPolicy: agent {agent!r} has no open decision request")
         d = self.cost.decide(req)
         max_keep = self.max_keep_s if self.max_keep_s is not None else env.passing.max_keep_s
-        if req.carrier != self._carrier:
-            self._carrier, self._keep_since = req.carrier, None
-        if d.choice is Choice.KEEP:
-            if self._keep_since is None:
-                self._keep_since = req.t
-            if req.t - self._keep_since > max_keep:
-                d = dataclasses.replace(d, choice=Choice.SHOOT)
-        else:
-            self._keep_since = None
+        if self.clock.expired(req.carrier, req.t, d.choice is Choice.KEEP, max_keep):
+            d = dataclasses.replace(d, choice=Choice.SHOOT)
         option = decision_option(d, req.ctx.world, "blue", req.carrier)
         mask = info.get("action_mask")
         if mask is not None and not mask[option]:
@@ -310,5 +326,5 @@ class HandcodedAttackPolicy:
         return option
 
 
-__all__ = ["Attack3v2Env", "HandcodedAttackPolicy", "DrillDecider", "drill_attack_play", "drill_defence_play",
+__all__ = ["Attack3v2Env", "HandcodedAttackPolicy", "KeepClock", "DrillDecider", "drill_attack_play", "drill_defence_play",
            "drill_attack_plays", "drill_defence_plays", "STATE_DIM"]

@@ -40,7 +40,7 @@ from ..plays.pass_coordinator import CarrierRequest, PassCoordinator, PassingPar
 from ..plays.pass_decision import Choice, Decision
 from ..plays.passing_roles import passing_attacker_role
 from ..plays.play import Play, goalie_role
-from .attack import STALE_REQUEST_S, Attack3v2Env
+from .attack import STALE_REQUEST_S, Attack3v2Env, KeepClock
 from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, DRIBBLE_GOAL_OPTION, SHOOT, SlotPasses,
                                     attack_decision_option, attack_drill_mask, attack_drill_observation,
                                     option_play_decision, slot_passes)
@@ -201,11 +201,10 @@ class HandcodedAttackDrillPolicy:
 
     def __init__(self, max_keep_s: float | None = None) -> None:
         self.max_keep_s = max_keep_s
-        self.reset(None)
+        self.clock = KeepClock()
 
     def reset(self, env: Any) -> None:
-        self._keep_since: float | None = None
-        self._carrier: int | None = None
+        self.clock.reset()
 
     def act(self, env: Any, agent: str, obs: np.ndarray, info: dict) -> int:
         req = env.pending_request
@@ -217,15 +216,8 @@ class HandcodedAttackDrillPolicy:
                           env.attack_params(req), candidates=req.candidates, heading=req.heading)
         option = attack_decision_option(d, ctx.world, ctx.team, req.carrier)
         max_keep = self.max_keep_s if self.max_keep_s is not None else env.passing.max_keep_s
-        if req.carrier != self._carrier:
-            self._carrier, self._keep_since = req.carrier, None
-        if option == DRIBBLE_GOAL_OPTION:
-            if self._keep_since is None:
-                self._keep_since = req.t
-            if req.t - self._keep_since > max_keep:
-                option = SHOOT
-        else:
-            self._keep_since = None
+        if self.clock.expired(req.carrier, req.t, option == DRIBBLE_GOAL_OPTION, max_keep):
+            option = SHOOT
         mask = info.get("action_mask")
         if mask is not None and not mask[option]:
             return SHOOT
