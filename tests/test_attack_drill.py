@@ -165,6 +165,7 @@ def test_attacking_team_plays_a_policy_decision_in_a_match():
     r = play_match(blue="attack-baseline", yellow="baseline", blue_decision=dec, robots=3, seconds=6.0, seed=2,
                    progress=False, start_jitter_m=0.0)
     assert r.config["decision"]["blue"] == "PolicyAttackDecider" and pol.calls >= 1
+    assert dec.counters.shoot == pol.calls == dec.decisions  # the policy's shots counted as the cost decision's
 
 
 def test_attacking_team_decision_errors(tmp_path):

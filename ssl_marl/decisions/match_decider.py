@@ -34,7 +34,7 @@ import numpy as np
 
 from ..plays.attack_decision import AttackParams
 from ..plays.attack_play import AttackDecider
-from ..plays.pass_decision import Decision
+from ..plays.pass_decision import Choice, Decision
 from ..plays.pass_coordinator import CarrierRequest, CostDecider
 from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, attack_drill_mask,
                                     attack_drill_observation, option_play_decision, slot_passes)
@@ -144,6 +144,9 @@ class PolicyAttackDecider(AttackDecider):
         d, option = option_play_decision(a, ctx.ball, ctx.field, passes)
         if option is not None:
             self.option = option
+        kind = option.kind.value if option is not None else ("shoot" if d.choice is Choice.SHOOT else "dribble")
+        name = "pass_" if kind == "pass" else kind
+        setattr(self.counters, name, getattr(self.counters, name) + 1)
         return d
 
 

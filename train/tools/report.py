@@ -65,6 +65,7 @@ ATTACK = [("hand-coded (cost decision, shot threshold 0.25)", "attack_3v2_handco
           ("learned, the previous actor (trained without the snap shot)", "attack_3v2_learned_snap"),
           ("learned (shipped `attack_3v2.pt`: retrained with the snap shot, `mappo_attack_snap_bc_s0`)",
            "attack_3v2_learned_snap_retrained")]
+DECISION_SERIES = ["match_attack_learned_decision_vs_attack_learned_600"]
 ATTACK_DRILL = [("hand-coded (the attacking plays' cost decision)", "attack_drill_handcoded"),
                 ("learned (shipped `attack_drill.pt`: cloned, then MAPPO `mappo_attack_drill_bc_s0`)",
                  "attack_drill_learned")]
@@ -96,6 +97,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "passing_series": lambda r: t.series(r, PASSING_SERIES),
     "series_600_formats": lambda r: t.series_600(r, SERIES_600_SSL),
     "attack_series": lambda r: t.series_600(r, ATTACK_SERIES),
+    "decision_series": lambda r: t.series_600(r, DECISION_SERIES),
     "set_piece_series": lambda r: t.set_piece_series(r, SET_PIECE_SERIES),
     "attack_skill_swaps": lambda r: t.series_600(r, ATTACK_SKILL_SWAPS),
     "go_to_ball_rolling_selection": lambda r: t.rolling_selection(r, {

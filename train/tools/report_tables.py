@@ -184,7 +184,11 @@ def series_600(results: Path, names: Iterable[str]) -> Lines:
 
         def frac(c: int, a: int) -> str:
             return f"{c} of {a}" + (f" ({100 * c / a:.0f} %)" if a else "")
-        rows.append(f"| `{n}` | {_team_label(s['blue'])} vs {_team_label(s['yellow'])} | {cfg['field']}, {cfg['realism']} | "
+        dec = cfg.get("decision") or {}
+        label = {side: _team_label(s[side]) + (f", {Path(str(dec[side])).name} decision"
+                                               if dec.get(side) not in (None, "handcoded") else "")
+                 for side in ("blue", "yellow")}
+        rows.append(f"| `{n}` | {label['blue']} vs {label['yellow']} | {cfg['field']}, {cfg['realism']} | "
                     f"{min(seeds)}-{max(seeds)} | {s['matches']} | {s['wins']}-{s['draws']}-{s['losses']} | "
                     f"{100 * st['win_rate']:.0f} % [{100 * wlo:.0f}, {100 * whi:.0f}] | "
                     f"{s['goals_for']}-{s['goals_against']} ({s['goals_for'] / k:.2f}-{s['goals_against'] / k:.2f}) | "
