@@ -46,6 +46,7 @@ def _env(**kw):
 def test_episode_score_spaces_and_determinism():
     env = _env()
     assert env.possible_agents == ["attacker_0", "attacker_1"] and env.option_names == ATTACK_DRILL_OPTIONS
+    assert env.decider.coordinator is not None  # waiting for an answer, the carrier holds its dribble
     a = run_episode(env, RandomPolicy(1), seed=5, record=True)
     b = run_episode(_env(), RandomPolicy(1), seed=5, record=True)
     assert a["trace"] == b["trace"] and a["t_s"] == pytest.approx(3.0, abs=0.05) and a["truncated"]

@@ -50,6 +50,7 @@ from ..plays.attack_decision import AttackParams
 from ..plays.attack_play import AttackDecider, attack_plays
 from ..plays.pass_coordinator import CarrierRequest
 from ..plays.pass_decision import Decision
+from ..plays.passing_play import coordinator_of
 from ..plays.skillset import team_skill_set
 from ..plays.team import TeamController, TeamSpec, build_team
 from .attack_drill import AttackOptionsMixin, DrillAttackDecider
@@ -140,6 +141,7 @@ class AttackMatchEnv(AttackOptionsMixin, DecisionEnv):
         self.decider = MatchAttackDecider(self.attack)
         spec = TeamSpec(plays=attack_plays, skills=self.skills, decider=self.decider)
         self.blue = build_team(spec, "blue", robots, self.field, self.rp, self.bp, dt=self.dt)
+        self.decider.coordinator = coordinator_of(self.blue.selector.plays)  # the carrier holds its dribble
         self.opponent: str | None = None
         self.yellow: TeamController | None = None
         self._passes: SlotPasses = {}
