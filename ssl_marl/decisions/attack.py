@@ -79,7 +79,8 @@ STALE_REQUEST_S = 0.1  # s: an answer is dropped if the play has not taken it wi
 class DrillDecider:
     """The drill's :class:`~ssl_marl.plays.pass_coordinator.CarrierDecider`: records the
     play's request for the env (the agent answers at its next step) and hands the
-    answer to the play on the next tick."""
+    answer to the play on the next tick; until then the carrier holds its dribble. An
+    answer may carry a payload for the play's roles (:meth:`accept`)."""
 
     def __init__(self) -> None:
         self.coordinator: PassCoordinator | None = None
@@ -87,14 +88,18 @@ class DrillDecider:
 
     def reset(self) -> None:
         self.request: CarrierRequest | None = None
-        self.answer: tuple[int, float, Decision] | None = None  # (carrier, request time, decision)
+        self.answer: tuple[int, float, Decision, Any] | None = None  # (carrier, request time, decision, payload)
+
+    def accept(self, payload: Any) -> None:
+        """The answer's payload reaches the play with its decision (nothing to hand on here)."""
 
     def decide(self, request: CarrierRequest) -> Decision:
         if self.answer is not None:
-            carrier, t_req, d = self.answer
+            carrier, t_req, d, payload = self.answer
             self.answer = None
             if carrier == request.carrier and request.t - t_req <= STALE_REQUEST_S + 1e-9:
                 self.request = None
+                self.accept(payload)
                 return d
         self.request = request
         cur = self.coordinator.decision if self.coordinator is not None else None
@@ -102,11 +107,11 @@ class DrillDecider:
             return dataclasses.replace(cur, commit_s=0.0)
         return Decision(Choice.KEEP, 0.0, 0.0, dribble_speed=0.0)
 
-    def answer_with(self, decision: Decision) -> None:
+    def answer_with(self, decision: Decision, payload: Any = None) -> None:
         req = self.request
         if req is None:
-            raise RuntimeError("DrillDecider: no request to answer")
-        self.answer = (req.carrier, req.t, decision)
+            raise RuntimeError(f"{type(self).__name__}: no request to answer")
+        self.answer = (req.carrier, req.t, decision, payload)
         self.request = None
 
 

@@ -37,10 +37,9 @@ from ..plays.attack_decision import AttackOption, AttackParams, decide_attack
 from ..plays.attack_play import (ATTACK_PASSING, AttackDecider, AttackPrepare, SpotPlanner, chip_passer_role,
                                  redirect_receiver_role, spot_support_role)
 from ..plays.pass_coordinator import CarrierRequest, PassCoordinator, PassingParams
-from ..plays.pass_decision import Choice, Decision
 from ..plays.passing_roles import passing_attacker_role
 from ..plays.play import Play, goalie_role
-from .attack import STALE_REQUEST_S, Attack3v2Env, KeepClock
+from .attack import Attack3v2Env, DrillDecider, KeepClock
 from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, DRIBBLE_GOAL_OPTION, SHOOT, SlotPasses,
                                     attack_decision_option, attack_drill_mask, attack_drill_observation,
                                     option_play_decision, slot_passes)
@@ -50,44 +49,24 @@ from .attack_features import ATTACK_OBS_DIM, OBS_BOUND, attack_observation
 DRILL_PASSING = dataclasses.replace(ATTACK_PASSING, decide_every=1)
 
 
-class DrillAttackDecider(AttackDecider):
-    """The attacking plays' decider answered by the drill's agents: records the play's
-    request (the agent answers at its next step) and hands the answer (the coordinator's
-    decision and the chosen pass for the passer and receiver roles) to the play on the
-    next tick; until then the carrier holds its dribble."""
+class DrillAttackDecider(DrillDecider, AttackDecider):
+    """The attacking plays' decider answered by the drill's agents
+    (:class:`~ssl_marl.decisions.attack.DrillDecider`): an answer's payload is the chosen
+    pass (:class:`~ssl_marl.plays.attack_decision.AttackOption`, None for a shot or a
+    dribble), which the passer and receiver roles read as the cost decision's."""
 
     def __init__(self, params: AttackParams | None = None) -> None:
-        super().__init__(params)
-        self.coordinator: PassCoordinator | None = None
-        self.reset()
+        AttackDecider.__init__(self, params)
+        DrillDecider.__init__(self)
 
     def reset(self) -> None:
-        self.request: CarrierRequest | None = None
-        self.answer: tuple[int, float, Decision, AttackOption | None] | None = None
+        DrillDecider.reset(self)
         self.option = None
         self.last = None
 
-    def decide(self, request: CarrierRequest) -> Decision:
-        if self.answer is not None:
-            carrier, t_req, d, option = self.answer
-            self.answer = None
-            if carrier == request.carrier and request.t - t_req <= STALE_REQUEST_S + 1e-9:
-                self.request = None
-                if option is not None:
-                    self.option = option
-                return d
-        self.request = request
-        cur = self.coordinator.decision if self.coordinator is not None else None
-        if cur is not None and cur.choice is Choice.KEEP:  # hold the dribble until the answer comes
-            return dataclasses.replace(cur, commit_s=0.0)
-        return Decision(Choice.KEEP, 0.0, 0.0, dribble_speed=0.0)
-
-    def answer_with(self, decision: Decision, option: AttackOption | None) -> None:
-        req = self.request
-        if req is None:
-            raise RuntimeError("DrillAttackDecider: no request to answer")
-        self.answer = (req.carrier, req.t, decision, option)
-        self.request = None
+    def accept(self, payload: AttackOption | None) -> None:
+        if payload is not None:
+            self.option = payload
 
 
 def drill_attacking_plays(passing: PassingParams, *, ball: BallParams | None,
