@@ -285,6 +285,7 @@ class RedirectBaseline(RedirectSkill):
             d = self._contact - world.ball_pos
             s_c = float(d @ u)
             if abs(float(u[0] * d[1] - u[1] * d[0])) < 0.1 and 0.0 < s_c < s_stop:
+                self._contact = world.ball_pos + u * s_c  # onto the ball's path as now seen
                 tgt = self.last_target = self._target(self._contact, world)
                 h = math.atan2(tgt[1] - self._contact[1], tgt[0] - self._contact[0])
                 return self._contact - reach * np.array([math.cos(h), math.sin(h)]), h
