@@ -166,14 +166,36 @@ class ChipPassSkill(PassSkill):
 
     name = "chip_pass"
     task_action: np.ndarray | None = None
+    #: seconds after a kick command from which a ball still held with the kicker charged
+    #: means the command never fired (lost on the radio): the skill aims and kicks again
+    #: (more than the vision and radio delays of the realistic preset, 4 control steps)
+    kick_confirm_s: float = 0.1
+    _kick_sent_t: float | None = None
+
+    def reset(self) -> None:
+        super().reset()
+        self._kick_sent_t = None
 
     def act(self, world: WorldState, robot: int) -> np.ndarray:
         self.task_action = None
+        if self._kicked and self._kick_not_fired(world, robot):
+            self._kicked = False
         a = super().act(world, robot)
+        if self._kicked and self._kick_sent_t is None:
+            self._kick_sent_t = float(world.t)
+        elif not self._kicked:
+            self._kick_sent_t = None
         a = a if len(a) == 6 else np.append(a, np.float32(0.0))
         if self.task_action is None:
             self.task_action = chip_pass_task_action(a, self.rp)
         return a
+
+    def _kick_not_fired(self, world: WorldState, robot: int) -> bool:
+        """Whether ``world`` shows the ball still on the dribbler and the kicker charged
+        :attr:`kick_confirm_s` after the kick command (a fired kicker recharges)."""
+        team = world.team(world.frame)
+        waited = self._kick_sent_t is not None and world.t - self._kick_sent_t >= self.kick_confirm_s - 1e-9
+        return waited and bool(team.kick_ready[robot]) and bool(team.ball_on_dribbler[robot])
 
 
 class ChipPassBaseline(ChipPassSkill, PassBaseline):
