@@ -162,7 +162,12 @@ class ChipPassSkill(PassSkill):
     :attr:`task_action` is the task's (omega, kick, speed, elevation) of the last
     :meth:`act`: for the hand-coded skill the speed and elevation of the kick it plans
     on every step, also while it still turns (an env action carries them only on the
-    kick), so demonstrations map every state to the kick it leads to."""
+    kick), so demonstrations map every state to the kick it leads to.
+
+    The kick command goes out on one step; a radio that loses commands (the realistic
+    preset drops 3 %) can lose it, and the robot then keeps the ball. When the world still
+    shows the ball on the dribbler and the kicker charged :attr:`kick_confirm_s` after the
+    command, the skill aims and kicks again."""
 
     name = "chip_pass"
     task_action: np.ndarray | None = None
