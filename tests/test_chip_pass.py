@@ -12,6 +12,7 @@ from gymnasium.utils.env_checker import check_env
 
 import ssl_marl  # noqa: F401  (registers the envs)
 from ssl_marl.physics.ball_flight import flight_height, projectile_reference
+from ssl_marl.physics.field import FieldGeometry
 from ssl_marl.physics.params import BallParams, RobotParams
 from ssl_marl.physics.state import TeamState, WorldState
 from ssl_marl.skills import get_skill
@@ -132,3 +133,22 @@ def test_shipped_actor_loads_and_passes():
                 break
     assert wins >= 3
     env.close()
+
+
+def test_a_kick_command_that_never_fired_is_sent_again():
+    """After a kick command the skill waits; a ball still held with the kicker charged
+    ``kick_confirm_s`` later means the command was lost: the skill kicks again. A fired
+    kicker (recharging) ends the skill."""
+    from dataclasses import replace
+
+    def at(t, ready=True, held=True):
+        w = _world([])
+        return replace(w, t=t, blue=replace(w.blue, kick_ready=np.array([ready]), ball_on_dribbler=np.array([held])))
+
+    skill = LearnedChipPass(FieldGeometry.div_b(), RP, BP, target=(4.0, 0.0),
+                            policy=lambda obs: np.array([0.0, 1.0, 0.0, 0.5]))
+    assert skill.act(at(0.0), 0)[4] > 0                        # kicks at once
+    assert skill.act(at(0.05), 0)[4] <= 0                      # waits for the kick to show
+    assert skill.act(at(0.05 + skill.kick_confirm_s), 0)[4] > 0  # still held and charged: kicks again
+    assert skill.act(at(0.3, ready=False, held=False), 0)[4] <= 0  # recharging, ball gone: the kick fired
+    assert skill.act(at(0.5, held=False), 0)[4] <= 0                # and the skill is done

@@ -88,3 +88,19 @@ def test_residual_zero_is_the_baseline():
     assert env.spec_version == "redirect/v2"
     env.reset(seed=1)
     assert np.allclose(env.from_direct(env.base_action()), 0.0)
+
+
+def test_the_kept_contact_point_follows_the_ball_path_as_seen():
+    """The planner keeps its contact point while the ball's path stays near it, moved
+    onto the path as now seen (same distance along it): a path seen 3 cm to the side a
+    step later moves the contact point (and the robot's spot) 3 cm with it."""
+    from tests.test_skills import scene
+
+    env = RedirectEnv(goalie=None)
+    planner = RedirectBaseline(env.field, env.robot_params, env.ball_params)
+    first = planner.contact_plan(scene(robot=(2.5, -0.5, 0.0), ball=(2.5, 1.5), ball_vel=(0.0, -3.0)), 0)
+    contact = planner._contact.copy()
+    assert first is not None and abs(contact[0] - 2.5) < 1e-9
+    later = planner.contact_plan(scene(robot=(2.5, -0.5, 0.0), ball=(2.53, 1.45), ball_vel=(0.0, -3.0)), 0)
+    assert np.allclose(planner._contact, [2.53, contact[1]]), planner._contact
+    assert np.allclose(later[0], first[0] + [0.03, 0.0], atol=2e-3) and abs(later[1] - first[1]) < 0.01

@@ -162,18 +162,45 @@ class ChipPassSkill(PassSkill):
     :attr:`task_action` is the task's (omega, kick, speed, elevation) of the last
     :meth:`act`: for the hand-coded skill the speed and elevation of the kick it plans
     on every step, also while it still turns (an env action carries them only on the
-    kick), so demonstrations map every state to the kick it leads to."""
+    kick), so demonstrations map every state to the kick it leads to.
+
+    The kick command goes out on one step; a radio that loses commands (the realistic
+    preset drops 3 %) can lose it, and the robot then keeps the ball. When the world still
+    shows the ball on the dribbler and the kicker charged :attr:`kick_confirm_s` after the
+    command, the skill aims and kicks again."""
 
     name = "chip_pass"
     task_action: np.ndarray | None = None
+    #: seconds after a kick command from which a ball still held with the kicker charged
+    #: means the command never fired (lost on the radio): the skill aims and kicks again
+    #: (more than the vision and radio delays of the realistic preset, 4 control steps)
+    kick_confirm_s: float = 0.1
+    _kick_sent_t: float | None = None
+
+    def reset(self) -> None:
+        super().reset()
+        self._kick_sent_t = None
 
     def act(self, world: WorldState, robot: int) -> np.ndarray:
         self.task_action = None
+        if self._kicked and self._kick_not_fired(world, robot):
+            self._kicked = False
         a = super().act(world, robot)
+        if self._kicked and self._kick_sent_t is None:
+            self._kick_sent_t = float(world.t)
+        elif not self._kicked:
+            self._kick_sent_t = None
         a = a if len(a) == 6 else np.append(a, np.float32(0.0))
         if self.task_action is None:
             self.task_action = chip_pass_task_action(a, self.rp)
         return a
+
+    def _kick_not_fired(self, world: WorldState, robot: int) -> bool:
+        """Whether ``world`` shows the ball still on the dribbler and the kicker charged
+        :attr:`kick_confirm_s` after the kick command (a fired kicker recharges)."""
+        team = world.team(world.frame)
+        waited = self._kick_sent_t is not None and world.t - self._kick_sent_t >= self.kick_confirm_s - 1e-9
+        return waited and bool(team.kick_ready[robot]) and bool(team.ball_on_dribbler[robot])
 
 
 class ChipPassBaseline(ChipPassSkill, PassBaseline):

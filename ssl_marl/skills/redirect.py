@@ -232,7 +232,11 @@ class RedirectBaseline(RedirectSkill):
       the first point, from the robot's projection onto the line on, that the robot can
       reach (:func:`robot_travel_time` + ``margin_s``) before the ball does (0.1 s,
       hand-tuned on development episodes: a longer margin meets fast passes later, farther
-      from the goal, and the goalie saves more of those shots); the robot's
+      from the goal, and the goalie saves more of those shots). The point is kept while
+      the ball's path passes within 0.1 m of it, ahead of the ball, and moved onto the
+      path as seen each step (same distance along it): a path first estimated from noisy
+      or delayed vision shifts by a few cm as the ball comes, and a face left on the
+      first estimate lets the ball pass in front of it or glance off its edge. The robot's
       centre goes to ``Q - (front_distance + ball radius) * heading``, heading = the
       direction from Q to the aim point, so the face meets the ball square on the path.
     * Motion: straight to that spot braking in time (``approach_speed``), at most
@@ -285,6 +289,7 @@ class RedirectBaseline(RedirectSkill):
             d = self._contact - world.ball_pos
             s_c = float(d @ u)
             if abs(float(u[0] * d[1] - u[1] * d[0])) < 0.1 and 0.0 < s_c < s_stop:
+                self._contact = world.ball_pos + u * s_c  # onto the ball's path as now seen
                 tgt = self.last_target = self._target(self._contact, world)
                 h = math.atan2(tgt[1] - self._contact[1], tgt[0] - self._contact[0])
                 return self._contact - reach * np.array([math.cos(h), math.sin(h)]), h
