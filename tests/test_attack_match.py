@@ -84,3 +84,17 @@ def test_bad_configs_are_refused(kw, match):
         AttackMatchEnv({"baseline": TeamSpec(skills="baseline")}, **kw)
     with pytest.raises(ValueError, match="at least one opponent"):
         AttackMatchEnv({})
+
+
+def test_attack_drill_actors_play_the_full_match_task():
+    from ssl_marl.decisions.learned import LearnedDecisionPolicy, decision_family, pretrained_path
+    from ssl_marl.decisions.match_decider import check_actor_file
+
+    assert decision_family("attack-match") == "attack-drill" and decision_family("keepaway") == "keepaway"
+    actor = pretrained_path("attack-drill")
+    policy = LearnedDecisionPolicy(actor, task="attack-match")
+    env = _env(seconds=2.0)
+    policy.reset(env)  # same observation size and options
+    assert isinstance(check_actor_file(actor, task="attack-drill"), dict)
+    with pytest.raises(ValueError, match="not 'attack-3v2'"):
+        LearnedDecisionPolicy(actor, task="attack-3v2")

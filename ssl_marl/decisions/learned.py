@@ -40,6 +40,17 @@ _TRAIN_CMD = {
 }
 
 
+#: tasks whose agents decide with another task's observation and options (an actor of one
+#: plays the other): the full-match task continues the attack drill's decision
+SHARED_DECISIONS: dict[str, str] = {"attack-match": "attack-drill"}
+
+
+def decision_family(task: str | None) -> str | None:
+    """The task whose observation and options ``task``'s agents use (itself unless listed in
+    :data:`SHARED_DECISIONS`): actors of tasks of one family are interchangeable."""
+    return SHARED_DECISIONS.get(task, task) if task is not None else None
+
+
 def pretrained_path(task: str) -> Path:
     """The shipped actor of ``task`` (``pretrained/<task with - as _>.pt``); FileNotFoundError saying
     how to train one when it is absent."""
@@ -118,8 +129,9 @@ class LearnedDecisionPolicy:
             self.actor, self.meta = path_or_actor, {"task": task}
         else:
             self.actor, self.meta = load_decision_actor(path_or_actor)
-            if task is not None and self.meta.get("task") not in (None, task):
-                raise ValueError(f"{path_or_actor} is an actor for task {self.meta.get('task')!r}, not {task!r}")
+            got = self.meta.get("task")
+            if task is not None and got is not None and decision_family(got) != decision_family(task):
+                raise ValueError(f"{path_or_actor} is an actor for task {got!r}, not {task!r}")
         self.task = task or self.meta.get("task")
         self.agent_ids: list[str] | None = self.meta.get("agent_ids") or None
 

@@ -187,7 +187,9 @@ def check_actor_file(path: str | Path, where: str = "decision", task: str = TASK
     if "n_options" in ck and int(ck["n_options"]) != len(options):
         raise ValueError(f"{where}: {path} has n_options={int(ck['n_options'])}, {task} has "
                          f"{len(options)} options {options}")
-    if "task" in ck and ck["task"] not in (task, None):
+    from .learned import decision_family
+
+    if ck.get("task") is not None and decision_family(ck["task"]) != decision_family(task):
         raise ValueError(f"{where}: {path} has task={ck['task']!r}, expected {task!r}")
     return ck
 

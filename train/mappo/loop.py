@@ -171,15 +171,16 @@ class MAPPOTrainer:
 
     def load_init_actor(self, path: str | Path) -> None:
         """Start the shared actor from a decision-actor file (e.g. behaviour cloning of a
-        benchmark policy, :mod:`train.mappo.bc`), read by the one loader of that format
+        benchmark policy, :mod:`train.mappo.bc`, or an actor of a task with the same decision,
+        :func:`ssl_marl.decisions.learned.decision_family`), read by the one loader of that format
         (:func:`ssl_marl.decisions.learned.load_decision_actor`, ``weights_only=True``); its
-        task, sizes, hidden layers and observation scaling must be this run's."""
-        from ssl_marl.decisions.learned import load_decision_actor
+        task family, sizes, hidden layers and observation scaling must be this run's."""
+        from ssl_marl.decisions.learned import decision_family, load_decision_actor
 
         actor, meta = load_decision_actor(path)
-        want = {"task": self.cfg.task, "obs_dim": self.agent.obs_dim, "n_options": self.agent.n_out,
+        want = {"task": decision_family(self.cfg.task), "obs_dim": self.agent.obs_dim, "n_options": self.agent.n_out,
                 "hidden": list(self.cfg.algo.hidden)}
-        got = {"task": meta.get("task"), "obs_dim": actor.obs_dim, "n_options": actor.n_options,
+        got = {"task": decision_family(meta.get("task")), "obs_dim": actor.obs_dim, "n_options": actor.n_options,
                "hidden": list(actor.hidden)}
         for k, v in want.items():
             if got[k] != v:
