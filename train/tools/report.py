@@ -122,6 +122,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "attack_drill": lambda r: t.attack(r, ATTACK_DRILL),
     "attack_drill_selection": lambda r: t.attack(r, ATTACK_DRILL_SELECTION),
     "attack_drill_aim": lambda r: t.probe_rows(r / "tuning" / "attack_drill_aim.json", "rule"),
+    "mappo_attack_match": lambda r: t.mappo_runs(r, [("mappo_attack_match_s0", "")], None, "goal"),
     "mappo_attack_drill": lambda r: t.mappo_runs(r, [("mappo_attack_drill_bc_s0", "attack_drill_learned")],
                                                  "attack_drill_handcoded", "goal"),
     "decision_tasks_realistic": lambda r: t.decision_tasks(r, "*_realistic*"),
