@@ -65,7 +65,9 @@ ATTACK = [("hand-coded (cost decision, shot threshold 0.25)", "attack_3v2_handco
           ("learned, the previous actor (trained without the snap shot)", "attack_3v2_learned_snap"),
           ("learned (shipped `attack_3v2.pt`: retrained with the snap shot, `mappo_attack_snap_bc_s0`)",
            "attack_3v2_learned_snap_retrained")]
-DECISION_SERIES = ["match_attack_learned_decision_vs_attack_learned_600"]
+DECISION_SERIES = ["match_attack_learned_decision_vs_attack_learned_600",
+                   "match_attack_learned_decision_vs_attack_learned_600_realistic",
+                   "match_attack_learned_decision_vs_attack_learned_600_div_a_11v11"]
 ATTACK_DRILL = [("hand-coded (the attacking plays' cost decision)", "attack_drill_handcoded"),
                 ("learned (shipped `attack_drill.pt`: cloned, then MAPPO `mappo_attack_drill_bc_s0`)",
                  "attack_drill_learned")]
