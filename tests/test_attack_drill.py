@@ -180,3 +180,7 @@ def test_attacking_team_decision_errors(tmp_path):
         make_match_decider(str(bad), task="attack-drill")
     with pytest.raises(ValueError, match="unknown decision task"):
         make_match_decider("learned", task="keepaway")
+    from ssl_marl.decisions.learned import pretrained_path
+
+    with pytest.raises(ValueError, match="obs_dim=40"):  # the shipped Attack 3v2 actor for an attacking team
+        make_match_decider(str(pretrained_path("attack-3v2")), task="attack-drill")

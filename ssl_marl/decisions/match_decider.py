@@ -181,6 +181,7 @@ def check_actor_file(path: str | Path, where: str = "decision", task: str = TASK
         raise ValueError(f"{where}: {path} is not a readable decision actor checkpoint ({exc})") from None
     if not isinstance(ck, dict):
         raise ValueError(f"{where}: {path} is not a decision actor checkpoint (expected a dict)")
+    ck = ck.get("metadata", ck) if isinstance(ck.get("metadata"), dict) else ck  # the actor file's header
     if "obs_dim" in ck and int(ck["obs_dim"]) != obs_dim:
         raise ValueError(f"{where}: {path} has obs_dim={int(ck['obs_dim'])}, the {task} observation has "
                          f"{obs_dim} values (an actor for another task?)")
