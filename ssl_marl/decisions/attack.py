@@ -303,33 +303,51 @@ class KeepClock:
         return t - self._keep_since > max_keep_s
 
 
-class HandcodedAttackPolicy:
-    """The passing play's cost decision as an Attack 3v2 policy (module docstring)."""
+class HandcodedCarrierPolicy:
+    """A hand-coded carrier-decision policy of the attack drills: :meth:`choose` maps the
+    play's open request to an option; as in the play, a carrier that has kept (dribbled)
+    the ball for more than ``max_keep_s`` (default the env's ``passing.max_keep_s``) shoots,
+    and an option the mask refuses becomes a shot (option 0 in both drills)."""
 
     name = "handcoded"
 
     def __init__(self, max_keep_s: float | None = None) -> None:
         self.max_keep_s = max_keep_s
-        self.cost = CostDecider()
         self.clock = KeepClock()
 
     def reset(self, env: Any) -> None:
         self.clock.reset()
 
+    def choose(self, env: Any, request: CarrierRequest) -> tuple[int, bool]:
+        """(option, whether it keeps the ball) for ``request``."""
+        raise NotImplementedError
+
     def act(self, env: Any, agent: str, obs: np.ndarray, info: dict) -> int:
         req = env.pending_request
         if req is None:
-            raise ValueError(f"HandcodedAttackPolicy: agent {agent!r} has no open decision request")
-        d = self.cost.decide(req)
+            raise ValueError(f"{type(self).__name__}: agent {agent!r} has no open decision request")
+        option, keeping = self.choose(env, req)
         max_keep = self.max_keep_s if self.max_keep_s is not None else env.passing.max_keep_s
-        if self.clock.expired(req.carrier, req.t, d.choice is Choice.KEEP, max_keep):
-            d = dataclasses.replace(d, choice=Choice.SHOOT)
-        option = decision_option(d, req.ctx.world, "blue", req.carrier)
+        if self.clock.expired(req.carrier, req.t, keeping, max_keep):
+            option = SHOOT
         mask = info.get("action_mask")
         if mask is not None and not mask[option]:
             return SHOOT
         return option
 
 
-__all__ = ["Attack3v2Env", "HandcodedAttackPolicy", "KeepClock", "DrillDecider", "drill_attack_play", "drill_defence_play",
+class HandcodedAttackPolicy(HandcodedCarrierPolicy):
+    """The passing play's cost decision as an Attack 3v2 policy (module docstring)."""
+
+    def __init__(self, max_keep_s: float | None = None) -> None:
+        super().__init__(max_keep_s)
+        self.cost = CostDecider()
+
+    def choose(self, env: Any, request: CarrierRequest) -> tuple[int, bool]:
+        d = self.cost.decide(request)
+        return decision_option(d, request.ctx.world, "blue", request.carrier), d.choice is Choice.KEEP
+
+
+__all__ = ["Attack3v2Env", "HandcodedAttackPolicy", "HandcodedCarrierPolicy", "KeepClock", "DrillDecider",
+           "drill_attack_play", "drill_defence_play",
            "drill_attack_plays", "drill_defence_plays", "STATE_DIM"]

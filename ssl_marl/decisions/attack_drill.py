@@ -39,7 +39,7 @@ from ..plays.attack_play import (ATTACK_PASSING, AttackDecider, AttackPrepare, S
 from ..plays.pass_coordinator import CarrierRequest, PassCoordinator, PassingParams
 from ..plays.passing_roles import passing_attacker_role
 from ..plays.play import Play, goalie_role
-from .attack import Attack3v2Env, DrillDecider, KeepClock
+from .attack import Attack3v2Env, DrillDecider, HandcodedCarrierPolicy
 from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, DRIBBLE_GOAL_OPTION, SHOOT, SlotPasses,
                                     attack_decision_option, attack_drill_mask, attack_drill_observation,
                                     option_play_decision, slot_passes)
@@ -97,9 +97,6 @@ class AttackOptionsMixin:
     _request_obs: np.ndarray | None
     _request_mask: np.ndarray | None
 
-    def attack_params(self, request: CarrierRequest) -> AttackParams:
-        """The attack decision's parameters for ``request`` (its decision parameters)."""
-        return dataclasses.replace(self.attack, decision=request.params)
 
     @property
     def pending_request(self) -> CarrierRequest | None:
@@ -110,7 +107,7 @@ class AttackOptionsMixin:
         req = self.decider.request
         if req is None or not 1 <= req.carrier <= self.n_agents:
             return frozenset()
-        args = (req.ctx.world, "blue", req.carrier, self.field, self.rp, self.bp, self.attack_params(req))
+        args = (req.ctx.world, "blue", req.carrier, self.field, self.rp, self.bp, self.decider.request_params(req))
         self._passes = slot_passes(*args, candidates=req.candidates)
         self._request_obs = attack_drill_observation(*args, candidates=req.candidates, passes=self._passes)
         self._request_mask = attack_drill_mask(self._passes)
@@ -173,34 +170,17 @@ class AttackDrillEnv(AttackOptionsMixin, Attack3v2Env):
         return {**super().engine_kwargs(), "chip_kicks": True}
 
 
-class HandcodedAttackDrillPolicy:
+class HandcodedAttackDrillPolicy(HandcodedCarrierPolicy):
     """The attacking plays' cost decision as an attack-drill policy (module docstring)."""
 
-    name = "handcoded"
-
-    def __init__(self, max_keep_s: float | None = None) -> None:
-        self.max_keep_s = max_keep_s
-        self.clock = KeepClock()
-
-    def reset(self, env: Any) -> None:
-        self.clock.reset()
-
-    def act(self, env: Any, agent: str, obs: np.ndarray, info: dict) -> int:
-        req = env.pending_request
-        if req is None:
-            raise ValueError(f"HandcodedAttackDrillPolicy: agent {agent!r} has no open decision request")
-        ctx = req.ctx
+    def choose(self, env: Any, request: CarrierRequest) -> tuple[int, bool]:
+        ctx = request.ctx
         ours = ctx.world.team(ctx.team)
-        d = decide_attack(ctx.ball, req.carrier, ours.pos, ctx.opp_pos, ctx.field, ctx.robot, req.ball,
-                          env.attack_params(req), candidates=req.candidates, heading=req.heading)
-        option = attack_decision_option(d, ctx.world, ctx.team, req.carrier)
-        max_keep = self.max_keep_s if self.max_keep_s is not None else env.passing.max_keep_s
-        if self.clock.expired(req.carrier, req.t, option == DRIBBLE_GOAL_OPTION, max_keep):
-            option = SHOOT
-        mask = info.get("action_mask")
-        if mask is not None and not mask[option]:
-            return SHOOT
-        return option
+        d = decide_attack(ctx.ball, request.carrier, ours.pos, ctx.opp_pos, ctx.field, ctx.robot, request.ball,
+                          env.decider.request_params(request), candidates=request.candidates,
+                          heading=request.heading)
+        option = attack_decision_option(d, ctx.world, ctx.team, request.carrier)
+        return option, option == DRIBBLE_GOAL_OPTION
 
 
 __all__ = ["AttackDrillEnv", "AttackOptionsMixin", "HandcodedAttackDrillPolicy", "DrillAttackDecider",

@@ -43,8 +43,8 @@ from ..physics.state import WorldState
 from ..plays.attack_decision import AttackChoice, AttackDecision, AttackOption, AttackParams, evaluate_attack_passes
 from ..plays.pass_decision import Choice, Decision, PassOption
 from .attack_features import (ATTACK_OBS_DIM, DRIBBLE_COMMIT_S, DRIBBLE_GOAL, DRIBBLE_LEFT, DRIBBLE_RIGHT,
-                              DRIBBLE_SPEED, OBS_BOUND, SHOOT_COMMIT_S, attack_observation, dribble_point,
-                              teammate_slots)
+                              DRIBBLE_SPEED, OBS_BOUND, SHOOT_COMMIT_S, attack_observation, check_option,
+                              dribble_point, teammate_slots)
 
 #: option names, in action-index order
 ATTACK_DRILL_OPTIONS: tuple[str, ...] = ("shoot", "pass_1", "pass_2", "chip_1", "chip_2", "redirect_1",
@@ -105,22 +105,13 @@ def attack_drill_mask(passes: SlotPasses) -> np.ndarray:
     return mask
 
 
-def check_option(option: object) -> int:
-    """``option`` as an int in ``range(N_ATTACK_DRILL_OPTIONS)``; ValueError naming it otherwise."""
-    if isinstance(option, (bool, np.bool_)) or not isinstance(option, (int, np.integer)) \
-            or not 0 <= int(option) < N_ATTACK_DRILL_OPTIONS:
-        raise ValueError(f"option must be an integer in 0..{N_ATTACK_DRILL_OPTIONS - 1} {ATTACK_DRILL_OPTIONS}, "
-                         f"got {option!r}")
-    return int(option)
-
-
 def option_play_decision(option: int, ball: np.ndarray, field: FieldGeometry,
                          passes: Mapping[tuple[AttackChoice, int], AttackOption]
                          ) -> tuple[Decision, AttackOption | None]:
     """(the pass coordinator's :class:`~ssl_marl.plays.pass_decision.Decision`, the chosen
     pass for the attacking plays' passer and receiver roles, or None) of ``option``.
     ValueError for an option outside the range or a pass that is not legal."""
-    option = check_option(option)
+    option = check_option(option, ATTACK_DRILL_OPTIONS)
     if option == SHOOT:
         return Decision(Choice.SHOOT, 0.0, 0.0, commit_s=SHOOT_COMMIT_S), None
     if option in PASS_OPTIONS:
@@ -150,5 +141,6 @@ def attack_decision_option(decision: AttackDecision, world: WorldState, team: st
 
 
 __all__ = ["ATTACK_DRILL_OPTIONS", "N_ATTACK_DRILL_OPTIONS", "ATTACK_DRILL_OBS_DIM", "PASS_OPTIONS",
-           "DRIBBLE_OPTIONS", "SHOOT", "DRIBBLE_GOAL_OPTION", "slot_passes", "attack_drill_observation", "attack_drill_mask",
-           "check_option", "option_play_decision", "attack_decision_option"]
+           "DRIBBLE_OPTIONS", "SHOOT", "DRIBBLE_GOAL_OPTION", "slot_passes", "attack_drill_observation",
+           "attack_drill_mask",
+           "option_play_decision", "attack_decision_option"]

@@ -207,6 +207,15 @@ def attack_action_mask(world: WorldState, team: str, me: int, field: FieldGeomet
     return mask
 
 
+def check_option(option: object, names: Sequence[str]) -> int:
+    """``option`` as an int index into the option ``names``; ValueError naming it otherwise
+    (bools, floats, NaN and out-of-range values included)."""
+    if isinstance(option, (bool, np.bool_)) or not isinstance(option, (int, np.integer)) \
+            or not 0 <= int(option) < len(names):
+        raise ValueError(f"option must be an integer in 0..{len(names) - 1} {tuple(names)}, got {option!r}")
+    return int(option)
+
+
 def option_decision(option: int, world: WorldState, team: str, me: int, field: FieldGeometry,
                     rp: RobotParams | None = None, bp: BallParams | None = None,
                     params: DecisionParams | None = None, candidates: Sequence[int] | None = None) -> Decision:
@@ -214,10 +223,7 @@ def option_decision(option: int, world: WorldState, team: str, me: int, field: F
     ``option`` of carrier ``me`` (what the coordinator executes). ValueError for an
     option outside ``range(N_ATTACK_OPTIONS)`` or an illegal pass (check the mask first)."""
     rp, bp, params = rp or RobotParams(), bp or BallParams(), params or DecisionParams()
-    if isinstance(option, (bool, np.bool_)) or not isinstance(option, (int, np.integer)) \
-            or not 0 <= int(option) < N_ATTACK_OPTIONS:
-        raise ValueError(f"option must be an integer in 0..{N_ATTACK_OPTIONS - 1} {ATTACK_OPTIONS}, got {option!r}")
-    option = int(option)
+    option = check_option(option, ATTACK_OPTIONS)
     if option == SHOOT:
         return Decision(Choice.SHOOT, 0.0, 0.0, commit_s=SHOOT_COMMIT_S)
     if option in (PASS_1, PASS_2):
@@ -247,5 +253,5 @@ def decision_option(decision: Decision, world: WorldState, team: str, me: int) -
 
 __all__ = ["ATTACK_OPTIONS", "N_ATTACK_OPTIONS", "ATTACK_OBS_DIM", "OBS_BOUND", "SHOOT", "PASS_1", "PASS_2",
            "DRIBBLE_GOAL", "DRIBBLE_LEFT", "DRIBBLE_RIGHT", "DRIBBLE_SPEED", "DRIBBLE_COMMIT_S", "SHOOT_COMMIT_S",
-           "teammate_slots", "opponent_slots", "dribble_point", "attack_observation", "attack_action_mask",
-           "option_decision", "decision_option"]
+           "teammate_slots", "opponent_slots", "dribble_point", "check_option", "attack_observation",
+           "attack_action_mask", "option_decision", "decision_option"]

@@ -19,8 +19,9 @@ an actor trained in the drill continues here and plays the same way in ``ssl-mar
   of :func:`~ssl_marl.decisions.attack_features.attack_observation` and zeros for the pass values
   (their observations are not used to decide; :class:`~ssl_marl.decisions.attack_drill.AttackOptionsMixin`).
 * **Reward.** The match task's team reward (``reward_scales``, default goals only): +1 to every
-  blue agent for a goal scored, -1 for one conceded. An episode is ``seconds`` of play (default 120 s, truncated); its score is the goal
-  difference (``goal_diff``), reported with ``goals_for``, ``goals_against`` and ``opponent``.
+  blue agent for a goal scored, -1 for one conceded. An episode is ``seconds`` of play (default
+  120 s, truncated); its score is the goal difference (``goal_diff``), reported with
+  ``goals_for``, ``goals_against`` and ``opponent``.
 * **Opponents: a league with prioritized fictitious self-play.** ``opponents`` names the yellow
   teams (``{name: TeamSpec}``, e.g. the hand-coded anchors). With ``pfsp`` each reset draws one
   with probability proportional to ``(1 - p) ** 2`` (:mod:`ssl_marl.decisions.pfsp`, "hard"),

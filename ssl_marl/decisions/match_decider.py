@@ -32,7 +32,7 @@ from typing import Any
 import gymnasium
 import numpy as np
 
-from ..plays.attack_decision import AttackParams
+from ..plays.attack_decision import AttackChoice, AttackParams
 from ..plays.attack_play import AttackDecider
 from ..plays.pass_decision import Choice, Decision
 from ..plays.pass_coordinator import CarrierRequest, CostDecider
@@ -135,8 +135,7 @@ class PolicyAttackDecider(AttackDecider):
         if request.restart or not request.on_ball:
             return super().decide(request)
         ctx = request.ctx
-        params = AttackParams(**{**vars(self.params), "decision": request.params})
-        args = (ctx.world, ctx.team, request.carrier, ctx.field, ctx.robot, request.ball, params)
+        args = (ctx.world, ctx.team, request.carrier, ctx.field, ctx.robot, request.ball, self.request_params(request))
         passes = slot_passes(*args, candidates=request.candidates)
         obs = attack_drill_observation(*args, candidates=request.candidates, passes=passes)
         a = ask_policy(self.policy, self.spec_env, obs, attack_drill_mask(passes), "PolicyAttackDecider")
@@ -144,16 +143,9 @@ class PolicyAttackDecider(AttackDecider):
         d, option = option_play_decision(a, ctx.ball, ctx.field, passes)
         if option is not None:
             self.option = option
-        kind = option.kind.value if option is not None else ("shoot" if d.choice is Choice.SHOOT else "dribble")
-        name = "pass_" if kind == "pass" else kind
-        setattr(self.counters, name, getattr(self.counters, name) + 1)
+        self.counters.count(option.kind if option is not None else
+                            AttackChoice.SHOOT if d.choice is Choice.SHOOT else AttackChoice.DRIBBLE)
         return d
-
-
-def decision_task(kind: Any) -> str:
-    """The decision task of a team kind: :data:`DRILL_TASK` for the attacking plays'
-    kinds (``attack-*``), :data:`TASK` otherwise."""
-    return DRILL_TASK if isinstance(kind, str) and kind.startswith("attack-") else TASK
 
 
 def default_actor_path(task: str = TASK) -> Path:
@@ -217,5 +209,5 @@ def make_match_decider(spec: Any, where: str = "decision", task: str = TASK) -> 
     return PolicyAttackDecider(policy) if task == DRILL_TASK else PolicyCarrierDecider(policy)
 
 
-__all__ = ["PolicyCarrierDecider", "PolicyAttackDecider", "AttackSpecEnv", "ask_policy", "decision_task", "make_match_decider",
+__all__ = ["PolicyCarrierDecider", "PolicyAttackDecider", "AttackSpecEnv", "ask_policy", "make_match_decider",
            "default_actor_path", "check_actor_file", "DECISION_CHOICES", "TASK", "DRILL_TASK", "TASK_SPACES"]

@@ -33,6 +33,7 @@ runner builds one when a team needs it and pads 5-entry actions with a flat chip
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -73,6 +74,11 @@ class AttackCounters:
     dribble: int = 0
     redirected: int = 0
 
+    def count(self, choice: AttackChoice) -> None:
+        """One more decision of kind ``choice``."""
+        name = "pass_" if choice is AttackChoice.PASS else choice.value
+        setattr(self, name, getattr(self, name) + 1)
+
 
 class AttackDecider:
     """:class:`~ssl_marl.plays.pass_coordinator.CarrierDecider` of the attacking plays:
@@ -86,15 +92,18 @@ class AttackDecider:
         self.last: AttackDecision | None = None
         self.counters = AttackCounters()
 
+    def request_params(self, request: CarrierRequest) -> AttackParams:
+        """The attack decision's parameters for ``request``: ``params`` with the request's
+        decision parameters (open play or restart)."""
+        return dataclasses.replace(self.params, decision=request.params)
+
     def decide(self, request: CarrierRequest) -> Decision:
         ctx = request.ctx
         ours = ctx.world.team(ctx.team)
-        params = AttackParams(**{**vars(self.params), "decision": request.params})
         d = decide_attack(ctx.ball, request.carrier, ours.pos, ctx.opp_pos, ctx.field, ctx.robot, request.ball,
-                          params, candidates=request.candidates, heading=request.heading)
+                          self.request_params(request), candidates=request.candidates, heading=request.heading)
         self.last = d
-        name = "pass_" if d.choice is AttackChoice.PASS else d.choice.value
-        setattr(self.counters, name, getattr(self.counters, name) + 1)
+        self.counters.count(d.choice)
         if d.best is not None and d.choice in (AttackChoice.PASS, AttackChoice.CHIP, AttackChoice.REDIRECT):
             self.option = d.best
             b = d.best

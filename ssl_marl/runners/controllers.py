@@ -200,6 +200,14 @@ def decision_spec(kind: Any, decision: Any = None, where: str = "team") -> Any:
     return decision
 
 
+def decision_task(kind: Any) -> str:
+    """The decision task whose actors a team of ``kind`` plays: "attack-drill" for the
+    attacking plays (:data:`ATTACK_KINDS`), "attack-3v2" for the passing plays."""
+    from ..decisions.match_decider import DRILL_TASK, TASK
+
+    return DRILL_TASK if kind in ATTACK_KINDS else TASK
+
+
 def decision_label(kind: Any, decision: Any = None) -> Any:
     """How a team's carrier decision appears in results: "handcoded", "learned", a
     path, a type name, or None for teams without the passing plays."""
@@ -232,7 +240,7 @@ def team_spec(kind: str, skills: Any = None, decision: Any = None, where: str = 
         return TeamSpec(skills=team_set)
     decider = None
     if decision is not None:
-        from ..decisions.match_decider import decision_task, make_match_decider
+        from ..decisions.match_decider import make_match_decider
 
         decider = make_match_decider(decision, where=f"{where} decision", task=decision_task(kind))
     if kind in ATTACK_KINDS:

@@ -90,12 +90,12 @@ def play_series(blue: Any = "baseline", yellow: Any = "baseline", matches: int =
 def _check_decisions(blue: Any, yellow: Any, match_kwargs: dict) -> None:
     """Load the carrier decisions once here (a missing or mismatched actor fails with
     one error before any worker starts)."""
-    from .controllers import decision_spec
+    from .controllers import decision_spec, decision_task
 
     for team, kind in (("blue", blue), ("yellow", yellow)):
         spec = decision_spec(kind, match_kwargs.get(f"{team}_decision"), team)
         if spec is not None:
-            from ..decisions.match_decider import decision_task, make_match_decider
+            from ..decisions.match_decider import make_match_decider
 
             make_match_decider(spec, where=f"{team} decision", task=decision_task(kind))
 

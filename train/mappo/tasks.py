@@ -36,26 +36,17 @@ def _toy_tempo(**kw: Any) -> Any:
     return ToyTempo(**kw)
 
 
-def _decision_task(name: str) -> Callable[..., Any]:
-    def make(**kw: Any) -> Any:
+@dataclass(frozen=True)
+class DecisionTaskFactory:
+    """Builds the decision task ``name`` of :data:`ssl_marl.decisions.DECISION_TASKS` (a
+    picklable module-level callable, so env worker processes can build it)."""
+
+    name: str
+
+    def __call__(self, **kw: Any) -> Any:
         from ssl_marl.decisions import DECISION_TASKS
 
-        return DECISION_TASKS[name](**kw)
-
-    make.__name__ = f"make_{name.replace('-', '_')}"
-    return make
-
-
-def _keepaway(**kw: Any) -> Any:
-    return _decision_task("keepaway")(**kw)
-
-
-def _attack_3v2(**kw: Any) -> Any:
-    return _decision_task("attack-3v2")(**kw)
-
-
-def _attack_drill(**kw: Any) -> Any:
-    return _decision_task("attack-drill")(**kw)
+        return DECISION_TASKS[self.name](**kw)
 
 
 #: the league of the attack-match task: the hand-coded anchors, all with the shipped learned skills
@@ -87,19 +78,19 @@ MARL_TASKS: dict[str, MARLTask] = {
                           {"num_envs": 16, "rollout_steps": 16, "total_decisions": 6_000, "val_episodes": 10,
                            "algo": {"hidden": [64, 64], "lr": 3e-3, "minibatches": 2, "gamma": 0.9, "tau_s": 1.0}},
                           "asynchronous variable-duration jobs (train/mappo/toy_marl.py)"),
-    "keepaway": MARLTask(_keepaway, "duration_s",
+    "keepaway": MARLTask(DecisionTaskFactory("keepaway"), "duration_s",
                          {"val_seed": 45000, "num_envs": 4, "rollout_steps": 16, "total_decisions": 4_000,
                           "checkpoint_every": 2, "val_every": 8, "val_episodes": 30,
                           "algo": {"hidden": [64, 64], "lr": 1e-3, "epochs": 10, "minibatches": 2,
                                    "gamma": 0.99, "tau_s": 0.1}},
                          "keepaway 3v2 (ssl_marl.decisions)"),
-    "attack-3v2": MARLTask(_attack_3v2, "goal",
+    "attack-3v2": MARLTask(DecisionTaskFactory("attack-3v2"), "goal",
                            {"val_seed": 46000, "num_envs": 4, "rollout_steps": 16, "total_decisions": 1_500,
                             "checkpoint_every": 2, "val_every": 8, "val_episodes": 20,
                             "algo": {"hidden": [64, 64], "lr": 1e-3, "epochs": 10, "minibatches": 2,
                                      "gamma": 0.99, "tau_s": 0.1}},
                            "attack 3v2 (ssl_marl.decisions)"),
-    "attack-drill": MARLTask(_attack_drill, "goal",
+    "attack-drill": MARLTask(DecisionTaskFactory("attack-drill"), "goal",
                              {"val_seed": 49000, "num_envs": 4, "rollout_steps": 16, "total_decisions": 1_500,
                               "checkpoint_every": 2, "val_every": 8, "val_episodes": 40,
                               "algo": {"hidden": [64, 64], "lr": 1e-3, "epochs": 10, "minibatches": 2,
