@@ -147,4 +147,24 @@ def test_team_file_joins_the_league(fake, tmp_path):
     snapshot.write_text(json.dumps({"kind": "idle"}))
     state = lg.play_league(config(teams=("baseline", str(snapshot)), rounds=1), tmp_path / "l", progress=False)
     assert [r["team"] for r in state["ratings"]] == ["baseline", str(snapshot)]
-    assert state["manifest"]["rules"]["team_files"] == {str(snapshot): {"kind": "idle", "skills": {}}}
+    assert state["manifest"]["rules"]["team_files"] == {str(snapshot): {"kind": "idle", "skills": {},
+                                                                        "decision": None}}
+
+
+def test_a_team_files_decision_reaches_the_match(monkeypatch, tmp_path):
+    seen = []
+
+    def record(blue, yellow, seed, blue_decision=None, yellow_decision=None, **_kwargs):
+        seen.extend([(blue, blue_decision), (yellow, yellow_decision)])
+        return SimpleNamespace(score={"blue": 1, "yellow": 0}, sim_time_s=2.0)
+
+    monkeypatch.setattr(lg, "play_match", record)
+    team = tmp_path / "drill.json"
+    team.write_text(json.dumps({"kind": "attack-learned", "decision": "learned"}))
+    state = lg.play_league(config(teams=(str(team), "attack-learned-decision", "attack-learned"), rounds=1),
+                           tmp_path / "l", progress=False)
+    assert state["played"] == 3
+    # the file's decision reaches both of its matches; the kinds keep their own (None: the kind's default)
+    assert sorted(seen, key=str) == sorted([("attack-learned", "learned")] * 2 + [("attack-learned", None)] * 2
+                                           + [("attack-learned-decision", None)] * 2, key=str)
+    assert state["manifest"]["rules"]["team_files"][str(team)]["decision"] == "learned"

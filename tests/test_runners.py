@@ -191,13 +191,40 @@ def test_team_file_resolves_paths_against_its_folder(tmp_path):
     shutil.copy(get_skill("go_to_ball").actor, tmp_path / "gtb.pt")
     team = tmp_path / "team.json"
     team.write_text(json.dumps({"kind": "learned", "skills": {"go-to-ball": "gtb.pt", "aim-to-shoot": "baseline"}}))
-    kind, sources = load_team_file(team)
+    kind, sources, decision = load_team_file(team)
     assert kind == "learned" and sources == {"go-to-ball": str(tmp_path / "gtb.pt"), "aim-to-shoot": "baseline"}
+    assert decision is None
     team.write_text(json.dumps({"kind": "learned", "colour": "blue"}))
     with pytest.raises(ValueError, match="unknown key"):
         load_team_file(team)
     with pytest.raises(FileNotFoundError, match="team file"):
         load_team_file(tmp_path / "missing.json")
+
+
+def test_team_file_names_a_decision_actor_checked_before_any_match(tmp_path):
+    import shutil
+
+    from ssl_marl.decisions.learned import pretrained_path
+
+    shutil.copy(pretrained_path("attack-drill"), tmp_path / "drill.pt")
+    team = tmp_path / "team.json"
+    team.write_text(json.dumps({"kind": "attack-learned", "decision": "drill.pt"}))
+    assert load_team_file(team) == ("attack-learned", {}, str(tmp_path / "drill.pt"))
+    team.write_text(json.dumps({"kind": "attack-baseline", "decision": "learned"}))
+    assert load_team_file(team).decision == "learned"
+    team.write_text(json.dumps({"kind": "baseline", "decision": "learned"}))
+    with pytest.raises(ValueError, match="carrier decision"):  # the plain STP team has no carrier decision
+        load_team_file(team)
+    team.write_text(json.dumps({"kind": "attack-learned", "decision": 3}))
+    with pytest.raises(ValueError, match="decision must be"):
+        load_team_file(team)
+    team.write_text(json.dumps({"kind": "attack-learned", "decision": "gone.pt"}))
+    with pytest.raises(FileNotFoundError, match="gone.pt"):
+        load_team_file(team)
+    shutil.copy(pretrained_path("attack-3v2"), tmp_path / "3v2.pt")  # an Attack 3v2 actor offered to an attacking team
+    team.write_text(json.dumps({"kind": "attack-learned", "decision": "3v2.pt"}))
+    with pytest.raises(ValueError, match="obs_dim"):
+        load_team_file(team)
 
 
 def test_wrong_skill_checkpoint_fails_before_the_match_with_one_line(tmp_path, capsys):
@@ -301,10 +328,15 @@ def test_team_spec_resolves_team_kinds_skills_and_decisions(tmp_path):
         team_spec("random")
     assert make_controller("idle", "blue", 2).agents == ["blue_0", "blue_1"]
     assert make_controller("baseline", "blue", 2, stickiness=0.2).stickiness == 0.2
-    assert resolve_team_option("baseline") == ("baseline", None)
-    kind, skills = resolve_team_option("learned", [("go_to_ball", "baseline")], where="--blue")
+    assert team_spec("attack-learned-decision").decider is not None
+    assert team_spec("attack-learned-decision", decision="handcoded").decider is None
+    assert resolve_team_option("baseline") == ("baseline", None, None)
+    kind, skills, _ = resolve_team_option("learned", [("go_to_ball", "baseline")], where="--blue")
     assert kind == "learned" and skills["go_to_ball"] == "baseline"
     path = tmp_path / "team.json"
     path.write_text(json.dumps({"kind": "baseline", "skills": {"aim-to-shoot": "learned"}}))
-    kind, skills = resolve_team_option(str(path), [("aim_to_shoot", "baseline")])
+    kind, skills, _ = resolve_team_option(str(path), [("aim_to_shoot", "baseline")])
     assert kind == "baseline" and skills["aim_to_shoot"] == "baseline"  # the option wins over the file
+    path.write_text(json.dumps({"kind": "attack-learned", "decision": "learned"}))
+    assert resolve_team_option(str(path)) == ("attack-learned", None, "learned")
+    assert resolve_team_option(str(path), decision="handcoded")[2] == "handcoded"  # the option wins

@@ -19,8 +19,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                                           "(pip install -e \".[league]\").")
     p.add_argument("teams", nargs="+", type=team, metavar="TEAM",
                    help="two or more teams: learned, baseline, passing-learned, passing-baseline, "
-                        "passing-learned-decision, attack-learned, attack-baseline, random, idle, or a JSON team "
-                        "file {\"kind\": ..., \"skills\": {SKILL: SOURCE}} (a learned snapshot)")
+                        "passing-learned-decision, attack-learned, attack-baseline, attack-learned-decision, random, "
+                        "idle, or a JSON team file {\"kind\": ..., \"skills\": {SKILL: SOURCE}, \"decision\": "
+                        "DECISION} (a learned snapshot: skill checkpoints, or a decision actor PATH, handcoded or "
+                        "learned; skills and decision optional)")
     p.add_argument("--rounds", type=positive_int("--rounds"), default=1,
                    help="round-robin rounds (default 1)")
     p.add_argument("--colours", choices=("alternate", "both"), default="alternate",

@@ -24,8 +24,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         "whose ball carrier uses the learned Attack 3v2 decision), attack-learned / "
                         "attack-baseline (the attacking plays: shot, flat pass, chip pass, pass into a one-touch "
                         "redirect or dribble by cost, supports on rated spots; the match then runs with chip kicks), "
-                        "random, idle, or a JSON team file "
-                        "{\"kind\": ..., \"skills\": {SKILL: SOURCE}} (default learned)")
+                        "attack-learned-decision (attack-learned whose ball carrier uses the learned attack-drill "
+                        "decision in open play), random, idle, or a JSON team file "
+                        "{\"kind\": ..., \"skills\": {SKILL: SOURCE}, \"decision\": DECISION} (skills and "
+                        "decision optional; default learned)")
     m.add_argument("--yellow", type=team, default="baseline", metavar="TEAM",
                    help="yellow team, as --blue (default baseline)")
     m.add_argument("--skill", type=skill_source, action="append", default=[], metavar="SKILL=SOURCE",
@@ -39,8 +41,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                        help=f"{side} passing or attacking team's ball-carrier decision: handcoded (the cost "
                             "decision), learned (the shipped actor: Attack 3v2 for passing-* teams, the attack "
                             "drill's for attack-* teams) or PATH to a decision actor checkpoint of that task; needs "
-                            "a passing-* or attack-* team (default: the team kind's own, learned for "
-                            "passing-learned-decision, else handcoded)")
+                            "a passing-* or attack-* team; wins over a team file's decision (default: the team's own: "
+                            "the team file's, learned for *-learned-decision, else handcoded)")
     m.add_argument("--robots", type=robots, default=6, help="robots per team, 1-11 (default 6)")
     m.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")
     m.add_argument("--seconds", type=positive_float("--seconds"), default=30.0,
@@ -92,11 +94,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     m.set_defaults(handler=run)
 
 
-def resolve_team(side: str, value: str, sources: list[tuple[str, str]]):
-    """(kind, skills spec or None) for a team option (``--blue`` / ``--yellow``) and its skill sources."""
+def resolve_team(side: str, value: str, sources: list[tuple[str, str]], decision: str | None = None):
+    """(kind, skills spec or None, decision or None) for a team option (``--blue`` /
+    ``--yellow``), its skill sources and its ``--*-decision`` (which wins over a team file's)."""
     from ..runners.controllers import resolve_team_option
 
-    return resolve_team_option(value, sources, where=f"--{side}")
+    return resolve_team_option(value, sources, where=f"--{side}", decision=decision)
 
 
 def match_line(res) -> str:
@@ -128,11 +131,13 @@ def run(args: argparse.Namespace) -> int:
 
     if args.address is not None and args.backend != "ray":
         raise ValueError("--address needs --backend ray")
-    blue, blue_skills = resolve_team("blue", args.blue, args.skill + args.blue_skill)
-    yellow, yellow_skills = resolve_team("yellow", args.yellow, args.skill + args.yellow_skill)
+    blue, blue_skills, blue_decision = resolve_team("blue", args.blue, args.skill + args.blue_skill,
+                                                    args.blue_decision)
+    yellow, yellow_skills, yellow_decision = resolve_team("yellow", args.yellow, args.skill + args.yellow_skill,
+                                                          args.yellow_decision)
     common = dict(robots=args.robots, field=args.field, seconds=args.seconds, realism=args.realism,
                   realtime=args.realtime, blue_skills=blue_skills, yellow_skills=yellow_skills,
-                  tracker=args.tracker, blue_decision=args.blue_decision, yellow_decision=args.yellow_decision,
+                  tracker=args.tracker, blue_decision=blue_decision, yellow_decision=yellow_decision,
                   restart_jitter_m=args.restart_jitter_m,
                   env_kwargs={"no_progress_s": args.no_progress_s or None, **format_options(args.format, args.seconds)})
     render = None if str(args.render).lower() == "none" else args.render
@@ -141,8 +146,8 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         prepare_output_file(args.json, None, "--json")
     if args.ssl_log:
-        if args.matches != 1 or args.format != "plain" or blue_skills or yellow_skills or args.blue_decision \
-                or args.yellow_decision or args.realtime or args.no_progress_s != 10.0 \
+        if args.matches != 1 or args.format != "plain" or blue_skills or yellow_skills or blue_decision \
+                or yellow_decision or args.realtime or args.no_progress_s != 10.0 \
                 or args.restart_jitter_m != 0.1:
             raise ValueError("--ssl-log records single plain-format matches of named teams (no --matches > 1, "
                              "--format ssl, --skill, --*-decision, --realtime, --no-progress-s or --restart-jitter-m)")

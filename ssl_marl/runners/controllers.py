@@ -15,6 +15,9 @@ A team is one of :data:`TEAM_KINDS`:
   (:mod:`ssl_marl.plays.attack_play`: shot, flat pass, chip pass, pass into a redirect
   or dribble by cost, supports on rated spots) with those skills; they chip, so they
   play only in an env with chip kicks (:data:`CHIP_KINDS`; the match runner builds one);
+* ``"attack-learned-decision"``: ``"attack-learned"`` whose ball carrier decides in open
+  play with the learned attack-drill decision (the shipped actor
+  ``ssl_marl/decisions/pretrained/attack_drill.pt``) instead of the cost decision;
 * ``"random"``: uniform random actions (seeded); ``"idle"``: zero actions.
 
 A passing or attacking team's carrier decision can also be chosen per team
@@ -33,8 +36,10 @@ An STP team may replace any skill with another source (:func:`team_skills`):
 small JSON team file (:func:`load_team_file`)::
 
     {"kind": "learned", "skills": {"go-to-ball": "runs/gtb/actor.pt"}}
+    {"kind": "attack-learned", "decision": "runs/mappo_attack_match_s0/snapshots/actor_2008.pt"}
 
-(checkpoint paths relative to the file's folder); :func:`resolve_team_option` reads a
+(checkpoint paths relative to the file's folder; ``decision``: "handcoded", "learned" or
+a decision actor of the kind's decision task, for the kinds of :data:`DECISION_KINDS`); :func:`resolve_team_option` reads a
 team named on the command line (a kind or a team file, plus per-skill sources). Any
 object with ``agents`` and ``act(env) -> {agent: action}`` is accepted as a controller
 too.
@@ -45,7 +50,7 @@ from __future__ import annotations
 import json
 from dataclasses import replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Mapping
+from typing import TYPE_CHECKING, Any, Mapping, NamedTuple
 
 import numpy as np
 
@@ -53,19 +58,19 @@ if TYPE_CHECKING:
     from ..plays.team import TeamController, TeamSpec
 
 TEAM_KINDS = ("learned", "baseline", "random", "idle", "passing-learned", "passing-baseline",
-              "passing-learned-decision", "attack-learned", "attack-baseline")
+              "passing-learned-decision", "attack-learned", "attack-baseline", "attack-learned-decision")
 STP_KINDS = ("learned", "baseline", "passing-learned", "passing-baseline", "passing-learned-decision",
-             "attack-learned", "attack-baseline")
+             "attack-learned", "attack-baseline", "attack-learned-decision")
 PASSING_KINDS = ("passing-learned", "passing-baseline", "passing-learned-decision")
 #: team kinds with the attacking plays; they chip, so they need an env with ``chip_kicks=True``
-ATTACK_KINDS = ("attack-learned", "attack-baseline")
+ATTACK_KINDS = ("attack-learned", "attack-baseline", "attack-learned-decision")
 CHIP_KINDS = ATTACK_KINDS
 #: team kinds whose carrier decision is learned by default
-LEARNED_DECISION_KINDS = ("passing-learned-decision",)
+LEARNED_DECISION_KINDS = ("passing-learned-decision", "attack-learned-decision")
 #: team kinds whose carrier decision can be chosen (``decision=``): the passing plays'
 #: (decision task attack-3v2) and the attacking plays' (decision task attack-drill)
 DECISION_KINDS = PASSING_KINDS + ATTACK_KINDS
-TEAM_FILE_KEYS = ("kind", "skills")
+TEAM_FILE_KEYS = ("kind", "skills", "decision")
 
 
 class IdleController:
@@ -134,9 +139,25 @@ def parse_skill_source(text: str) -> tuple[str, str]:
     return key, source.strip()
 
 
-def load_team_file(path: str | Path) -> tuple[str, dict[str, str]]:
-    """Read a JSON team file ``{"kind": ..., "skills": {skill: source}}``; returns
-    (kind, sources) with checkpoint paths resolved against the file's folder."""
+class TeamFile(NamedTuple):
+    """A JSON team file's content (:func:`load_team_file`): the team ``kind``, its
+    ``skills`` ({skill: source}) and its carrier ``decision`` (None: the kind's own)."""
+
+    kind: str
+    skills: dict[str, str]
+    decision: str | None = None
+
+
+def _file_path(path: Path, source: str, names: tuple[str, ...]) -> str:
+    """``source`` resolved against the team file's folder unless it is one of ``names``
+    or absolute."""
+    return source if source in names or Path(source).is_absolute() else str(path.parent / source)
+
+
+def load_team_file(path: str | Path) -> TeamFile:
+    """Read a JSON team file ``{"kind": ..., "skills": {skill: source}, "decision": ...}``
+    (skills and decision optional) with checkpoint paths resolved against the file's folder.
+    ValueError (naming the key) for anything else."""
     path = Path(path)
     if not path.is_file():
         raise FileNotFoundError(f"team file {str(path)!r} does not exist")
@@ -159,23 +180,36 @@ def load_team_file(path: str | Path) -> tuple[str, dict[str, str]]:
     for name, source in skills.items():
         if not isinstance(source, str):
             raise ValueError(f"team file {path}: skills[{name!r}] must be a string, got {source!r}")
-        if source not in STP_KINDS and not Path(source).is_absolute():
-            source = str(path.parent / source)
-        sources[name] = source
+        sources[name] = _file_path(path, source, STP_KINDS)
     team_skills(kind, sources, where=f"team file {path}")
-    return kind, sources
+    decision = data.get("decision")
+    if decision is not None:
+        from ..decisions.match_decider import DECISION_CHOICES, check_actor_file
+
+        if not isinstance(decision, str) or not decision:
+            raise ValueError(f"team file {path}: decision must be {' or '.join(DECISION_CHOICES)} or an actor "
+                             f"path, got {decision!r}")
+        decision = _file_path(path, decision, DECISION_CHOICES)
+        decision_spec(kind, decision, where=f"team file {path}")
+        if decision not in DECISION_CHOICES:
+
+            check_actor_file(decision, where=f"team file {path}: decision", task=decision_task(kind))
+    return TeamFile(kind, sources, decision)
 
 
-def resolve_team_option(value: str, sources: Any = (), where: str = "team") -> tuple[str, Any]:
-    """(kind, skills spec or None) for a team named on the command line: a kind of
-    :data:`TEAM_KINDS` or a JSON team file (``*.json``, :func:`load_team_file`), with
-    per-skill ``sources`` ((skill, source) pairs, :func:`parse_skill_source`) that win
-    over the file's; the spec is :func:`team_skills`, None without sources."""
-    kind, own = (load_team_file(value) if value.lower().endswith(".json") else (value, {}))
-    merged = {**{k.replace("-", "_"): v for k, v in own.items()}, **dict(sources)}  # later wins
+def resolve_team_option(value: str, sources: Any = (), where: str = "team",
+                        decision: Any = None) -> tuple[str, Any, Any]:
+    """(kind, skills spec or None, decision or None) for a team named on the command
+    line: a kind of :data:`TEAM_KINDS` or a JSON team file (``*.json``,
+    :func:`load_team_file`), with per-skill ``sources`` ((skill, source) pairs,
+    :func:`parse_skill_source`) and a ``decision`` that win over the file's; the spec
+    is :func:`team_skills`, None without sources."""
+    team = load_team_file(value) if value.lower().endswith(".json") else TeamFile(value, {})
+    merged = {**{k.replace("-", "_"): v for k, v in team.skills.items()}, **dict(sources)}  # later wins
+    decision = team.decision if decision is None else decision
     if not merged:
-        return kind, None
-    return kind, team_skills(kind, merged, where=where)
+        return team.kind, None, decision
+    return team.kind, team_skills(team.kind, merged, where=where), decision
 
 
 def controller_label(kind: Any, skills: Any = None) -> Any:

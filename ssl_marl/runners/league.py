@@ -124,9 +124,10 @@ def _league_worker(job: tuple[dict, dict]) -> dict[str, Any]:
     from .controllers import resolve_team_option
 
     entry, match_kwargs = job
-    blue, blue_skills = resolve_team_option(entry["blue"], (), where="blue")
-    yellow, yellow_skills = resolve_team_option(entry["yellow"], (), where="yellow")
+    blue, blue_skills, blue_decision = resolve_team_option(entry["blue"], (), where="blue")
+    yellow, yellow_skills, yellow_decision = resolve_team_option(entry["yellow"], (), where="yellow")
     res = play_match(blue=blue, yellow=yellow, blue_skills=blue_skills, yellow_skills=yellow_skills,
+                     blue_decision=blue_decision, yellow_decision=yellow_decision,
                      seed=entry["seed"], progress=False, **match_kwargs)
     return {**entry, "score": {"blue": int(res.score["blue"]), "yellow": int(res.score["yellow"])},
             "sim_time_s": float(res.sim_time_s)}
@@ -211,8 +212,8 @@ def league_state(config: LeagueConfig, matches: list[dict[str, Any]], argv: list
 
     matches = sorted(matches, key=lambda m: m["index"])
     rules = {k: v for k, v in config.to_json().items() if k not in ("seed", "rounds")}
-    files = {t: dict(zip(("kind", "skills"), load_team_file(t))) for t in config.teams if t.lower().endswith(".json")}
-    if files:  # the team files' kinds and skill sources (their checkpoints are hashed)
+    files = {t: load_team_file(t)._asdict() for t in config.teams if t.lower().endswith(".json")}
+    if files:  # the team files' kinds, skill sources and decisions (their checkpoints are hashed)
         rules["team_files"] = files
     manifest = build_manifest(rules, {"seed": config.seed, "rounds": config.rounds,
                                       "match_seed": "ssl_marl.io.episode_seed(seed, match index)"},
