@@ -109,6 +109,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
                                                         for f in ("div_b", "div_a") for m in ("none", "realistic")],
                                                     ROLLING_ACTOR),
     "league_anchors": lambda r: t.league(r, "league_anchors"),
+    "league_learned": lambda r: t.league(r, "league_learned"),
     "passing_contested_kick": lambda r: t.tuning(r, [("`contested_kick` on", "passing_contested_kick.json",
                                                       "contested_kick_on"),
                                                      ("`contested_kick` off (the default)",
