@@ -54,6 +54,10 @@ ATTACK_SERIES = ["match_attack_learned_vs_baseline_600", "match_attack_learned_v
                  "match_attack_learned_vs_attack_baseline_600_79000",
                  "match_attack_learned_vs_attack_baseline_600_realistic",
                  "match_attack_learned_vs_attack_baseline_600_div_a_11v11"]
+#: the attacking-game issue's target series played again with the current code (seeds 83000-87009)
+ATTACK_TARGETS = ["match_attack_learned_vs_baseline_600_83000", "match_attack_learned_vs_passing_learned_600_84000",
+                  "match_attack_learned_selfplay_600_85000", "match_attack_learned_vs_baseline_600_realistic_86000",
+                  "match_attack_learned_vs_baseline_600_div_a_11v11_87000"]
 ATTACK_SKILL_SWAPS = ["match_attack_learned_vs_attack_baseline_600", "tuning/swap_none_all_learned",
                       "tuning/swap_aim_to_shoot_baseline",
                       "tuning/swap_pass_receive_baseline", "tuning/swap_go_to_ball_baseline",
@@ -100,6 +104,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "series_600_formats": lambda r: t.series_600(r, SERIES_600_SSL),
     "attack_series": lambda r: t.series_600(r, ATTACK_SERIES),
     "decision_series": lambda r: t.series_600(r, DECISION_SERIES),
+    "attack_targets": lambda r: t.series_600(r, ATTACK_TARGETS),
     "set_piece_series": lambda r: t.set_piece_series(r, SET_PIECE_SERIES),
     "attack_skill_swaps": lambda r: t.series_600(r, ATTACK_SKILL_SWAPS),
     "go_to_ball_rolling_selection": lambda r: t.rolling_selection(r, {
