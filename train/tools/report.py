@@ -71,7 +71,8 @@ ATTACK = [("hand-coded (cost decision, shot threshold 0.25)", "attack_3v2_handco
            "attack_3v2_learned_snap_retrained")]
 DECISION_SERIES = ["match_attack_learned_decision_vs_attack_learned_600",
                    "match_attack_learned_decision_vs_attack_learned_600_realistic",
-                   "match_attack_learned_decision_vs_attack_learned_600_div_a_11v11"]
+                   "match_attack_learned_decision_vs_attack_learned_600_div_a_11v11",
+                   "match_attack_learned_decision_vs_passing_learned_600"]
 ATTACK_DRILL = [("hand-coded (the attacking plays' cost decision)", "attack_drill_handcoded"),
                 ("learned (shipped `attack_drill.pt`: cloned, then MAPPO `mappo_attack_drill_bc_s0`)",
                  "attack_drill_learned")]
