@@ -82,6 +82,16 @@ ATTACK_DRILL_SELECTION = [("hand-coded", "tuning/attack_drill_handcoded_val49000
                           ("`mappo_attack_drill_bc_s0` at 2,020 decisions", "tuning/attack_drill_s0_2020_val49000"),
                           ("`mappo_attack_drill_bc_s0` at 2,528 decisions", "tuning/attack_drill_s0_2528_val49000")]
 
+#: the second fine-tuning run of the attack-drill decision: selection (seeds 49300-49599), then held out (44000)
+ATTACK_DRILL_FT_SELECTION = [("hand-coded", "tuning/attack_drill_handcoded_val49300"),
+                             ("learned, shipped `attack_drill.pt`", "tuning/attack_drill_shipped_val49300"),
+                             ("`mappo_attack_drill_ft_s1` at 5,084 decisions", "tuning/attack_drill_ft_s1_5084_val49300"),
+                             ("`mappo_attack_drill_ft_s1` at 7,098 decisions", "tuning/attack_drill_ft_s1_7098_val49300")]
+ATTACK_DRILL_44000 = [("hand-coded", "attack_drill_handcoded_44000"),
+                      ("learned, shipped `attack_drill.pt`", "attack_drill_learned_44000"),
+                      ("`mappo_attack_drill_ft_s1` at 7,098 decisions (not shipped)",
+                       "attack_drill_learned_ft_s1_7098_44000")]
+
 TABLES: dict[str, Callable[[Path], list[str]]] = {
     "skills_paper": lambda r: t.skills(r, SKILLS_PAPER),
     "skills_tracker_div_a": lambda r: t.skills(r, SKILLS_TRACKER),
@@ -130,6 +140,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "attack": lambda r: t.attack(r, ATTACK),
     "attack_drill": lambda r: t.attack(r, ATTACK_DRILL),
     "attack_drill_selection": lambda r: t.attack(r, ATTACK_DRILL_SELECTION),
+    "attack_drill_ft_selection": lambda r: t.attack(r, ATTACK_DRILL_FT_SELECTION),
+    "attack_drill_44000": lambda r: t.attack(r, ATTACK_DRILL_44000),
     "attack_drill_aim": lambda r: t.probe_rows(r / "tuning" / "attack_drill_aim.json", "rule"),
     "mappo_attack_match": lambda r: t.mappo_runs(r, [("mappo_attack_match_s0", "")], None, "goal"),
     "mappo_attack_drill": lambda r: t.mappo_runs(r, [("mappo_attack_drill_bc_s0", "attack_drill_learned")],
