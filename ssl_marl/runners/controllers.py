@@ -36,13 +36,13 @@ An STP team may replace any skill with another source (:func:`team_skills`):
 small JSON team file (:func:`load_team_file`)::
 
     {"kind": "learned", "skills": {"go-to-ball": "runs/gtb/actor.pt"}}
-    {"kind": "attack-learned", "decision": "runs/mappo_attack_match_s0/snapshots/actor_2008.pt"}
+    {"kind": "attack-learned", "decision": "runs/mappo_attack_match_s0/actors/actor-1502.pt"}
 
 (checkpoint paths relative to the file's folder; ``decision``: "handcoded", "learned" or
-a decision actor of the kind's decision task, for the kinds of :data:`DECISION_KINDS`); :func:`resolve_team_option` reads a
-team named on the command line (a kind or a team file, plus per-skill sources). Any
-object with ``agents`` and ``act(env) -> {agent: action}`` is accepted as a controller
-too.
+a decision actor of the kind's decision task, for the kinds of :data:`DECISION_KINDS`);
+:func:`resolve_team_option` reads a team named on the command line (a kind or a team
+file, plus per-skill sources and a decision). Any object with ``agents`` and
+``act(env) -> {agent: action}`` is accepted as a controller too.
 """
 
 from __future__ import annotations
@@ -192,7 +192,6 @@ def load_team_file(path: str | Path) -> TeamFile:
         decision = _file_path(path, decision, DECISION_CHOICES)
         decision_spec(kind, decision, where=f"team file {path}")
         if decision not in DECISION_CHOICES:
-
             check_actor_file(decision, where=f"team file {path}: decision", task=decision_task(kind))
     return TeamFile(kind, sources, decision)
 
