@@ -140,7 +140,36 @@ def drill_defence_plays(*, ball: BallParams | None, decider: CarrierDecider | No
     return (drill_defence_play(),)
 
 
-class Attack3v2Env(DecisionEnv):
+class CarrierRequestHooks:
+    """:class:`~ssl_marl.decisions.base.DecisionEnv` hooks of the drills whose decision point is
+    the play's open carrier request (``self.decider.request``): the carrier's agent decides
+    when the carrier is a field robot 1..``n_agents``, with the observation and mask of
+    :meth:`request_features`, computed once per request."""
+
+    _request_obs: np.ndarray | None
+    _request_mask: np.ndarray | None
+
+    @property
+    def pending_request(self) -> CarrierRequest | None:
+        """The play's open request for the carrier's decision (None: nobody decides)."""
+        return self.decider.request
+
+    def request_features(self, req: CarrierRequest) -> tuple[np.ndarray, np.ndarray]:
+        """(observation, legal-option mask) of the carrier's agent for request ``req``."""
+        raise NotImplementedError
+
+    def decision_agents(self) -> frozenset[str]:
+        req = self.decider.request
+        if req is None or not 1 <= req.carrier <= self.n_agents:
+            return frozenset()
+        self._request_obs, self._request_mask = self.request_features(req)
+        return frozenset({self.agent_of(req.carrier)})
+
+    def action_mask(self, agent: str) -> np.ndarray:
+        return self._request_mask
+
+
+class Attack3v2Env(CarrierRequestHooks, DecisionEnv):
     """Attack 3v2 (module docstring).
 
     Args:
@@ -211,22 +240,10 @@ class Attack3v2Env(DecisionEnv):
         self.yellow.reset()
         self._request_obs = self._request_mask = None
 
-    @property
-    def pending_request(self) -> CarrierRequest | None:
-        """The play's open request for the carrier's decision (None: nobody decides)."""
-        return self.decider.request
-
-    def decision_agents(self) -> frozenset[str]:
-        req = self.decider.request
-        if req is None or not 1 <= req.carrier <= N_ATTACKERS:
-            return frozenset()
+    def request_features(self, req: CarrierRequest) -> tuple[np.ndarray, np.ndarray]:
         args = (req.ctx.world, "blue", req.carrier, self.field, self.rp, self.bp, req.params)
-        self._request_obs = attack_observation(*args, candidates=req.candidates)
-        self._request_mask = attack_action_mask(*args, candidates=req.candidates)
-        return frozenset({self.agent_of(req.carrier)})
-
-    def action_mask(self, agent: str) -> np.ndarray:
-        return self._request_mask
+        return (attack_observation(*args, candidates=req.candidates),
+                attack_action_mask(*args, candidates=req.candidates))
 
     def start_options(self, chosen: Mapping[str, int]) -> None:
         req = self.decider.request
@@ -348,6 +365,6 @@ class HandcodedAttackPolicy(HandcodedCarrierPolicy):
         return decision_option(d, request.ctx.world, "blue", request.carrier), d.choice is Choice.KEEP
 
 
-__all__ = ["Attack3v2Env", "HandcodedAttackPolicy", "HandcodedCarrierPolicy", "KeepClock", "DrillDecider",
+__all__ = ["Attack3v2Env", "CarrierRequestHooks", "HandcodedAttackPolicy", "HandcodedCarrierPolicy", "KeepClock", "DrillDecider",
            "drill_attack_play", "drill_defence_play",
            "drill_attack_plays", "drill_defence_plays", "STATE_DIM"]

@@ -39,7 +39,7 @@ from ..plays.attack_play import (ATTACK_PASSING, AttackDecider, AttackPrepare, S
 from ..plays.pass_coordinator import CarrierRequest, PassCoordinator, PassingParams
 from ..plays.passing_roles import passing_attacker_role
 from ..plays.play import Play, goalie_role
-from .attack import Attack3v2Env, DrillDecider, HandcodedCarrierPolicy
+from .attack import Attack3v2Env, CarrierRequestHooks, DrillDecider, HandcodedCarrierPolicy
 from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, DRIBBLE_GOAL_OPTION, SHOOT, SlotPasses,
                                     attack_decision_option, attack_drill_mask, attack_drill_observation,
                                     option_play_decision, slot_passes)
@@ -83,7 +83,7 @@ def drill_attacking_plays(passing: PassingParams, *, ball: BallParams | None,
     return (Play("attack_drill", lambda ctx: True, roles, prepare=AttackPrepare(coord, planner)),)
 
 
-class AttackOptionsMixin:
+class AttackOptionsMixin(CarrierRequestHooks):
     """The carrier's attacking options as :class:`~ssl_marl.decisions.base.DecisionEnv` hooks,
     shared by the drill and the full-match task: the :class:`DrillAttackDecider`'s open request
     is the decision point of the carrier's agent (robot k is ``agent_of(k)``, field robots
@@ -94,27 +94,12 @@ class AttackOptionsMixin:
     ``n_agents`` and ``agent_of``."""
 
     _passes: SlotPasses
-    _request_obs: np.ndarray | None
-    _request_mask: np.ndarray | None
 
-
-    @property
-    def pending_request(self) -> CarrierRequest | None:
-        """The play's open request for the carrier's decision (None: nobody decides)."""
-        return self.decider.request
-
-    def decision_agents(self) -> frozenset[str]:
-        req = self.decider.request
-        if req is None or not 1 <= req.carrier <= self.n_agents:
-            return frozenset()
+    def request_features(self, req: CarrierRequest) -> tuple[np.ndarray, np.ndarray]:
         args = (req.ctx.world, "blue", req.carrier, self.field, self.rp, self.bp, self.decider.request_params(req))
         self._passes = slot_passes(*args, candidates=req.candidates)
-        self._request_obs = attack_drill_observation(*args, candidates=req.candidates, passes=self._passes)
-        self._request_mask = attack_drill_mask(self._passes)
-        return frozenset({self.agent_of(req.carrier)})
-
-    def action_mask(self, agent: str) -> np.ndarray:
-        return self._request_mask
+        return (attack_drill_observation(*args, candidates=req.candidates, passes=self._passes),
+                attack_drill_mask(self._passes))
 
     def start_options(self, chosen: Mapping[str, int]) -> None:
         req = self.decider.request
