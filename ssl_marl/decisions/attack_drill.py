@@ -41,8 +41,7 @@ from ..plays.passing_roles import passing_attacker_role
 from ..plays.play import Play, goalie_role
 from .attack import Attack3v2Env, CarrierRequestHooks, DrillDecider, HandcodedCarrierPolicy
 from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, DRIBBLE_GOAL_OPTION, SHOOT, SlotPasses,
-                                    attack_decision_option, attack_drill_mask, attack_drill_observation,
-                                    option_play_decision, slot_passes)
+                                    attack_decision_option, option_play_decision, request_features)
 from .attack_features import ATTACK_OBS_DIM, OBS_BOUND, attack_observation
 
 #: the drill's pass coordinator: the attacking plays' settings, asked every tick
@@ -96,10 +95,8 @@ class AttackOptionsMixin(CarrierRequestHooks):
     _passes: SlotPasses
 
     def request_features(self, req: CarrierRequest) -> tuple[np.ndarray, np.ndarray]:
-        args = (req.ctx.world, "blue", req.carrier, self.field, self.rp, self.bp, self.decider.request_params(req))
-        self._passes = slot_passes(*args, candidates=req.candidates)
-        return (attack_drill_observation(*args, candidates=req.candidates, passes=self._passes),
-                attack_drill_mask(self._passes))
+        self._passes, obs, mask = request_features(req, self.decider.request_params(req))
+        return obs, mask
 
     def start_options(self, chosen: Mapping[str, int]) -> None:
         req = self.decider.request

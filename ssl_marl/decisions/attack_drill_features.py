@@ -41,6 +41,7 @@ from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState
 from ..plays.attack_decision import AttackChoice, AttackDecision, AttackOption, AttackParams, evaluate_attack_passes
+from ..plays.pass_coordinator import CarrierRequest
 from ..plays.pass_decision import Choice, Decision, PassOption
 from .attack_features import (ATTACK_OBS_DIM, DRIBBLE_COMMIT_S, DRIBBLE_GOAL, DRIBBLE_LEFT, DRIBBLE_RIGHT,
                               DRIBBLE_SPEED, OBS_BOUND, SHOOT_COMMIT_S, attack_observation, check_option,
@@ -97,6 +98,17 @@ def attack_drill_observation(world: WorldState, team: str, me: int, field: Field
     return np.clip(np.concatenate([base, extra]), -OBS_BOUND, OBS_BOUND).astype(np.float32)
 
 
+def request_features(request: CarrierRequest, params: AttackParams) -> tuple[SlotPasses, np.ndarray, np.ndarray]:
+    """(:func:`slot_passes`, :func:`attack_drill_observation`, :func:`attack_drill_mask`) of
+    the carrier of a play's decision ``request`` (its world, team, field, robot and ball
+    parameters and candidates), with the attack decision's ``params``."""
+    ctx = request.ctx
+    args = (ctx.world, ctx.team, request.carrier, ctx.field, ctx.robot, request.ball, params)
+    passes = slot_passes(*args, candidates=request.candidates)
+    obs = attack_drill_observation(*args, candidates=request.candidates, passes=passes)
+    return passes, obs, attack_drill_mask(passes)
+
+
 def attack_drill_mask(passes: SlotPasses) -> np.ndarray:
     """(N_ATTACK_DRILL_OPTIONS,) int8 legal options given :func:`slot_passes` (module docstring)."""
     mask = np.ones(N_ATTACK_DRILL_OPTIONS, np.int8)
@@ -140,7 +152,7 @@ def attack_decision_option(decision: AttackDecision, world: WorldState, team: st
     return next(i for i, k in PASS_OPTIONS.items() if k == key)
 
 
-__all__ = ["ATTACK_DRILL_OPTIONS", "N_ATTACK_DRILL_OPTIONS", "ATTACK_DRILL_OBS_DIM", "PASS_OPTIONS",
+__all__ = ["request_features", "ATTACK_DRILL_OPTIONS", "N_ATTACK_DRILL_OPTIONS", "ATTACK_DRILL_OBS_DIM", "PASS_OPTIONS",
            "DRIBBLE_OPTIONS", "SHOOT", "DRIBBLE_GOAL_OPTION", "slot_passes", "attack_drill_observation",
            "attack_drill_mask",
            "option_play_decision", "attack_decision_option"]

@@ -36,8 +36,7 @@ from ..plays.attack_decision import AttackChoice, AttackParams
 from ..plays.attack_play import AttackDecider
 from ..plays.pass_decision import Choice, Decision
 from ..plays.pass_coordinator import CarrierRequest, CostDecider
-from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, attack_drill_mask,
-                                    attack_drill_observation, option_play_decision, slot_passes)
+from .attack_drill_features import ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, option_play_decision, request_features
 from .attack_features import (ATTACK_OBS_DIM, ATTACK_OPTIONS, OBS_BOUND, attack_action_mask,
                               attack_observation, option_decision)
 
@@ -134,13 +133,10 @@ class PolicyAttackDecider(AttackDecider):
     def decide(self, request: CarrierRequest) -> Decision:
         if request.restart or not request.on_ball:
             return super().decide(request)
-        ctx = request.ctx
-        args = (ctx.world, ctx.team, request.carrier, ctx.field, ctx.robot, request.ball, self.request_params(request))
-        passes = slot_passes(*args, candidates=request.candidates)
-        obs = attack_drill_observation(*args, candidates=request.candidates, passes=passes)
-        a = ask_policy(self.policy, self.spec_env, obs, attack_drill_mask(passes), "PolicyAttackDecider")
+        passes, obs, mask = request_features(request, self.request_params(request))
+        a = ask_policy(self.policy, self.spec_env, obs, mask, "PolicyAttackDecider")
         self.decisions += 1
-        d, option = option_play_decision(a, ctx.ball, ctx.field, passes)
+        d, option = option_play_decision(a, request.ctx.ball, request.ctx.field, passes)
         if option is not None:
             self.option = option
         self.counters.count(option.kind if option is not None else
