@@ -428,6 +428,32 @@ def test_coordinator_plans_a_pass_only_once_the_carrier_has_settled():
     assert c.counters.planned == 1
 
 
+@pytest.mark.parametrize("expiry, passes", [("shoot", False), ("pass", True)])
+def test_an_expired_keep_shoots_or_makes_the_best_eligible_pass(expiry, passes):
+    from ssl_marl.plays.pass_coordinator import PassCoordinator, PassingParams
+    from ssl_marl.plays.pass_decision import Decision, PassOption
+
+    option = PassOption(2, np.array([2.0, 2.2]), 3.0, 0.2, 0.6, 0.0, 0.1)
+
+    class KeepDecider:  # keeps with a worthless shot and one eligible pass that does not beat keeping
+        def decide(self, request):
+            return Decision(Choice.KEEP, 0.0, 0.3, (option,), option)
+
+    c = PassCoordinator(PassingParams(max_keep_s=0.5, keep_expiry=expiry), decider=KeepDecider())
+    for k in range(0, 60, 3):  # a decision every 3 ticks for 1 s
+        c.prepare(_ctx(make_world(**BLOCKED, t=1.0 + k / 60, frame="blue"), {"attacker": _status(ShootState.KEEP)},
+                       {"attacker": 1}))
+        if c.plan is not None or not c.hold_fire():
+            break
+    assert k / 60 > 0.5  # nothing happens before the keep expires
+    if passes:
+        assert c.plan is not None and (c.plan.passer, c.plan.receiver) == (1, 2)
+    else:
+        assert c.plan is None and c.decision.choice is Choice.SHOOT and not c.hold_fire()
+    with pytest.raises(ValueError, match="keep_expiry"):
+        PassingParams(keep_expiry="dribble")
+
+
 def test_coordinator_follows_the_handshake_to_completion_and_aborts_on_failure():
     from ssl_marl.plays.pass_coordinator import PassCoordinator, PassPhase, PassPlan
 

@@ -110,6 +110,11 @@ class AttackDecider:
             best = PassOption(b.teammate, b.point, b.kick_speed, 0.0, b.success, 0.0, b.value)
             return Decision(Choice.PASS, d.shot, d.keep, (best,), best)
         choice = Choice.SHOOT if d.choice is AttackChoice.SHOOT else Choice.KEEP
+        if choice is Choice.KEEP and d.best is not None:  # the best eligible pass, for an expired KEEP
+            self.option = d.best
+            b = d.best
+            best = PassOption(b.teammate, b.point, b.kick_speed, 0.0, b.success, 0.0, b.value)
+            return Decision(choice, d.shot, d.keep, (best,), best)
         return Decision(choice, d.shot, d.keep)
 
 

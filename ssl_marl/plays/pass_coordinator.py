@@ -64,6 +64,8 @@ from .shoot import ShootParams, ShootState
 
 #: attacker states in which the ball is settled on the dribbler and a decision is made
 SETTLED = (ShootState.KEEP, ShootState.AIM_TO_SHOOT)
+#: what an expired KEEP turns into (``PassingParams.keep_expiry``)
+KEEP_EXPIRY = ("shoot", "pass")
 
 #: Restarts: keep is worth nothing and shots must be clearly open, so the kicker passes.
 RESTART_DECISION = DecisionParams(w_keep=0.0, shoot_threshold=0.6, shoot_fallback=0.6, pass_gain=0.0,
@@ -98,7 +100,10 @@ class PassingParams:
         decision: the open-play decision parameters.
         restart_decision: the decision parameters at restarts.
         decide_every: ticks between two decisions (a decision costs ~1-2 ms).
-        max_keep_s: KEEP at most this long, then shoot (s).
+        max_keep_s: KEEP at most this long, then shoot (s; see ``keep_expiry``).
+        keep_expiry: what an expired KEEP turns into: "shoot" (a shot whatever its value)
+            or "pass" (the decision's best eligible pass, success >= ``min_pass_success``,
+            when the shot is worth less than ``shoot_fallback``; else the shot).
         max_setup_s: a pass not kicked within this is dropped (s).
         max_flight_s: a pass not controlled this long after the kick is dropped (s).
         abort_margin_s: during setup, drop the pass if its path margin falls below this (s).
@@ -136,6 +141,7 @@ class PassingParams:
     restart_decision: DecisionParams = RESTART_DECISION
     decide_every: int = 3
     max_keep_s: float = 0.8
+    keep_expiry: str = "shoot"
     max_setup_s: float = 2.5
     max_flight_s: float = 4.0
     abort_margin_s: float = -0.05
@@ -148,6 +154,10 @@ class PassingParams:
     max_restart_setup_s: float = 5.0
     set_piece_wait_s: float = 2.0
     dead_ball_s: float | None = None
+
+    def __post_init__(self) -> None:
+        if self.keep_expiry not in KEEP_EXPIRY:
+            raise ValueError(f"PassingParams.keep_expiry must be one of {KEEP_EXPIRY}, got {self.keep_expiry!r}")
 
 
 @dataclass
@@ -390,7 +400,9 @@ class PassCoordinator:
             if self._keep_since is None:
                 self._keep_since = t
             if t - self._keep_since > p.max_keep_s:
-                d = dataclasses.replace(d, choice=Choice.SHOOT)
+                to_pass = (p.keep_expiry == "pass" and d.best_pass is not None
+                           and d.shot < params.shoot_fallback)
+                d = dataclasses.replace(d, choice=Choice.PASS if to_pass else Choice.SHOOT)
         else:
             self._keep_since = None
         self.decision = d

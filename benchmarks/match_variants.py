@@ -1,0 +1,92 @@
+"""Tuning probe: the attacking team's matches under variants of the restarts and of the carrier's keep rule.
+
+Plays ``--matches`` 600 s matches of ``--blue`` (default attack-learned) against ``--yellow``
+(default baseline), 6v6 Division B, no realism, seeds ``--seed`` + i, as ``ssl-marl
+match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
+
+* ``plain``: the plain format (play restarts at once after an out; the default of ``ssl-marl match``);
+* ``free-kick``: SSL restarts without a STOP (``ssl_restarts``, ``stop_s`` 0): the ball
+  goes to the team that did not touch it last, its opponents keep 0.5 m until it is taken;
+* ``free-kick-stop``: the same after a 1 s STOP (``stop_s`` 1), one period, no fouls;
+* ``free-kick-stop-fouls``: the same with fouls called (``--format ssl`` without half-time);
+* ``keep-2s`` / ``keep-inf``: the plain format with the attacking plays' ``max_keep_s``
+  (``ATTACK_PASSING``; how long the carrier keeps the ball before an expired keep turns into a
+  shot) at 2 s / never;
+* ``keep-pass``: the plain format with ``keep_expiry="pass"`` (an expired keep becomes the
+  decision's best eligible pass while the shot is worth less than ``shoot_fallback``).
+
+Writes per match the score, the blue team's statistics and the referee's counts, and a
+summary: :func:`ssl_marl.runners.statistics.series_statistics` (win-draw-loss, goals, the goal
+difference per 600 s with its 95 % interval), ball-outs and blue shots per match.
+
+    python benchmarks/match_variants.py free-kick-stop --seed 61500 --matches 10 \\
+        --out results/tuning/match_variants/free-kick-stop.json
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import json
+import math
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+#: env options of each variant (the rest of the match as ``ssl-marl match`` plays it)
+RULES = {"plain": {}, "free-kick": {"ssl_restarts": True, "stop_s": 0.0},
+         "free-kick-stop": {"ssl_restarts": True, "stop_s": 1.0},
+         "free-kick-stop-fouls": {"ssl_restarts": True, "stop_s": 1.0, "fouls": True},
+         "keep-2s": {}, "keep-inf": {}, "keep-pass": {}}
+#: ``ATTACK_PASSING`` fields of each variant
+PASSING = {"keep-2s": {"max_keep_s": 2.0}, "keep-inf": {"max_keep_s": math.inf}, "keep-pass": {"keep_expiry": "pass"}}
+
+
+def summarize(rows: list[dict], seconds: float) -> dict:
+    from ssl_marl.runners.statistics import series_statistics
+
+    stats = series_statistics([r["score"]["blue"] for r in rows], [r["score"]["yellow"] for r in rows], seconds)
+    return {**stats, "ball_outs_per_match": float(np.mean([r["referee"].get("ball_out", 0) for r in rows])),
+            "blue_shots_per_match": float(np.mean([r["blue"]["shots"] for r in rows]))}
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("variant", choices=sorted(RULES), help="the variant (module docstring)")
+    ap.add_argument("--blue", default="attack-learned", help="blue team kind (default attack-learned)")
+    ap.add_argument("--yellow", default="baseline", help="yellow team kind (default baseline)")
+    ap.add_argument("--seed", type=int, default=61500, help="first seed (tuning seeds; default 61500)")
+    ap.add_argument("--matches", type=int, default=10, help="matches (default 10)")
+    ap.add_argument("--seconds", type=float, default=600.0, help="match length, s (default 600)")
+    ap.add_argument("--out", required=True, help="JSON output (rewritten after every match)")
+    args = ap.parse_args(argv)
+    from ssl_marl.io import atomic_write_json
+    from ssl_marl.plays import attack_play
+    from ssl_marl.runners.match import play_match
+    from ssl_marl.runners.provenance import build_manifest
+
+    if args.variant in PASSING:
+        attack_play.ATTACK_PASSING = dataclasses.replace(attack_play.ATTACK_PASSING, **PASSING[args.variant])
+    manifest = build_manifest(rules={"variant": args.variant, "env": RULES[args.variant],
+                                     "attack_passing": {k: str(v) for k, v in PASSING.get(args.variant, {}).items()},
+                                     "blue": args.blue, "yellow": args.yellow, "seconds": args.seconds},
+                              seeds={"seed": args.seed, "matches": args.matches})
+    rows = []
+    for i in range(args.matches):
+        t0 = time.time()
+        r = play_match(args.blue, args.yellow, robots=6, seconds=args.seconds, seed=args.seed + i, render=None,
+                       progress=False, env_kwargs=dict(RULES[args.variant]))
+        rows.append({"seed": args.seed + i, "score": r.score, "blue": {k: v for k, v in r.stats["blue"].items()},
+                     "referee": r.stats.get("referee", {}), "wall_s": round(time.time() - t0, 1)})
+        print(args.variant, args.seed + i, r.score, flush=True)
+        atomic_write_json(args.out, {"summary": summarize(rows, args.seconds), "matches": rows, "manifest": manifest})
+    print(json.dumps(summarize(rows, args.seconds), indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
