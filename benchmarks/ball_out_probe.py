@@ -81,23 +81,33 @@ def summarize(outs: list[dict], matches: int, seconds: float) -> dict:
             "nearest_team": {k: sum(o["nearest_team"] == k for o in outs) for k in ("blue", "yellow")}}
 
 
-def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def probe_args(description: str, default_seeds: str, out_help: str, argv: list[str] | None) -> argparse.Namespace:
+    """The match probes' command line: --blue, --yellow, --seconds, --seeds A-B, --out."""
+    ap = argparse.ArgumentParser(description=description)
     ap.add_argument("--blue", default="attack-learned", help="blue team kind (default attack-learned)")
     ap.add_argument("--yellow", default="baseline", help="yellow team kind (default baseline)")
     ap.add_argument("--seconds", type=float, default=600.0, help="match length, s (default 600)")
-    ap.add_argument("--seeds", type=seed_range, default=seed_range("61000-61001"), help="seed range A-B (tuning seeds)")
-    ap.add_argument("--out", default=None, help="JSON output (summary and every out)")
-    args = ap.parse_args(argv)
+    ap.add_argument("--seeds", type=seed_range, default=seed_range(default_seeds),
+                    help=f"seed range A-B (tuning seeds; default {default_seeds})")
+    ap.add_argument("--out", default=None, help=out_help)
+    return ap.parse_args(argv)
+
+
+def write_probe(args: argparse.Namespace, record: dict) -> None:
+    """Print the record's summary; write the record with its manifest to ``args.out`` (if given)."""
     from ssl_marl.io import atomic_write_json
     from ssl_marl.runners.provenance import build_manifest
 
-    outs = [o for s in args.seeds for o in probe_match(args.blue, args.yellow, args.seconds, s)]
-    summary = summarize(outs, len(args.seeds), args.seconds)
-    print(json.dumps(summary, indent=1))
+    print(json.dumps(record["summary"], indent=1))
     if args.out:
-        atomic_write_json(args.out, {"summary": summary, "outs": outs, "manifest": build_manifest(
+        atomic_write_json(args.out, {**record, "manifest": build_manifest(
             rules={"blue": args.blue, "yellow": args.yellow, "seconds": args.seconds}, seeds={"seeds": args.seeds})})
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = probe_args(__doc__.splitlines()[0], "61000-61001", "JSON output (summary and every out)", argv)
+    outs = [o for s in args.seeds for o in probe_match(args.blue, args.yellow, args.seconds, s)]
+    write_probe(args, {"summary": summarize(outs, len(args.seeds), args.seconds), "outs": outs})
     return 0
 
 

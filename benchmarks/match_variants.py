@@ -13,7 +13,9 @@ match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
   (``ATTACK_PASSING``; how long the carrier keeps the ball before an expired keep turns into a
   shot) at 2 s / never;
 * ``keep-pass``: the plain format with ``keep_expiry="pass"`` (an expired keep becomes the
-  decision's best eligible pass while the shot is worth less than ``shoot_fallback``).
+  decision's best eligible pass while the shot is worth less than ``shoot_fallback``);
+* ``receiver-guard``: the plain format with the decisions' ``receiver_guard_m`` at 1 m (a
+  pass's last metre is the receiver's where it gets there before the opponents).
 
 Writes per match the score, the blue team's statistics and the referee's counts, and a
 summary: :func:`ssl_marl.runners.statistics.series_statistics` (win-draw-loss, goals, the goal
@@ -41,9 +43,11 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 RULES = {"plain": {}, "free-kick": {"ssl_restarts": True, "stop_s": 0.0},
          "free-kick-stop": {"ssl_restarts": True, "stop_s": 1.0},
          "free-kick-stop-fouls": {"ssl_restarts": True, "stop_s": 1.0, "fouls": True},
-         "keep-2s": {}, "keep-inf": {}, "keep-pass": {}}
+         "keep-2s": {}, "keep-inf": {}, "keep-pass": {}, "receiver-guard": {}}
 #: ``ATTACK_PASSING`` fields of each variant
 PASSING = {"keep-2s": {"max_keep_s": 2.0}, "keep-inf": {"max_keep_s": math.inf}, "keep-pass": {"keep_expiry": "pass"}}
+#: ``ATTACK_PASSING.decision`` and ``.restart_decision`` fields of each variant
+DECISION = {"receiver-guard": {"receiver_guard_m": 1.0}}
 
 
 def summarize(rows: list[dict], seconds: float) -> dict:
@@ -71,8 +75,14 @@ def main(argv: list[str] | None = None) -> int:
 
     if args.variant in PASSING:
         attack_play.ATTACK_PASSING = dataclasses.replace(attack_play.ATTACK_PASSING, **PASSING[args.variant])
+    if args.variant in DECISION:
+        ap_ = attack_play.ATTACK_PASSING
+        attack_play.ATTACK_PASSING = dataclasses.replace(
+            ap_, decision=dataclasses.replace(ap_.decision, **DECISION[args.variant]),
+            restart_decision=dataclasses.replace(ap_.restart_decision, **DECISION[args.variant]))
     manifest = build_manifest(rules={"variant": args.variant, "env": RULES[args.variant],
                                      "attack_passing": {k: str(v) for k, v in PASSING.get(args.variant, {}).items()},
+                                     "decision": DECISION.get(args.variant, {}),
                                      "blue": args.blue, "yellow": args.yellow, "seconds": args.seconds},
                               seeds={"seed": args.seed, "matches": args.matches})
     rows = []

@@ -16,13 +16,11 @@ follow no such shot (a deflection, a ball pushed in) are listed apart with blue'
 kick before them.
 
     python benchmarks/shot_outcome_probe.py --blue attack-learned --yellow baseline --seconds 600 \\
-        --seeds 61600-61601 --out results/tuning/shot_outcome_probe.json
+        --seeds 61600-61603 --out results/tuning/shot_outcome_probe.json
 """
 
 from __future__ import annotations
 
-import argparse
-import json
 import sys
 from collections import Counter
 from pathlib import Path
@@ -30,11 +28,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-
-
-def seed_range(text: str) -> list[int]:
-    lo, _, hi = text.partition("-")
-    return list(range(int(lo), int(hi or lo) + 1))
+from ball_out_probe import probe_args, write_probe  # noqa: E402  (the probes' shared command line)
 
 
 def probe_match(blue: str, yellow: str, seconds: float, seed: int) -> list[dict]:
@@ -151,26 +145,14 @@ def summarize(shots: list[dict]) -> dict:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--blue", default="attack-learned", help="blue team kind (default attack-learned)")
-    ap.add_argument("--yellow", default="baseline", help="yellow team kind (default baseline)")
-    ap.add_argument("--seconds", type=float, default=600.0, help="match length, s (default 600)")
-    ap.add_argument("--seeds", type=seed_range, default=seed_range("61600-61601"), help="seed range A-B (tuning seeds)")
-    ap.add_argument("--out", default=None, help="JSON output (summary and every shot)")
-    args = ap.parse_args(argv)
-    from ssl_marl.io import atomic_write_json
-    from ssl_marl.runners.provenance import build_manifest
-
+    args = probe_args(__doc__.splitlines()[0], "61600-61601", "JSON output (summary and every shot)", argv)
     shots, goals_other = [], []
     for seed in args.seeds:
         s, g = probe_match(args.blue, args.yellow, args.seconds, seed)
         shots += s
         goals_other += g
     summary = {**summarize(shots), "blue_goals_without_a_shot": len(goals_other)}
-    print(json.dumps(summary, indent=1))
-    if args.out:
-        atomic_write_json(args.out, {"summary": summary, "shots": shots, "goals_without_a_shot": goals_other, "manifest": build_manifest(
-            rules={"blue": args.blue, "yellow": args.yellow, "seconds": args.seconds}, seeds={"seeds": args.seeds})})
+    write_probe(args, {"summary": summary, "shots": shots, "goals_without_a_shot": goals_other})
     return 0
 
 

@@ -55,6 +55,22 @@ def test_path_margin_negative_with_an_opponent_on_the_lane_and_positive_without(
     assert path_margin(start, end, 0.5, np.array([[1.5, 2.5]]), RP, BP, DP) == -math.inf
 
 
+def test_receiver_guard_gives_the_last_metres_to_a_receiver_that_gets_there_first():
+    start, end = np.array([0.0, 0.0]), np.array([3.0, 0.0])
+    v0 = pass_kick_speed(3.0, BP, RP, DP)
+    guard = dataclasses.replace(DP, receiver_guard_m=0.5)
+    marker = np.array([[3.35, 0.0]])  # 0.35 m behind the receiver, as the defence's marks stand
+    assert path_margin(start, end, v0, marker, RP, BP, DP, receiver=end) < 0.0  # no guard: the marker "intercepts"
+    assert path_margin(start, end, v0, marker, RP, BP, guard, receiver=end) > 0.05
+    wide = dataclasses.replace(DP, receiver_guard_m=1.0)  # the receiver meets the ball up to 1 m ahead
+    assert path_margin(start, end, v0, marker, RP, BP, wide, receiver=end) > 0.3
+    assert path_margin(start, end, v0, marker, RP, BP, guard) < 0.0  # the guard needs the receiver
+    # an opponent on the lane, away from the receiver, still intercepts
+    assert path_margin(start, end, v0, np.array([[1.5, 0.05]]), RP, BP, guard, receiver=end) < 0.0
+    with pytest.raises(ValueError, match="receiver_guard_m"):
+        DecisionParams(receiver_guard_m=-0.1)
+
+
 def test_open_goal_interval_full_mouth_and_split_by_a_robot():
     p = np.array([2.5, 0.0])
     full, aim = open_goal_interval(p, np.zeros((0, 2)), F, RP, BP)

@@ -327,7 +327,8 @@ class PassCoordinator:
             if self._tick % p.decide_every == 0 and not (passer is not None and passer.state is PassState.KICK):
                 length = float(np.hypot(*(plan.point - ctx.ball)))
                 v0 = pass_kick_speed(length, self.bp, ctx.robot, p.decision)
-                if path_margin(ctx.ball, plan.point, v0, ctx.opp_pos, ctx.robot, self.bp, p.decision) < p.abort_margin_s:
+                if path_margin(ctx.ball, plan.point, v0, ctx.opp_pos, ctx.robot, self.bp, p.decision,
+                               receiver=ctx.our_pos[plan.receiver]) < p.abort_margin_s:
                     self._drop(t)
             return
         if t - (plan.t_kick or t) > p.max_flight_s:

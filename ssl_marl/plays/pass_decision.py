@@ -20,6 +20,13 @@ point to its end point; at each sample ``q_i`` reached at ``t_i`` by the ball, e
 opponent's margin is ``t_opp(q_i) - t_i``; the path margin is the smallest over samples
 and opponents (s; negative = an opponent gets there first). Samples closer than
 ``skip_near_m`` to the kick point are left out (the kicker's own robot shields them).
+With a receiver (a pass) and ``receiver_guard_m`` > 0, a sample within that distance of
+the receiver counts as the receiver's once the receiver gets there first: its margin is
+``t_opp(q_i) - min(t_i, t_recv(q_i))``, with ``t_recv`` the receiver's reach time (the
+opponents' model without the reaction time: the receiver knows the pass). A marker
+standing beside the receiver then no longer intercepts every pass to it (TIGERs' pass
+rating compares the receiver's and the opponents' times to the ball; docs/references.md,
+"Passing and pass rating").
 
 **Shot value** (:func:`shot_value`, in [0, 1]): from a point ``p``, the goal mouth (posts
 at ``x = L/2, y = +-goal_width/2``) minus the angular shadows of all robots other than
@@ -99,6 +106,8 @@ class DecisionParams:
         min_pass_speed: passes are kicked at least this fast (m/s).
         path_samples: samples along a ball path for the margin.
         skip_near_m: path samples closer than this to the kick point are ignored (m).
+        receiver_guard_m: path samples within this of the receiver are the receiver's
+            once it gets there first (m; 0: off, every sample is the ball's alone).
         min_open_angle, good_open_angle: open goal angle (rad) at which the angle term
             is 0 / 1 (Thunderbots shoot from >= 6 deg = 0.10 rad).
         shot_margin_lo, shot_margin_hi: shot path margin (s) at which f_margin is 0 / 1.
@@ -128,6 +137,7 @@ class DecisionParams:
     min_pass_speed: float = 2.0
     path_samples: int = 10
     skip_near_m: float = 0.15
+    receiver_guard_m: float = 0.0
     min_open_angle: float = 0.05
     good_open_angle: float = 0.20
     shot_margin_lo: float = -0.05
@@ -165,6 +175,9 @@ class DecisionParams:
         for lo, hi in pairs:
             if not getattr(self, lo) < getattr(self, hi):
                 raise ValueError(f"DecisionParams.{lo} must be smaller than DecisionParams.{hi}")
+        if not (isinstance(self.receiver_guard_m, (int, float)) and math.isfinite(self.receiver_guard_m)
+                and self.receiver_guard_m >= 0):
+            raise ValueError(f"DecisionParams.receiver_guard_m must be a finite number >= 0, got {self.receiver_guard_m!r}")
         if not (isinstance(self.path_samples, int) and self.path_samples >= 2):
             raise ValueError(f"DecisionParams.path_samples must be an integer >= 2, got {self.path_samples!r}")
 
@@ -240,10 +253,12 @@ def opponent_reach_time(opponents: np.ndarray, points: np.ndarray, rp: RobotPara
 
 
 def path_margins(start: np.ndarray, ends: np.ndarray, kick_speeds: np.ndarray, opponents: np.ndarray,
-                 rp: RobotParams, bp: BallParams, params: DecisionParams) -> np.ndarray:
+                 rp: RobotParams, bp: BallParams, params: DecisionParams,
+                 receivers: np.ndarray | None = None) -> np.ndarray:
     """(K,) smallest interception-time margin (s) of any opponent along each straight ball
     path ``start -> ends[k]`` kicked at ``kick_speeds[k]`` (m/s); inf without opponents,
-    -inf where the ball stops short of the end (see the module docstring)."""
+    -inf where the ball stops short of the end. ``receivers`` (K, 2): the robot each path
+    goes to, for ``receiver_guard_m`` (see the module docstring)."""
     start = np.asarray(start, float).reshape(2)
     ends = np.asarray(ends, float).reshape(-1, 2)
     v0 = np.asarray(kick_speeds, float).reshape(-1, 1)
@@ -259,17 +274,23 @@ def path_margins(start: np.ndarray, ends: np.ndarray, kick_speeds: np.ndarray, o
     u = rel / np.maximum(length, 1e-9)
     pts = start[None, None, :] + s[..., None] * u[:, None, :]  # (K, P, 2)
     t_opp = opponent_reach_time(opp, pts.reshape(-1, 2), rp, bp, params).reshape(opp.shape[0], *s.shape)
-    margin = (t_opp - t_ball[None]).min(axis=(0, 2))
+    t_own = t_ball
+    if receivers is not None and params.receiver_guard_m > 0:
+        r = np.asarray(receivers, float).reshape(-1, 2)
+        d = np.hypot(*(pts - r[:, None, :]).transpose(2, 0, 1))  # (K, P)
+        t_recv = motion_time(d - (rp.radius + bp.radius), rp.max_speed, rp.max_accel)
+        t_own = np.where(d <= params.receiver_guard_m, np.minimum(t_ball, t_recv), t_ball)
+    margin = (t_opp - t_own[None]).min(axis=(0, 2))
     return np.where(stops_short, -np.inf, margin)
 
 
 def path_margin(start: np.ndarray, end: np.ndarray, kick_speed: float, opponents: np.ndarray, rp: RobotParams,
-                bp: BallParams, params: DecisionParams) -> float:
+                bp: BallParams, params: DecisionParams, receiver: np.ndarray | None = None) -> float:
     """Smallest interception-time margin (s) of any opponent along the straight ball path
     ``start -> end`` kicked at ``kick_speed`` (m/s); inf without opponents; -inf if the
-    ball stops short of ``end``."""
+    ball stops short of ``end``; ``receiver``: the robot the ball goes to (a pass)."""
     return float(path_margins(start, np.asarray(end, float)[None, :], np.array([kick_speed]), opponents, rp, bp,
-                              params)[0])
+                              params, None if receiver is None else np.asarray(receiver, float)[None, :])[0])
 
 
 def pass_success(start: np.ndarray, points: np.ndarray, opponents: np.ndarray, rp: RobotParams, bp: BallParams,
@@ -420,7 +441,7 @@ def evaluate_passes(p: np.ndarray, receive_points: dict[int, np.ndarray], teamma
     out = []
     for k, q, length in pass_candidates(p, receive_points, params.min_pass_m, params.max_pass_m, field):
         v0 = pass_kick_speed(length, bp, rp, params)
-        margin = path_margin(p, q, v0, opp, rp, bp, params)
+        margin = path_margin(p, q, v0, opp, rp, bp, params, receiver=mates[k])
         if heading is not None:
             turn = abs(math.remainder(math.atan2(q[1] - p[1], q[0] - p[0]) - heading, 2.0 * math.pi))
             margin -= turn / params.turn_rate
