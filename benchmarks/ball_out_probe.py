@@ -81,9 +81,13 @@ def summarize(outs: list[dict], matches: int, seconds: float) -> dict:
             "nearest_team": {k: sum(o["nearest_team"] == k for o in outs) for k in ("blue", "yellow")}}
 
 
-def probe_args(description: str, default_seeds: str, out_help: str, argv: list[str] | None) -> argparse.Namespace:
-    """The match probes' command line: --blue, --yellow, --seconds, --seeds A-B, --out."""
+def probe_args(description: str, default_seeds: str, out_help: str, argv: list[str] | None,
+               extra=None) -> argparse.Namespace:
+    """The match probes' command line: --blue, --yellow, --seconds, --seeds A-B, --out, and
+    what ``extra(parser)`` adds."""
     ap = argparse.ArgumentParser(description=description)
+    if extra is not None:
+        extra(ap)
     ap.add_argument("--blue", default="attack-learned", help="blue team kind (default attack-learned)")
     ap.add_argument("--yellow", default="baseline", help="yellow team kind (default baseline)")
     ap.add_argument("--seconds", type=float, default=600.0, help="match length, s (default 600)")
