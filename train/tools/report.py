@@ -62,7 +62,20 @@ ATTACK_SKILL_SWAPS = ["match_attack_learned_vs_attack_baseline_600", "tuning/swa
                       "tuning/swap_aim_to_shoot_baseline",
                       "tuning/swap_pass_receive_baseline", "tuning/swap_go_to_ball_baseline",
                       "tuning/swap_go_to_ball_rolling"]
-SET_PIECE_SERIES = ["match_attack_learned_vs_baseline_600_ssl_058d181", "match_attack_learned_vs_baseline_600_ssl"]
+#: ``benchmarks/match_variants.py`` runs (label, file under results/tuning/match_variants/)
+MATCH_VARIANTS = [("plain format (play restarts at once)", "plain.json"),
+                  ("free kicks, no STOP", "free-kick.json"),
+                  ("free kicks after a 1 s STOP", "free-kick-stop.json"),
+                  ("free kicks after a 1 s STOP, fouls called", "free-kick-stop-fouls.json"),
+                  ("plain, the carrier keeps up to 2 s (`max_keep_s`)", "keep-2s.json"),
+                  ("plain, an expired keep never shoots", "keep-inf.json"),
+                  ("plain, an expired keep passes (`keep_expiry=\"pass\"`)", "keep-pass.json"),
+                  ("plain format, 10 more seeds", "seeds61510/plain.json"),
+                  ("free kicks after a 1 s STOP, 10 more seeds", "seeds61510/free-kick-stop.json"),
+                  ("plain, passes rated with a 1 m receiver guard (`receiver_guard_m`)", "receiver-guard.json"),
+                  ("the same, 10 more seeds", "seeds61510/receiver-guard.json")]
+SET_PIECE_SERIES = ["match_attack_learned_vs_baseline_600_ssl_058d181", "match_attack_learned_vs_baseline_600_ssl",
+                    "match_attack_learned_vs_baseline_600_ssl_20261127"]
 KEEPAWAY = [("random", "keepaway_random"), ("always-hold", "keepaway_always-hold"),
             ("hand-coded", "keepaway_handcoded"), ("learned (shipped `keepaway.pt`, MAPPO seed 1)", "keepaway_learned")]
 ATTACK = [("hand-coded (cost decision, shot threshold 0.25)", "attack_3v2_handcoded_snap"),
@@ -116,6 +129,9 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "attack_series": lambda r: t.series_600(r, ATTACK_SERIES),
     "decision_series": lambda r: t.series_600(r, DECISION_SERIES),
     "attack_targets": lambda r: t.series_600(r, ATTACK_TARGETS),
+    "match_variants": lambda r: t.match_variants(r, MATCH_VARIANTS),
+    "shot_outcomes": lambda r: t.shot_outcomes(r / "tuning" / "shot_outcome_probe.json"),
+    "pass_options": lambda r: t.pass_options(r, ["pass_option_probe.json", "pass_option_probe_guard1.json"]),
     "set_piece_series": lambda r: t.set_piece_series(r, SET_PIECE_SERIES),
     "attack_skill_swaps": lambda r: t.series_600(r, ATTACK_SKILL_SWAPS),
     "go_to_ball_rolling_selection": lambda r: t.rolling_selection(r, {

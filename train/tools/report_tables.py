@@ -228,6 +228,63 @@ def tuning(results: Path, entries: Iterable[tuple[str, str, str | None]]) -> Lin
     return rows
 
 
+def match_variants(results: Path, entries: Iterable[tuple[str, str]]) -> Lines:
+    """Tuning matches under variants of the restarts and the carrier's keep rule
+    (``benchmarks/match_variants.py``; ``results/tuning/match_variants/<file>``): (label, file)."""
+    rows = _head("variant", "commit", "seeds", "matches", "W-D-L (blue)", "goals for-against",
+                 "goal diff per 600 s [95% CI]", "ball-outs per match", "blue shots per match",
+                 "blue passes completed (the referee's count)")
+    for label, file in entries:
+        d = json.loads((results / "tuning" / "match_variants" / file).read_text())
+        s, seeds = d["summary"], [m["seed"] for m in d["matches"]]
+        lo, hi = s["goal_diff_per_600s_ci95"]
+        outs = "-" if s["ball_outs_per_match"] is None else f"{s['ball_outs_per_match']:.0f}"
+        ms = d["matches"]
+        passes = "-"
+        if all("passes_attempted" in m["blue"] for m in ms):
+            done, tried = (sum(m["blue"][k] for m in ms) for k in ("passes_completed", "passes_attempted"))
+            passes = f"{done} of {tried} ({100 * done / max(tried, 1):.0f} %)"
+        git = d["manifest"]["git"]
+        commit = git["commit"][:7] + ("+" if git.get("dirty") else "")  # +: uncommitted changes in the tree
+        rows.append(f"| {label} | {commit} | {min(seeds)}-{max(seeds)} | {s['matches']} | "
+                    f"{s['wins']}-{s['draws']}-{s['losses']} | {s['goals_for']}-{s['goals_against']} | "
+                    f"{s['goal_diff_per_600s']:+.2f} [{lo:+.2f}, {hi:+.2f}] | {outs} | {s['blue_shots_per_match']:.1f} | "
+                    f"{passes} |")
+    return rows
+
+
+def shot_outcomes(path: Path) -> Lines:
+    """``benchmarks/shot_outcome_probe.py``'s summary: where the blue shots came from and how they ended."""
+    d = json.loads(path.read_text())
+    s, seeds = d["summary"], d["manifest"]["seeds"]["seeds"]
+    o = s["outcomes"]
+    rows = _head("seeds", "shots", "on target", "open < 0.05 rad", "from own half", "from the scoring zone",
+                 "after the carrier's decision: shoot / dribble / pass / none",
+                 "ended: goal / keeper / defender / teammate / out / stopped", "blue goals from no shot")
+    dec = s["after_decision"]
+    rows.append(f"| {min(seeds)}-{max(seeds)} | {s['shots']} | {s['on_target']} | {s['open_below_0_05rad']} | "
+                f"{s['from_own_half']} | {s['from_scoring_zone']} | "
+                f"{' / '.join(str(dec.get(k, 0)) for k in ('shoot', 'dribble', 'pass', 'none'))} | "
+                f"{' / '.join(str(o.get(k, 0)) for k in ('goal', 'keeper', 'defender', 'teammate', 'out', 'stopped'))} | "
+                f"{s['blue_goals_without_a_shot']} |")
+    return rows
+
+
+def pass_options(results: Path, files: Iterable[str]) -> Lines:
+    """``benchmarks/pass_option_probe.py`` records (``results/tuning/<file>``): the pass options
+    the attacking carrier's decision rated and its choices."""
+    rows = _head("receiver guard (m)", "seeds", "decisions", "flat passes rated: eligible (success >= 0.35)",
+                 "passes into a redirect rated: eligible", "choices: shoot / dribble / pass / chip / redirect")
+    for file in files:
+        d = json.loads((results / "tuning" / file).read_text())
+        s, seeds = d["summary"], d["manifest"]["seeds"]["seeds"]
+        pct = lambda a, b: f"{s[a]} of {s[b]} ({100 * s[a] / max(s[b], 1):.1f} %)"  # noqa: E731
+        rows.append(f"| {s['receiver_guard_m']:g} | {min(seeds)}-{max(seeds)} | {s['decisions']} | "
+                    f"{pct('flat_options_eligible', 'flat_options')} | {pct('redirect_options_eligible', 'redirect_options')} | "
+                    f"{' / '.join(str(s.get('choice_' + k, 0)) for k in ('shoot', 'dribble', 'pass', 'chip', 'redirect'))} |")
+    return rows
+
+
 # ------------------------------------------------------------------ decision tasks
 def keepaway(results: Path, entries: Iterable[tuple[str, str]]) -> Lines:
     rows = _head("keepers", "run", "episodes", "mean duration (s) [95 % t-interval]", "median", "p95", "max",
