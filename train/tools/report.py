@@ -73,7 +73,10 @@ MATCH_VARIANTS = [("plain format (play restarts at once)", "plain.json"),
                   ("plain format, 10 more seeds", "seeds61510/plain.json"),
                   ("free kicks after a 1 s STOP, 10 more seeds", "seeds61510/free-kick-stop.json"),
                   ("plain, passes rated with a 1 m receiver guard (`receiver_guard_m`)", "receiver-guard.json"),
-                  ("the same, 10 more seeds", "seeds61510/receiver-guard.json")]
+                  ("the same, 10 more seeds", "seeds61510/receiver-guard.json"),
+                  ("self-play, plain format", ("selfplay/plain-61530.json", "selfplay/plain-61535.json")),
+                  ("self-play, both teams with the 1 m receiver guard",
+                   ("selfplay/receiver-guard-61530.json", "selfplay/receiver-guard-61535.json"))]
 SET_PIECE_SERIES = ["match_attack_learned_vs_baseline_600_ssl_058d181", "match_attack_learned_vs_baseline_600_ssl",
                     "match_attack_learned_vs_baseline_600_ssl_20261127"]
 KEEPAWAY = [("random", "keepaway_random"), ("always-hold", "keepaway_always-hold"),

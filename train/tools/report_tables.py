@@ -228,28 +228,36 @@ def tuning(results: Path, entries: Iterable[tuple[str, str, str | None]]) -> Lin
     return rows
 
 
-def match_variants(results: Path, entries: Iterable[tuple[str, str]]) -> Lines:
+def match_variants(results: Path, entries: Iterable[tuple[str, str | tuple[str, ...]]]) -> Lines:
     """Tuning matches under variants of the restarts and the carrier's keep rule
-    (``benchmarks/match_variants.py``; ``results/tuning/match_variants/<file>``): (label, file)."""
-    rows = _head("variant", "commit", "seeds", "matches", "W-D-L (blue)", "goals for-against",
+    (``benchmarks/match_variants.py``; ``results/tuning/match_variants/<file>``): (label, file
+    or files whose matches are pooled)."""
+    from ssl_marl.runners.statistics import series_statistics
+
+    rows = _head("variant", "commit", "blue vs yellow", "seeds", "matches", "W-D-L (blue)", "goals for-against",
                  "goal diff per 600 s [95% CI]", "ball-outs per match", "blue shots per match",
                  "blue passes completed (the referee's count)")
-    for label, file in entries:
-        d = json.loads((results / "tuning" / "match_variants" / file).read_text())
-        s, seeds = d["summary"], [m["seed"] for m in d["matches"]]
-        lo, hi = s["goal_diff_per_600s_ci95"]
-        outs = "-" if s["ball_outs_per_match"] is None else f"{s['ball_outs_per_match']:.0f}"
-        ms = d["matches"]
+    for label, files in entries:
+        recs = [json.loads((results / "tuning" / "match_variants" / f).read_text())
+                for f in ((files,) if isinstance(files, str) else files)]
+        ms = [m for d in recs for m in d["matches"]]
+        rules = recs[0]["manifest"]["rules"]
+        commits = sorted({d["manifest"]["git"]["commit"][:7] + ("+" if d["manifest"]["git"].get("dirty") else "")
+                          for d in recs})  # +: uncommitted changes in the tree
+        st = series_statistics([m["score"]["blue"] for m in ms], [m["score"]["yellow"] for m in ms],
+                               float(rules["seconds"]))
+        lo, hi = st["goal_diff_per_600s_ci95"]
+        outs = (f"{sum(m['referee'].get('ball_out', 0) for m in ms) / len(ms):.0f}"
+                if all(m["referee"] for m in ms) else "-")
         passes = "-"
         if all("passes_attempted" in m["blue"] for m in ms):
             done, tried = (sum(m["blue"][k] for m in ms) for k in ("passes_completed", "passes_attempted"))
             passes = f"{done} of {tried} ({100 * done / max(tried, 1):.0f} %)"
-        git = d["manifest"]["git"]
-        commit = git["commit"][:7] + ("+" if git.get("dirty") else "")  # +: uncommitted changes in the tree
-        rows.append(f"| {label} | {commit} | {min(seeds)}-{max(seeds)} | {s['matches']} | "
-                    f"{s['wins']}-{s['draws']}-{s['losses']} | {s['goals_for']}-{s['goals_against']} | "
-                    f"{s['goal_diff_per_600s']:+.2f} [{lo:+.2f}, {hi:+.2f}] | {outs} | {s['blue_shots_per_match']:.1f} | "
-                    f"{passes} |")
+        seeds = [m["seed"] for m in ms]
+        rows.append(f"| {label} | {', '.join(commits)} | {rules['blue']} vs {rules['yellow']} | {min(seeds)}-{max(seeds)} | "
+                    f"{len(ms)} | {st['wins']}-{st['draws']}-{st['losses']} | {st['goals_for']}-{st['goals_against']} | "
+                    f"{st['goal_diff_per_600s']:+.2f} [{lo:+.2f}, {hi:+.2f}] | {outs} | "
+                    f"{sum(m['blue']['shots'] for m in ms) / len(ms):.1f} | {passes} |")
     return rows
 
 
