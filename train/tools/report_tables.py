@@ -254,10 +254,11 @@ def match_variants(results: Path, entries: Iterable[tuple[str, str | tuple[str, 
             done, tried = (sum(m["blue"][k] for m in ms) for k in ("passes_completed", "passes_attempted"))
             passes = f"{done} of {tried} ({100 * done / max(tried, 1):.0f} %)"
         seeds = [m["seed"] for m in ms]
-        rows.append(f"| {label} | {', '.join(commits)} | {rules['blue']} vs {rules['yellow']} | {min(seeds)}-{max(seeds)} | "
-                    f"{len(ms)} | {st['wins']}-{st['draws']}-{st['losses']} | {st['goals_for']}-{st['goals_against']} | "
-                    f"{st['goal_diff_per_600s']:+.2f} [{lo:+.2f}, {hi:+.2f}] | {outs} | "
-                    f"{sum(m['blue']['shots'] for m in ms) / len(ms):.1f} | {passes} |")
+        cells = [label, ", ".join(commits), f"{rules['blue']} vs {rules['yellow']}", f"{min(seeds)}-{max(seeds)}",
+                 str(len(ms)), f"{st['wins']}-{st['draws']}-{st['losses']}", f"{st['goals_for']}-{st['goals_against']}",
+                 f"{st['goal_diff_per_600s']:+.2f} [{lo:+.2f}, {hi:+.2f}]", outs,
+                 f"{sum(m['blue']['shots'] for m in ms) / len(ms):.1f}", passes]
+        rows.append("| " + " | ".join(cells) + " |")
     return rows
 
 
