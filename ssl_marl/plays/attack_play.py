@@ -84,7 +84,9 @@ class AttackDecider:
     """:class:`~ssl_marl.plays.pass_coordinator.CarrierDecider` of the attacking plays:
     :func:`~ssl_marl.plays.attack_decision.decide_attack` on the request, answered as a
     :class:`~ssl_marl.plays.pass_decision.Decision` (any pass kind -> PASS, dribble ->
-    KEEP); the chosen option stays in :attr:`option` for the passer and receiver roles."""
+    KEEP); the chosen pass (or a keep's best eligible pass, which an expired keep may turn
+    into: ``PassingParams.keep_expiry``) stays in :attr:`option` for the passer and
+    receiver roles."""
 
     def __init__(self, params: AttackParams | None = None) -> None:
         self.params = params or AttackParams()
@@ -104,18 +106,16 @@ class AttackDecider:
                           self.request_params(request), candidates=request.candidates, heading=request.heading)
         self.last = d
         self.counters.count(d.choice)
-        if d.best is not None and d.choice in (AttackChoice.PASS, AttackChoice.CHIP, AttackChoice.REDIRECT):
-            self.option = d.best
-            b = d.best
-            best = PassOption(b.teammate, b.point, b.kick_speed, 0.0, b.success, 0.0, b.value)
-            return Decision(Choice.PASS, d.shot, d.keep, (best,), best)
-        choice = Choice.SHOOT if d.choice is AttackChoice.SHOOT else Choice.KEEP
-        if choice is Choice.KEEP and d.best is not None:  # the best eligible pass, for an expired KEEP
-            self.option = d.best
-            b = d.best
-            best = PassOption(b.teammate, b.point, b.kick_speed, 0.0, b.success, 0.0, b.value)
-            return Decision(choice, d.shot, d.keep, (best,), best)
-        return Decision(choice, d.shot, d.keep)
+        if d.choice in (AttackChoice.PASS, AttackChoice.CHIP, AttackChoice.REDIRECT) and d.best is not None:
+            choice = Choice.PASS
+        else:
+            choice = Choice.SHOOT if d.choice is AttackChoice.SHOOT else Choice.KEEP
+        if choice is Choice.SHOOT or d.best is None:
+            return Decision(choice, d.shot, d.keep)
+        # a pass, or a keep with its best eligible pass (the pass an expired keep may become)
+        self.option = b = d.best
+        best = PassOption(b.teammate, b.point, b.kick_speed, 0.0, b.success, 0.0, b.value)
+        return Decision(choice, d.shot, d.keep, (best,), best)
 
 
 class SpotPlanner:
