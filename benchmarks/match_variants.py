@@ -15,7 +15,9 @@ match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
 * ``keep-pass``: the plain format with ``keep_expiry="pass"`` (an expired keep becomes the
   decision's best eligible pass while the shot is worth less than ``shoot_fallback``);
 * ``receiver-guard``: the plain format with the decisions' ``receiver_guard_m`` at 1 m (a
-  pass's last metre is the receiver's where it gets there before the opponents).
+  pass's last metre is the receiver's where it gets there before the opponents);
+* ``ssl`` / ``ssl-receiver-guard``: the SSL format (``--format ssl``: halves, STOP, free kicks,
+  fouls), without and with the 1 m receiver guard.
 
 Writes per match the score, the blue team's statistics and the referee's counts, and a
 summary: :func:`ssl_marl.runners.statistics.series_statistics` (win-draw-loss, goals, the goal
@@ -44,10 +46,12 @@ RULES = {"plain": {}, "free-kick": {"ssl_restarts": True, "stop_s": 0.0},
          "free-kick-stop": {"ssl_restarts": True, "stop_s": 1.0},
          "free-kick-stop-fouls": {"ssl_restarts": True, "stop_s": 1.0, "fouls": True},
          "keep-2s": {}, "keep-inf": {}, "keep-pass": {}, "receiver-guard": {}}
+#: the match format of each variant (:func:`ssl_marl.runners.match.format_options`; default plain)
+FORMAT = {"ssl": "ssl", "ssl-receiver-guard": "ssl"}
 #: ``ATTACK_PASSING`` fields of each variant
 PASSING = {"keep-2s": {"max_keep_s": 2.0}, "keep-inf": {"max_keep_s": math.inf}, "keep-pass": {"keep_expiry": "pass"}}
 #: ``ATTACK_PASSING.decision`` and ``.restart_decision`` fields of each variant
-DECISION = {"receiver-guard": {"receiver_guard_m": 1.0}}
+DECISION = {"receiver-guard": {"receiver_guard_m": 1.0}, "ssl-receiver-guard": {"receiver_guard_m": 1.0}}
 
 
 def summarize(rows: list[dict], seconds: float) -> dict:
@@ -60,7 +64,7 @@ def summarize(rows: list[dict], seconds: float) -> dict:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("variant", choices=sorted(RULES), help="the variant (module docstring)")
+    ap.add_argument("variant", choices=sorted({*RULES, *FORMAT}), help="the variant (module docstring)")
     ap.add_argument("--blue", default="attack-learned", help="blue team kind (default attack-learned)")
     ap.add_argument("--yellow", default="baseline", help="yellow team kind (default baseline)")
     ap.add_argument("--seed", type=int, default=61500, help="first seed (tuning seeds; default 61500)")
@@ -70,9 +74,10 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
     from ssl_marl.io import atomic_write_json
     from ssl_marl.plays import attack_play
-    from ssl_marl.runners.match import play_match
+    from ssl_marl.runners.match import format_options, play_match
     from ssl_marl.runners.provenance import build_manifest
 
+    env = {**format_options(FORMAT.get(args.variant, "plain"), args.seconds), **RULES.get(args.variant, {})}
     if args.variant in PASSING:
         attack_play.ATTACK_PASSING = dataclasses.replace(attack_play.ATTACK_PASSING, **PASSING[args.variant])
     if args.variant in DECISION:
@@ -80,7 +85,7 @@ def main(argv: list[str] | None = None) -> int:
         attack_play.ATTACK_PASSING = dataclasses.replace(
             ap_, decision=dataclasses.replace(ap_.decision, **DECISION[args.variant]),
             restart_decision=dataclasses.replace(ap_.restart_decision, **DECISION[args.variant]))
-    manifest = build_manifest(rules={"variant": args.variant, "env": RULES[args.variant],
+    manifest = build_manifest(rules={"variant": args.variant, "env": env,
                                      "attack_passing": {k: str(v) for k, v in PASSING.get(args.variant, {}).items()},
                                      "decision": DECISION.get(args.variant, {}),
                                      "blue": args.blue, "yellow": args.yellow, "seconds": args.seconds},
@@ -89,7 +94,7 @@ def main(argv: list[str] | None = None) -> int:
     for i in range(args.matches):
         t0 = time.time()
         r = play_match(args.blue, args.yellow, robots=6, seconds=args.seconds, seed=args.seed + i, render=None,
-                       progress=False, env_kwargs=dict(RULES[args.variant]))
+                       progress=False, env_kwargs=dict(env))
         rows.append({"seed": args.seed + i, "score": r.score, "blue": {k: v for k, v in r.stats["blue"].items()},
                      "referee": r.stats.get("referee", {}), "wall_s": round(time.time() - t0, 1)})
         print(args.variant, args.seed + i, r.score, flush=True)
