@@ -76,7 +76,10 @@ MATCH_VARIANTS = [("plain format (play restarts at once)", "plain.json"),
                   ("the same, 10 more seeds", "seeds61510/receiver-guard.json"),
                   ("self-play, plain format", ("selfplay/plain-61530.json", "selfplay/plain-61535.json")),
                   ("self-play, both teams with the 1 m receiver guard",
-                   ("selfplay/receiver-guard-61530.json", "selfplay/receiver-guard-61535.json"))]
+                   ("selfplay/receiver-guard-61530.json", "selfplay/receiver-guard-61535.json")),
+                  ("self-play, SSL format", ("selfplay/ssl-61540.json", "selfplay/ssl-61545.json")),
+                  ("self-play, SSL format, both teams with the 1 m receiver guard",
+                   ("selfplay/ssl-receiver-guard-61540.json", "selfplay/ssl-receiver-guard-61545.json"))]
 SET_PIECE_SERIES = ["match_attack_learned_vs_baseline_600_ssl_058d181", "match_attack_learned_vs_baseline_600_ssl",
                     "match_attack_learned_vs_baseline_600_ssl_20261127"]
 KEEPAWAY = [("random", "keepaway_random"), ("always-hold", "keepaway_always-hold"),
