@@ -241,15 +241,20 @@ def motion_time(d: np.ndarray, v_max: float, accel: float) -> np.ndarray:
     return np.where(d <= d_acc, np.sqrt(2.0 * d / accel), d / v_max + v_max / (2.0 * accel))
 
 
+def body_reach_time(d: np.ndarray, rp: RobotParams, bp: BallParams, v_max: float, accel: float) -> np.ndarray:
+    """Time (s) for a robot whose centre is ``d`` m from a point to put its body on the ball
+    there (the distance less robot + ball radius, from rest; no reaction time)."""
+    return motion_time(np.asarray(d, float) - (rp.radius + bp.radius), v_max, accel)
+
+
 def opponent_reach_time(opponents: np.ndarray, points: np.ndarray, rp: RobotParams, bp: BallParams,
                         params: DecisionParams) -> np.ndarray:
     """(O, P) time (s) for each opponent (O, 2) to put its body on each point (P, 2)."""
     o = np.asarray(opponents, float).reshape(-1, 2)
     q = np.asarray(points, float).reshape(-1, 2)
-    d = np.hypot(o[:, None, 0] - q[None, :, 0], o[:, None, 1] - q[None, :, 1]) - (rp.radius + bp.radius)
-    v = params.opp_speed or rp.max_speed
-    a = params.opp_accel or rp.max_accel
-    return params.opp_reaction_s + motion_time(d, v, a)
+    d = np.hypot(o[:, None, 0] - q[None, :, 0], o[:, None, 1] - q[None, :, 1])
+    return params.opp_reaction_s + body_reach_time(d, rp, bp, params.opp_speed or rp.max_speed,
+                                                   params.opp_accel or rp.max_accel)
 
 
 def path_margins(start: np.ndarray, ends: np.ndarray, kick_speeds: np.ndarray, opponents: np.ndarray,
@@ -277,8 +282,8 @@ def path_margins(start: np.ndarray, ends: np.ndarray, kick_speeds: np.ndarray, o
     t_own = t_ball
     if receivers is not None and params.receiver_guard_m > 0:
         r = np.asarray(receivers, float).reshape(-1, 2)
-        d = np.hypot(*(pts - r[:, None, :]).transpose(2, 0, 1))  # (K, P)
-        t_recv = motion_time(d - (rp.radius + bp.radius), rp.max_speed, rp.max_accel)
+        d = np.linalg.norm(pts - r[:, None, :], axis=-1)  # (K, P)
+        t_recv = body_reach_time(d, rp, bp, rp.max_speed, rp.max_accel)
         t_own = np.where(d <= params.receiver_guard_m, np.minimum(t_ball, t_recv), t_ball)
     margin = (t_opp - t_own[None]).min(axis=(0, 2))
     return np.where(stops_short, -np.inf, margin)
@@ -499,7 +504,7 @@ def choose(shot: float, keep: float, options: tuple, params: DecisionParams) -> 
     return Choice.KEEP, best
 
 
-__all__ = ["DecisionParams", "Choice", "PassOption", "Decision", "motion_time", "opponent_reach_time",
+__all__ = ["DecisionParams", "Choice", "PassOption", "Decision", "motion_time", "body_reach_time", "opponent_reach_time",
            "path_margins", "path_margin", "pass_success", "pass_kick_speeds", "open_goal_interval", "shot_value",
            "pass_kick_speed", "keep_value", "valid_receive_point", "pass_candidates", "margin_success",
            "receive_value", "teammates_except", "evaluate_passes", "choose", "decide"]
