@@ -54,6 +54,19 @@ PASSING = {"keep-2s": {"max_keep_s": 2.0}, "keep-inf": {"max_keep_s": math.inf},
 DECISION = {"receiver-guard": {"receiver_guard_m": 1.0}, "ssl-receiver-guard": {"receiver_guard_m": 1.0}}
 
 
+def set_attack_passing(passing: dict | None = None, decision: dict | None = None) -> None:
+    """Replace the attacking plays' ``ATTACK_PASSING`` (read when a team is built) by a copy
+    with the ``passing`` fields and, in both its open-play and restart decision parameters,
+    the ``decision`` fields."""
+    from ssl_marl.plays import attack_play
+
+    ap = dataclasses.replace(attack_play.ATTACK_PASSING, **(passing or {}))
+    if decision:
+        ap = dataclasses.replace(ap, decision=dataclasses.replace(ap.decision, **decision),
+                                 restart_decision=dataclasses.replace(ap.restart_decision, **decision))
+    attack_play.ATTACK_PASSING = ap
+
+
 def summarize(rows: list[dict], seconds: float) -> dict:
     from ssl_marl.runners.statistics import series_statistics
 
@@ -73,18 +86,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--out", required=True, help="JSON output (rewritten after every match)")
     args = ap.parse_args(argv)
     from ssl_marl.io import atomic_write_json
-    from ssl_marl.plays import attack_play
     from ssl_marl.runners.match import format_options, play_match
     from ssl_marl.runners.provenance import build_manifest
 
     env = {**format_options(FORMAT.get(args.variant, "plain"), args.seconds), **RULES.get(args.variant, {})}
-    if args.variant in PASSING:
-        attack_play.ATTACK_PASSING = dataclasses.replace(attack_play.ATTACK_PASSING, **PASSING[args.variant])
-    if args.variant in DECISION:
-        ap_ = attack_play.ATTACK_PASSING
-        attack_play.ATTACK_PASSING = dataclasses.replace(
-            ap_, decision=dataclasses.replace(ap_.decision, **DECISION[args.variant]),
-            restart_decision=dataclasses.replace(ap_.restart_decision, **DECISION[args.variant]))
+    set_attack_passing(PASSING.get(args.variant), DECISION.get(args.variant))
     manifest = build_manifest(rules={"variant": args.variant, "env": env,
                                      "attack_passing": {k: str(v) for k, v in PASSING.get(args.variant, {}).items()},
                                      "decision": DECISION.get(args.variant, {}),
@@ -95,7 +101,7 @@ def main(argv: list[str] | None = None) -> int:
         t0 = time.time()
         r = play_match(args.blue, args.yellow, robots=6, seconds=args.seconds, seed=args.seed + i, render=None,
                        progress=False, env_kwargs=dict(env))
-        rows.append({"seed": args.seed + i, "score": r.score, "blue": {k: v for k, v in r.stats["blue"].items()},
+        rows.append({"seed": args.seed + i, "score": r.score, "blue": dict(r.stats["blue"]),
                      "referee": r.stats.get("referee", {}), "wall_s": round(time.time() - t0, 1)})
         print(args.variant, args.seed + i, r.score, flush=True)
         atomic_write_json(args.out, {"summary": summarize(rows, args.seconds), "matches": rows, "manifest": manifest})

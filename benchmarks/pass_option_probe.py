@@ -13,13 +13,13 @@ receiver shot value >= ``min_redirect_shot``), and the decisions' choices. With
 
 from __future__ import annotations
 
-import dataclasses
 import sys
 from collections import Counter
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from ball_out_probe import probe_args, write_probe  # noqa: E402  (the probes' shared command line)
+from match_variants import set_attack_passing  # noqa: E402
 
 
 def probe_match(blue: str, yellow: str, seconds: float, seed: int) -> Counter:
@@ -59,12 +59,7 @@ def main(argv: list[str] | None = None) -> int:
     args = probe_args(__doc__.splitlines()[0], "61620-61621", "JSON output (summary per match and in all)", argv, extra)
     guard = args.receiver_guard
     if guard:
-        from ssl_marl.plays import attack_play
-
-        ap = attack_play.ATTACK_PASSING
-        attack_play.ATTACK_PASSING = dataclasses.replace(
-            ap, decision=dataclasses.replace(ap.decision, receiver_guard_m=guard),
-            restart_decision=dataclasses.replace(ap.restart_decision, receiver_guard_m=guard))
+        set_attack_passing(decision={"receiver_guard_m": guard})
     per_match = {s: probe_match(args.blue, args.yellow, args.seconds, s) for s in args.seeds}
     total = sum(per_match.values(), Counter())
     write_probe(args, {"summary": {"receiver_guard_m": guard, **dict(total)},
