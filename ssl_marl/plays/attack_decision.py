@@ -12,9 +12,10 @@ times, path margins, shot value and pass value). Every option's value is
   pass success of :func:`~ssl_marl.plays.pass_decision.evaluate_passes` and
   ``result(q) = w_receiver_shot * shot_value(q) + w_progress * progress + w_possession``
   (:func:`~ssl_marl.plays.pass_decision.receive_value`).
-* **Chip pass** to ``k``: ``P_chip * chip_receive_factor * result(q)``. The chip is
-  kicked at the steepest elevation in ``chip_angles`` whose 3-D speed stays under the
-  kicker cap with the first bounce ``land_short_m`` short of ``q`` (drag-free
+* **Chip pass** to ``k``: ``P_chip * chip_receive_factor * result(q)``. The option
+  models the chip as kicked at the steepest elevation in ``chip_angles`` whose 3-D speed
+  stays under the kicker cap with the first bounce ``land_short_m`` short of ``q`` (the
+  play's chip-pass skill chooses the kick itself, over the lane's blocker; drag-free
   projectile, :mod:`ssl_marl.physics.ball_flight`: first touchdown after
   ``2 v^2 sin a cos a / g``). ``P_chip`` maps the chip path's margin like a flat pass:
   along the path, the ball's lowest point is at ``z(s) = s tan a - g s^2 / (2 v_h^2)``

@@ -7,7 +7,7 @@ pass/receive handshake; restart, offense and defense plays) with three changes:
 
 * the carrier decides with :class:`AttackDecider` (the cost functions of
   :mod:`~ssl_marl.plays.attack_decision`); a flat, chip or redirect pass opens the
-  coordinator's pass plan, the kind and its kick are remembered for the roles;
+  coordinator's pass plan, the chosen option is remembered for the roles;
 * the ``passer`` role runs :class:`~ssl_marl.plays.chip_pass_tactic.ChipPass` (for a
   chosen chip the chip-pass skill, which picks the chip's speed and elevation itself;
   else the pass skill) and the ``receiver`` role
