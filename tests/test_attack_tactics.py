@@ -214,3 +214,14 @@ def test_attack_team_takes_its_free_kick_as_a_set_piece():
     assert fk_seen and restart_plans > 0  # planned while the ball still rested at the spot
     assert coord.counters.kicked == 1 and attack_decider_of(blue.selector.plays).counters.shoot == 0
     assert not fouls
+
+
+def test_learned_redirect_copies_do_not_share_their_contact_planner():
+    """Tactics get copies of one learned redirect prototype; each copy plans its own contact."""
+    from ssl_marl.plays.skillset import make_tactic_skill
+
+    a, b = (make_tactic_skill("redirect", "learned", F) for _ in range(2))
+    assert a.policy is b.policy and a._base is not b._base
+    a._base._contact = np.array([1.0, 0.0])
+    b.reset()
+    assert a._base._contact is not None
