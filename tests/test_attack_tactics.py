@@ -79,6 +79,36 @@ def test_chip_pass_tactic_without_a_chip_passes_flat_into_the_blocker():
     assert over == 0.0 and landing is None and touched
 
 
+@pytest.mark.parametrize("blocker_x", [0.0, 0.5, 1.0])
+def test_the_decisions_chip_is_the_one_the_chip_pass_tactic_kicks(blocker_x):
+    """On the scene of the chip tests, the attack decision offers a chip to the receiver;
+    the ChipPass tactic (hand-coded chip-pass skill) told that pass kicks a chip of the
+    option's speed and elevation (up to one step of the skill's grid: the dribbled ball
+    moves a little before the kick)."""
+    from ssl_marl.plays.attack_decision import AttackChoice, decide_attack
+
+    env, rp = _chip_env(2, 1)
+    ball = ball_in_front(-1.0, 0.0, 0.0)
+    env.reset(seed=0, options={"ball": {"pos": ball}, "robots": {"blue_0": (-1.0, 0.0, 0.0),
+                                                                   "blue_1": (2.5, 0.0, math.pi),
+                                                                   "yellow_0": (blocker_x, 0.0, math.pi)}})
+    w = env.vision_state("blue")
+    d = decide_attack(w.ball_pos, 0, w.blue.pos, w.yellow.pos, F, rp, BP, candidates=(1,), heading=0.0)
+    chip = next(o for o in d.options if o.kind is AttackChoice.CHIP)
+    target = (float(chip.point[0]), float(chip.point[1]))
+    passer = ChipPass(F, rp, BP, skills="baseline", target_robot=1, target_point=target, receiver_ready=True,
+                      chip=True)
+    for _ in range(3 * 60):
+        a = passer.act(env.vision_state("blue"), 0)
+        if a[4] > 0.0:
+            break
+        env.step({"blue_0": a, "blue_1": np.zeros(6), "yellow_0": np.zeros(6)})
+    assert a[4] > 0.0 and a[5] > 0.0
+    speed_step, angle_step = (rp.kick_speed_max - 1.0) / 55, (rp.chip_angle_max - math.radians(15.0)) / 45
+    assert float(a[4]) * rp.kick_speed_max == pytest.approx(chip.kick_speed, abs=speed_step + 1e-6)
+    assert float(a[5]) * rp.chip_angle_max == pytest.approx(chip.chip_angle, abs=angle_step + 1e-6)
+
+
 @pytest.mark.parametrize("skills, keeper", [("baseline", None), ("baseline", (4.4, -0.2, math.pi)),
                                              ("learned", None), ("learned", (4.4, 0.0, math.pi))])
 def test_redirect_tactic_sends_an_incoming_pass_into_the_goal(skills, keeper):
