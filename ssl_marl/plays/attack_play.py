@@ -6,7 +6,8 @@ builds (a shared :class:`~ssl_marl.plays.pass_coordinator.PassCoordinator` with 
 pass/receive handshake; restart, offense and defense plays) with three changes:
 
 * the carrier decides with :class:`AttackDecider` (the cost functions of
-  :mod:`~ssl_marl.plays.attack_decision`); a flat, chip or redirect pass opens the
+  :mod:`~ssl_marl.plays.attack_decision`; a chip is an option only where the
+  hand-coded chip-pass skill kicks one); a flat, chip or redirect pass opens the
   coordinator's pass plan, the chosen option is remembered for the roles;
 * the ``passer`` role runs :class:`~ssl_marl.plays.chip_pass_tactic.ChipPass` (for a
   chosen chip the chip-pass skill, which picks the chip's speed and elevation itself;
