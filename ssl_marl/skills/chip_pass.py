@@ -127,8 +127,8 @@ def lane_blocker(world: WorldState, target: np.ndarray, half_width: float = LANE
 
 def lane_chip(ball: np.ndarray, target: np.ndarray, opponents: np.ndarray, rp: RobotParams, bp: BallParams,
               clearance: float = CHIP_CLEARANCE, land_short: float = CHIP_LAND_SHORT) -> ChipKick | None:
-    """The hand-coded chip from ``ball`` to a receiver whose face is at ``target`` (m,
-    the frame of the inputs): :func:`chip_kick` over the lane's blocker
+    """The hand-coded chip from ``ball`` to a receiver at ``target`` (m, the frame of the
+    inputs): :func:`chip_kick` over the lane's blocker
     (:func:`lane_blocker_at` of ``opponents`` (k, 2), its distance along the lane from
     the ball) landing ``land_short`` (m) short of the receiver's face (``rp.front_distance
     + bp.radius`` before ``target``); None where no chip fits (a short pass, a blocker
