@@ -7,9 +7,9 @@ import pytest
 
 from ssl_marl.physics.field import FieldGeometry
 from ssl_marl.physics.params import BallParams, RobotParams
-from ssl_marl.plays.attack_decision import (AttackChoice, AttackParams, chip_kick, chip_margin, decide_attack,
-                                            redirect_factor)
+from ssl_marl.plays.attack_decision import AttackChoice, AttackParams, chip_margin, decide_attack, redirect_factor
 from ssl_marl.plays.pass_decision import DecisionParams
+from ssl_marl.skills.chip_pass import chip_kick, lane_chip
 
 F = FieldGeometry.div_b()
 RP, BP = RobotParams(), BallParams()
@@ -21,21 +21,49 @@ def test_redirect_factor_follows_the_rating():
     assert redirect_factor(1.2) == 0.0 and redirect_factor(2.0) == 0.0
 
 
-def test_chip_kick_lands_short_of_the_receiver():
-    speed, d_land = chip_kick(3.0, math.radians(60), 0.8, RP, BP)
-    assert d_land == pytest.approx(2.2)
-    vh, vv = speed * math.cos(math.radians(60)), speed * math.sin(math.radians(60))
-    assert 2 * vh * vv / BP.gravity == pytest.approx(2.2)
-    assert chip_kick(20.0, math.radians(60), 0.8, RP, BP) is None  # beyond the kicker cap
-
-
 def test_chip_flies_over_a_blocker_a_flat_pass_hits():
-    speed, _ = chip_kick(3.0, math.radians(60), 0.8, RP, BP)
-    blocker = np.array([[0.7, 0.0]])
-    assert chip_margin(np.zeros(2), np.array([3.0, 0.0]), speed, math.radians(60), blocker, RP, BP,
+    k = chip_kick(1.5, 3.0 - RP.front_distance - BP.radius, RP, BP)
+    blocker = np.array([[1.5, 0.0]])
+    assert chip_margin(np.zeros(2), np.array([3.0, 0.0]), k.speed, k.angle, blocker, RP, BP,
                        DecisionParams()) > 0.2
-    assert chip_margin(np.zeros(2), np.array([3.0, 0.0]), speed, math.radians(60), np.array([[2.4, 0.0]]), RP,
+    assert chip_margin(np.zeros(2), np.array([3.0, 0.0]), k.speed, k.angle, np.array([[2.4, 0.0]]), RP,
                        BP, DecisionParams()) < 0.0  # it can reach the landing point
+
+
+def _chips(d):
+    return {o.teammate: o for o in d.options if o.kind is AttackChoice.CHIP}
+
+
+@pytest.mark.parametrize("length", [2.0, 2.5, 3.0, 3.5, 4.0, 4.5, 5.0])
+@pytest.mark.parametrize("blocker", ["midway", "marker", "near_ball", "beside_lane", "none"])
+def test_a_chip_is_offered_exactly_where_the_chip_pass_skill_kicks_one(length, blocker):
+    """The decision's chip option is the hand-coded chip-pass skill's chip over the lane's
+    blocker (same speed and elevation); where the skill finds none, no chip option."""
+    p = np.array([-2.0, 0.3])
+    q = p + length * np.array([math.cos(0.2), math.sin(0.2)])
+    u = (q - p) / length
+    n = np.array([-u[1], u[0]])
+    opp = {"midway": [p + 0.5 * length * u + 0.05 * n], "marker": [q - 0.35 * u],
+           "near_ball": [p + 0.4 * u], "beside_lane": [p + 0.5 * length * u + 0.6 * n], "none": []}[blocker]
+    opp = np.array([[F.half_length - 0.1, 0.0], *opp]).reshape(-1, 2)  # the goalie
+    mates = np.array([[-F.half_length + 0.2, 0.0], p, q])
+    d = decide_attack(p, 1, mates, opp, F, RP, BP, candidates=(2,), heading=0.2)
+    if d.choice is AttackChoice.SHOOT:
+        pytest.skip("the shot is taken before passes are rated")
+    kick = lane_chip(p, q, opp, RP, BP)
+    chips = _chips(d)
+    assert (2 in chips) == (kick is not None)
+    if kick is not None:
+        assert chips[2].kick_speed == kick.speed and chips[2].chip_angle == kick.angle
+
+
+def test_no_chip_over_a_marker_in_front_of_the_receiver():
+    """A marker 0.35 m in front of the receiver: no chip lands past it and short of the
+    receiver, so the decision offers none (a flat pass or another option instead)."""
+    p, q = np.array([0.0, 0.0]), np.array([3.0, 0.0])
+    d = decide_attack(p, 1, np.array([[-4.0, 0.0], p, q]), np.array([[4.4, 0.0], [2.65, 0.0]]), F, RP, BP,
+                      candidates=(2,), heading=0.0)
+    assert d.choice is not AttackChoice.CHIP and not _chips(d)
 
 
 def test_blocker_in_the_lane_gives_a_chip_pass():
@@ -66,6 +94,6 @@ def test_open_goal_gives_a_shot():
 
 def test_params_are_checked():
     with pytest.raises(ValueError):
-        AttackParams(chip_angles=(2.0,))
+        AttackParams(chip_samples=1)
     with pytest.raises(ValueError):
         AttackParams(redirect_full=1.3)

@@ -26,7 +26,7 @@ from ssl_marl.plays.scene import ball_in_front, make_world
 F = FieldGeometry.div_b()
 RP, BP, AP = RobotParams(), BallParams(), AttackParams()
 PARKED = (-4.2, 0.0, 0.0)
-CHIP_2, REDIRECT_1 = 4, 5
+CHIP_1, CHIP_2, REDIRECT_1 = 3, 4, 5
 
 
 def _world(blue, yellow, carrier=1):
@@ -35,7 +35,8 @@ def _world(blue, yellow, carrier=1):
                       blue_on_dribbler=[i == carrier for i in range(len(blue))])
 
 
-#: the defender stands in the lane to teammate 2 (slot 1); the lane to teammate 3 (slot 2) is open
+#: the defender stands midway in the lane to teammate 2 (slot 1): a chip over it; the lane to teammate 3
+#: (slot 2) is open and too short for a chip (the chip-pass skill's ``lane_chip`` finds none)
 CHIP_SCENE = dict(blue=[PARKED, (0.5, 0.0, 0.0), (3.0, 1.5, 0.0), (2.5, -2.0, 0.0)],
                   yellow=[(4.3, 0.0, math.pi), (1.75, 0.75, math.pi)])
 #: the carrier near the goal line: a pass back to teammate 2 can be redirected at the goal
@@ -51,12 +52,12 @@ def test_options_mask_and_observation_on_constructed_scenes():
     assert mask[SHOOT] == 1 and mask[7:].all()  # shot and dribbles always legal
     for option, key in PASS_OPTIONS.items():
         assert mask[option] == int(key in passes)
-    assert mask[CHIP_2] == 1 and mask[REDIRECT_1] == 0
+    assert mask[CHIP_1] == 1 and mask[CHIP_2] == 0 and mask[REDIRECT_1] == 0
     o = attack_drill_observation(w, "blue", 1, F, RP, BP, AP, passes=passes)
     assert o.shape == (ATTACK_DRILL_OBS_DIM,) and o.dtype == np.float32 and np.isfinite(o).all()
     np.testing.assert_array_equal(o[:40], attack_observation(w, "blue", 1, F, RP, BP, AP.decision))
-    chip = passes[(AttackChoice.CHIP, 1)]
-    assert o[44 + 1] == pytest.approx(chip.success) and o[44 + 2] == pytest.approx(chip.value)
+    chip = passes[(AttackChoice.CHIP, 0)]
+    assert o[40 + 1] == pytest.approx(chip.success) and o[40 + 2] == pytest.approx(chip.value)
     np.testing.assert_array_equal(o, attack_drill_observation(w, "blue", 1, F, RP, BP, AP))  # computed alike
     assert attack_drill_mask(slot_passes(w, "blue", 1, F, RP, BP, AP, candidates=())).tolist() == \
         [1, 0, 0, 0, 0, 0, 0, 1, 1, 1]  # cooldown after a dropped pass: no pass of any kind
@@ -70,8 +71,8 @@ def test_options_mask_and_observation_on_constructed_scenes():
 def test_option_execution_and_errors():
     w = _world(**CHIP_SCENE)
     passes = slot_passes(w, "blue", 1, F, RP, BP, AP)
-    d, o = option_play_decision(CHIP_2, w.ball_pos, F, passes)
-    assert d.choice is Choice.PASS and d.target == 3 and o.kind is AttackChoice.CHIP and o.chip_angle > 0
+    d, o = option_play_decision(CHIP_1, w.ball_pos, F, passes)
+    assert d.choice is Choice.PASS and d.target == 2 and o.kind is AttackChoice.CHIP and o.chip_angle > 0
     d, o = option_play_decision(SHOOT, w.ball_pos, F, passes)
     assert d.choice is Choice.SHOOT and o is None and d.commit_s > 0
     d, o = option_play_decision(8, w.ball_pos, F, passes)  # dribble left
@@ -100,7 +101,7 @@ def test_handcoded_option_is_the_attack_decision():
     w = _world(**CHIP_SCENE)
     ours = w.team("blue")
     d = decide_attack(w.ball_pos, 1, ours.pos, w.opponents("blue").pos, F, RP, BP, AP, candidates=(2, 3), heading=0.0)
-    assert attack_decision_option(d, w, "blue", 1) == CHIP_2  # the flat lanes are worse than the chip
+    assert attack_decision_option(d, w, "blue", 1) == CHIP_1  # the chip over the defender beats both flat lanes
 
 
 def _env(max_time_s=15.0, **kw):

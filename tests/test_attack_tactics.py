@@ -7,7 +7,6 @@ import pytest
 
 from ssl_marl.physics import FieldGeometry
 from ssl_marl.physics.params import BallParams
-from ssl_marl.plays.attack_decision import chip_kick
 from ssl_marl.plays.chip_pass_tactic import ChipPass
 from ssl_marl.plays.pass_tactic import PassState
 from ssl_marl.plays.receive_tactic import ReceiveState
@@ -26,49 +25,141 @@ def _chip_env(n_blue, n_yellow=0):
     return env, env.config.robot
 
 
-def test_chip_pass_flies_over_a_blocker_and_lands_short_of_the_receiver():
+def _chip_pass_over_a_blocker(skills, chip=True, blocker_x=0.5):
+    """A ChipPass passer at (-1, 0) with the ball, a receiver (ordinary Redirect) at
+    (2.5, 0), a yellow robot standing in the lane at (blocker_x, 0). Returns (passer,
+    receiver, chip entry of the kick (None: no kick), the ball's greatest height near
+    the blocker (m), x of the first touchdown (m, None: never in the air), whether a
+    yellow robot touched the ball, robot parameters)."""
+    env, rp = _chip_env(2, 1)
+    ball = ball_in_front(-1.0, 0.0, 0.0)
+    target = (2.5, 0.0)
+    env.reset(seed=0, options={"ball": {"pos": ball}, "robots": {"blue_0": (-1.0, 0.0, 0.0),
+                                                                   "blue_1": (target[0], 0.0, math.pi),
+                                                                   "yellow_0": (blocker_x, 0.0, math.pi)}})
+    passer = ChipPass(F, rp, BP, skills=skills, target_robot=1, target_point=target, receiver_ready=True, chip=chip)
+    receiver = Redirect(F, rp, BP, skills=skills, receive_point=target, ball_from=tuple(ball))
+    chip_entry, over, landing, touched, max_h = None, 0.0, None, False, 0.0
+    for _ in range(5 * 60):
+        w = env.vision_state("blue")
+        a, b = passer.act(w, 0), receiver.act(w, 1)
+        assert a.shape == (6,) and b.shape == (6,)
+        if a[4] > 0.0:
+            chip_entry = float(a[5])
+        env.step({"blue_0": a, "blue_1": b, "yellow_0": np.zeros(6)})
+        ws = env.world_state()
+        touched |= bool(np.hypot(*(ws.ball_pos - ws.yellow.pos[0])) < rp.radius + BP.radius + 0.01) \
+            and ws.ball_height < rp.height
+        max_h = max(max_h, ws.ball_height)
+        if abs(float(ws.ball_pos[0]) - blocker_x) < 0.1:
+            over = max(over, ws.ball_height)
+        if landing is None and max_h > 0.1 and ws.ball_height < 0.02:
+            landing = float(ws.ball_pos[0])
+        if receiver.status.state in (ReceiveState.CONTROLLED, ReceiveState.FAILED):
+            break
+    return passer, receiver, chip_entry, over, landing, touched, rp
+
+
+@pytest.mark.parametrize("skills", ["baseline", "learned"])
+def test_chip_pass_tactic_lifts_the_ball_over_a_midway_blocker_to_the_receiver(skills):
+    """A chosen chip: the KICK state runs the chip-pass skill of the team's kind, which
+    picks the chip over the robot in the lane; the receiver takes the ball."""
+    passer, receiver, chip_entry, over, landing, touched, rp = _chip_pass_over_a_blocker(skills)
+    assert passer.status.state is PassState.DONE and chip_entry is not None and chip_entry > 0.0
+    assert over > rp.height  # over the blocker's 0.15 m
+    assert 0.5 < landing < 2.5  # first touchdown past the blocker, short of the receiver
+    assert not touched
+    assert receiver.status.state is ReceiveState.CONTROLLED
+
+
+def test_chip_pass_tactic_without_a_chip_passes_flat_into_the_blocker():
+    """No chip chosen: the pass skill kicks flat (chip entry 0) and the blocker meets the ball."""
+    passer, _, chip_entry, over, landing, touched, _ = _chip_pass_over_a_blocker("baseline", chip=False)
+    assert passer.status.state is PassState.DONE and chip_entry == 0.0
+    assert over == 0.0 and landing is None and touched
+
+
+@pytest.mark.parametrize("blocker_x", [0.0, 0.5, 1.0])
+def test_the_decisions_chip_is_the_one_the_chip_pass_tactic_kicks(blocker_x):
+    """On the scene of the chip tests, the attack decision offers a chip to the receiver;
+    the ChipPass tactic (hand-coded chip-pass skill) told that pass kicks a chip of the
+    option's speed and elevation (up to one step of the skill's grid: the dribbled ball
+    moves a little before the kick)."""
+    from ssl_marl.plays.attack_decision import AttackChoice, decide_attack
+
     env, rp = _chip_env(2, 1)
     ball = ball_in_front(-1.0, 0.0, 0.0)
     env.reset(seed=0, options={"ball": {"pos": ball}, "robots": {"blue_0": (-1.0, 0.0, 0.0),
-                                                                   "blue_1": (2.0, 0.0, math.pi),
-                                                                   "yellow_0": (-0.3, 0.0, math.pi)}})
-    target = (2.0, 0.0)
-    length = float(np.hypot(*(np.array(target) - ball)))
-    speed, d_land = chip_kick(length, math.radians(60), 0.8, rp, BP)
-    passer = ChipPass(F, rp, BP, target_robot=1, target_point=target, receiver_ready=True,
-                      chip_angle=math.radians(60), chip_speed=speed)
-    max_h = 0.0
-    for _ in range(4 * 60):
+                                                                   "blue_1": (2.5, 0.0, math.pi),
+                                                                   "yellow_0": (blocker_x, 0.0, math.pi)}})
+    w = env.vision_state("blue")
+    d = decide_attack(w.ball_pos, 0, w.blue.pos, w.yellow.pos, F, rp, BP, candidates=(1,), heading=0.0)
+    chip = next(o for o in d.options if o.kind is AttackChoice.CHIP)
+    target = (float(chip.point[0]), float(chip.point[1]))
+    passer = ChipPass(F, rp, BP, skills="baseline", target_robot=1, target_point=target, receiver_ready=True,
+                      chip=True)
+    for _ in range(3 * 60):
         a = passer.act(env.vision_state("blue"), 0)
-        assert a.shape == (6,)
-        env.step({"blue_0": a, "blue_1": np.zeros(6), "yellow_0": np.zeros(6)})
-        max_h = max(max_h, env.world_state().ball_height)
-        if passer.status.state is PassState.DONE and env.world_state().ball_height == 0.0 and max_h > 0:
+        if a[4] > 0.0:
             break
-    assert passer.status.state is PassState.DONE
-    assert max_h > 0.5  # well over the blocker's 0.15 m
-    bx = float(env.world_state().ball_pos[0])
-    assert bx > -0.3  # past the blocker
+        env.step({"blue_0": a, "blue_1": np.zeros(6), "yellow_0": np.zeros(6)})
+    assert a[4] > 0.0 and a[5] > 0.0
+    speed_step, angle_step = (rp.kick_speed_max - 1.0) / 55, (rp.chip_angle_max - math.radians(15.0)) / 45
+    assert float(a[4]) * rp.kick_speed_max == pytest.approx(chip.kick_speed, abs=speed_step + 1e-6)
+    assert float(a[5]) * rp.chip_angle_max == pytest.approx(chip.chip_angle, abs=angle_step + 1e-6)
 
 
-def test_redirect_receiver_kicks_a_pass_on_towards_the_goal():
-    env, rp = _chip_env(1)
-    recv_pt = (2.6, 0.6)
-    env.reset(seed=0, options={"ball": {"pos": (3.6, -2.0), "vel": (-1.26, 3.27)},
-                               "robots": {"blue_0": (2.5, 0.65, -0.4)}})
-    aim = (F.half_length, -0.2)
-    r = Redirect(F, rp, BP, receive_point=recv_pt, ball_from=(3.6, -2.0), redirect_target=aim)
-    scored = False
+@pytest.mark.parametrize("skills, keeper", [("baseline", None), ("baseline", (4.4, -0.2, math.pi)),
+                                             ("learned", None), ("learned", (4.4, 0.0, math.pi))])
+def test_redirect_tactic_sends_an_incoming_pass_into_the_goal(skills, keeper):
+    """A pass into a redirect: RECEIVING runs the redirect skill, which chooses its own
+    aim in the open goal (the play's aim (4.5, -0.2) lies behind a keeper at y = -0.2)
+    and meets the ball; it scores in one touch."""
+    env, rp = _chip_env(1, 1 if keeper else 0)
+    robots = {"blue_0": (2.5, 0.65, -0.4), **({"yellow_0": keeper} if keeper else {})}
+    env.reset(seed=0, options={"ball": {"pos": (3.6, -2.0), "vel": (-1.26, 3.27)}, "robots": robots})
+    r = Redirect(F, rp, BP, skills=skills, receive_point=(2.6, 0.6), ball_from=(3.6, -2.0),
+                 redirect_target=(F.half_length, -0.2))
+    scored, states, kicks = False, set(), 0
     for _ in range(3 * 60):
         a = r.act(env.vision_state("blue"), 0)
-        assert a.shape == (6,)
-        _, _, _, _, infos = env.step({"blue_0": a})
-        ev = next(iter(infos.values()))["events"] if infos else []
-        scored |= any(e.get("type") == "goal" for e in ev)
-        if r.status.state in (ReceiveState.CONTROLLED, ReceiveState.FAILED) or scored or not env.agents:
+        assert a.shape == (6,) and a[5] == 0.0
+        states.add(r.status.state)
+        _, _, _, _, infos = env.step({"blue_0": a, **({"yellow_0": np.zeros(6)} if keeper else {})})
+        events = infos["blue_0"]["events"]
+        scored |= any(e.get("type") == "goal" for e in events)
+        kicks += sum(e.get("type") == "kick" and e.get("agent") == "blue_0" for e in events)
+        if scored or not env.agents:
             break
-    w = env.world_state()
-    assert scored or (r.status.state is ReceiveState.CONTROLLED and float(w.ball_vel[0]) > 1.5)
+    assert scored and kicks == 1  # one touch: the kicker fired on contact and the ball went in
+    assert {ReceiveState.RECEIVING, ReceiveState.CONTROLLED} <= states and ReceiveState.FETCH not in states
+
+
+def test_attack_tactics_build_the_skills_of_the_team_kind():
+    """ChipPass / Redirect get their chip-pass and redirect skills from the team's skill
+    set: the attack-learned team's are the learned ones, the attack-baseline team's
+    the hand-coded ones; one source can be swapped (``--blue-skill chip-pass=baseline``)."""
+    from ssl_marl.plays.attack_play import attack_plays
+    from ssl_marl.plays.skillset import ATTACK_SKILLS, TEAM_SKILLS
+    from ssl_marl.plays.team import required_skills
+    from ssl_marl.runners.controllers import kind_skills, parse_skill_source, resolve_team_option
+    from ssl_marl.skills.chip_pass import ChipPassBaseline, LearnedChipPass
+    from ssl_marl.skills.redirect import LearnedRedirect, RedirectBaseline
+
+    assert set(required_skills(attack_plays())) == set(ATTACK_SKILLS)
+    assert set(kind_skills("passing-learned")) == set(TEAM_SKILLS)
+    learned, baseline = kind_skills("attack-learned"), kind_skills("attack-baseline")
+    assert learned["chip_pass"] == learned["redirect"] == "learned" and baseline["chip_pass"] == "baseline"
+    for skills, chip_cls, redirect_cls in ((learned, LearnedChipPass, LearnedRedirect),
+                                           (baseline, ChipPassBaseline, RedirectBaseline)):
+        passer, receiver = ChipPass(F, skills=skills), Redirect(F, skills=skills)
+        assert type(passer.chip_skill) is chip_cls and type(receiver.redirect_skill) is redirect_cls
+        assert passer.kick_skill() is passer.pass_skill  # a flat pass runs the pass skill
+        passer.set_params(chip=True)
+        assert passer.kick_skill() is passer.chip_skill
+    _, mixed, _ = resolve_team_option("attack-learned", [parse_skill_source("chip-pass=baseline")])
+    assert type(ChipPass(F, skills=mixed).chip_skill) is ChipPassBaseline
+    assert type(Redirect(F, skills=mixed).redirect_skill) is LearnedRedirect
 
 
 def test_redirect_without_a_target_is_an_ordinary_receive_and_supports_emit_six_entries():
@@ -154,3 +245,14 @@ def test_attack_team_takes_its_free_kick_as_a_set_piece():
     assert fk_seen and restart_plans > 0  # planned while the ball still rested at the spot
     assert coord.counters.kicked == 1 and attack_decider_of(blue.selector.plays).counters.shoot == 0
     assert not fouls
+
+
+def test_learned_redirect_copies_do_not_share_their_contact_planner():
+    """Tactics get copies of one learned redirect prototype; each copy plans its own contact."""
+    from ssl_marl.plays.skillset import make_tactic_skill
+
+    a, b = (make_tactic_skill("redirect", "learned", F) for _ in range(2))
+    assert a.policy is b.policy and a._base is not b._base
+    a._base._contact = np.array([1.0, 0.0])
+    b.reset()
+    assert a._base._contact is not None

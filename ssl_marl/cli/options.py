@@ -16,8 +16,9 @@ from ..runners.pool import BACKENDS
 FIELDS = ("div_a", "div_b")
 OUTPUT_RULE = ("Output paths (--out, --render, --json, export-onnx OUT): missing parent folders are created; a path that "
                "cannot be written is refused before any simulation starts.")
-SKILL_SOURCE_HELP = ("SKILL=SOURCE: run SKILL (go-to-ball, aim-to-shoot) from SOURCE: baseline, learned (shipped "
-                     "actor) or an actor checkpoint path, e.g. go-to-ball=runs/gtb/actor.pt (repeatable)")
+SKILL_SOURCE_HELP = ("SKILL=SOURCE: run SKILL (go-to-ball, aim-to-shoot; pass, receive for the passing and "
+                     "attacking teams; chip-pass, redirect for the attacking teams) from SOURCE: baseline, learned "
+                     "(shipped actor) or an actor checkpoint path, e.g. go-to-ball=runs/gtb/actor.pt (repeatable)")
 
 
 # ------------------------------------------------------------------- types

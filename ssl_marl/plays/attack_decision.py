@@ -12,19 +12,23 @@ times, path margins, shot value and pass value). Every option's value is
   pass success of :func:`~ssl_marl.plays.pass_decision.evaluate_passes` and
   ``result(q) = w_receiver_shot * shot_value(q) + w_progress * progress + w_possession``
   (:func:`~ssl_marl.plays.pass_decision.receive_value`).
-* **Chip pass** to ``k``: ``P_chip * chip_receive_factor * result(q)``. The chip is
-  kicked at the steepest elevation in ``chip_angles`` whose 3-D speed stays under the
-  kicker cap with the first bounce ``land_short_m`` short of ``q`` (drag-free
-  projectile, :mod:`ssl_marl.physics.ball_flight`: first touchdown after
-  ``2 v^2 sin a cos a / g``). ``P_chip`` maps the chip path's margin like a flat pass:
-  along the path, the ball's lowest point is at ``z(s) = s tan a - g s^2 / (2 v_h^2)``
-  before the touchdown (the ball passes over a robot where ``z > robot height``,
-  0.15 m; SSL rules, "Robot shape") and rolls and hops low after it (horizontal speed
-  ``v_h`` times the first bounce's ``bounce_damping_xy_first``). Only samples where
-  the ball is at most ``robot height`` high can be intercepted; the margin is the
-  smallest ``t_opp - t_ball`` over those samples and all opponents, so a chip is safe
-  when it flies over the blockers and lands where no opponent reaches first.
-  ``chip_receive_factor`` (< 1) prices the harder reception of a hopping ball.
+* **Chip pass** to ``k``: ``P_chip * chip_receive_factor * result(q)``, offered only
+  where the hand-coded chip-pass skill kicks a chip to ``q``: the chip is the skill's
+  (:func:`ssl_marl.skills.chip_pass.lane_chip`: :func:`~ssl_marl.skills.chip_pass.chip_kick`
+  over the lane's blocker, the opponent nearest the lane or an imagined robot midway,
+  first touchdown past the blocker's body and short of the receiver), so the option's
+  speed and elevation are what the play's chip-pass skill kicks; where no chip fits,
+  no chip option. Drag-free projectile (:mod:`ssl_marl.physics.ball_flight`: first
+  touchdown after ``2 v^2 sin a cos a / g``). ``P_chip`` maps the chip path's margin
+  like a flat pass: along the path, the ball's lowest point is at
+  ``z(s) = s tan a - g s^2 / (2 v_h^2)`` before the touchdown (the ball passes over a
+  robot where ``z > robot height``, 0.15 m; SSL rules, "Robot shape") and rolls and
+  hops low after it (horizontal speed ``v_h`` times the first bounce's
+  ``bounce_damping_xy_first``). Only samples where the ball is at most ``robot height``
+  high can be intercepted; the margin is the smallest ``t_opp - t_ball`` over those
+  samples and all opponents, so a chip is safe when it flies over the blockers and
+  lands where no opponent reaches first. ``chip_receive_factor`` (< 1) prices the
+  harder reception of a hopping ball.
 * **Pass into a redirect** (one-touch shot) to ``k``: ``P_flat * f_redirect(delta) *
   w_redirect * shot_value(q)``. ``delta`` is the deflection at ``q``: the angle between
   the direction back to the passer and the direction to the aim point in ``q``'s open
@@ -50,9 +54,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..physics.ball_flight import flight_height, speed_for_range
+from ..physics.ball_flight import flight_height
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
+from ..skills.chip_pass import lane_chip
 from .pass_decision import (Choice, DecisionParams, choose, evaluate_passes, keep_value, margin_success,
                             open_goal_interval, opponent_reach_time, pass_candidates, receive_value, shot_value,
                             teammates_except)
@@ -72,10 +77,6 @@ class AttackParams:
 
     Attributes:
         decision: the shared shot / pass / keep parameters (thresholds, weights).
-        chip_angles: chip elevations tried, steepest first (rad; a steep chip clears
-            blockers higher and arrives slower).
-        land_short_m: the first bounce lands this far short of the receive point (m).
-        min_chip_m: chips shorter than this are not candidates (m).
         chip_samples: samples along a chip path for its margin.
         chip_receive_factor: value factor of a hopping ball's reception.
         redirect_full, redirect_zero: deflection (rad) up to which a redirect is fully
@@ -87,9 +88,6 @@ class AttackParams:
     """
 
     decision: DecisionParams = field(default_factory=DecisionParams)
-    chip_angles: tuple[float, ...] = (math.radians(60.0), math.radians(50.0), math.radians(40.0))
-    land_short_m: float = 0.8
-    min_chip_m: float = 1.5
     chip_samples: int = 24
     chip_receive_factor: float = 0.8
     redirect_full: float = 0.9
@@ -99,8 +97,6 @@ class AttackParams:
     redirect_arrive_speed: float = 2.5
 
     def __post_init__(self) -> None:
-        if not self.chip_angles or not all(0.0 < a < math.pi / 2 for a in self.chip_angles):
-            raise ValueError(f"AttackParams.chip_angles must be angles in (0, pi/2) rad, got {self.chip_angles!r}")
         if not 0.0 <= self.redirect_full < self.redirect_zero:
             raise ValueError("AttackParams.redirect_full must be >= 0 and smaller than redirect_zero")
         if not (isinstance(self.chip_samples, int) and self.chip_samples >= 2):
@@ -140,16 +136,6 @@ class AttackDecision:
 
 
 # ------------------------------------------------------------------ chip
-def chip_kick(length: float, angle: float, land_short_m: float, rp: RobotParams,
-              bp: BallParams) -> tuple[float, float] | None:
-    """(3-D kick speed (m/s), first-touchdown distance (m)) of a chip at ``angle`` (rad)
-    that lands ``land_short_m`` short of a point ``length`` m away; None when the speed
-    exceeds the kicker cap."""
-    d_land = max(length - land_short_m, 0.5 * length)
-    speed = speed_for_range(d_land, angle, bp.gravity)
-    return (speed, d_land) if speed <= rp.kick_speed_max else None
-
-
 def chip_margin(start: np.ndarray, end: np.ndarray, speed: float, angle: float, opponents: np.ndarray,
                 rp: RobotParams, bp: BallParams, params: DecisionParams, samples: int = 24) -> float:
     """Smallest ``t_opp - t_ball`` (s) over the samples of the chip path ``start -> end``
@@ -181,22 +167,21 @@ def chip_margin(start: np.ndarray, end: np.ndarray, speed: float, angle: float, 
 def evaluate_chips(p: np.ndarray, receive_points: dict[int, np.ndarray], teammates: np.ndarray,
                    opponents: np.ndarray, field_geom: FieldGeometry, rp: RobotParams, bp: BallParams,
                    params: AttackParams) -> tuple[AttackOption, ...]:
-    """Chip passes from ``p`` to each ``{teammate: point}`` (module docstring)."""
+    """Chip passes from ``p`` to each ``{teammate: point}`` where the hand-coded chip-pass
+    skill kicks one (module docstring)."""
     dp = params.decision
     p = np.asarray(p, float)
     opp = np.asarray(opponents, float).reshape(-1, 2)
     mates = np.asarray(teammates, float).reshape(-1, 2)
     out = []
-    for k, q, length in pass_candidates(p, receive_points, params.min_chip_m, dp.max_pass_m, field_geom):
-        kick = next(((a, ck) for a in params.chip_angles
-                     if (ck := chip_kick(length, a, params.land_short_m, rp, bp)) is not None), None)
+    for k, q, _ in pass_candidates(p, receive_points, 0.0, dp.max_pass_m, field_geom):
+        kick = lane_chip(p, q, opp, rp, bp)
         if kick is None:
             continue
-        angle, (speed, _) = kick
-        margin = chip_margin(p, q, speed, angle, opp, rp, bp, dp, params.chip_samples)
+        margin = chip_margin(p, q, kick.speed, kick.angle, opp, rp, bp, dp, params.chip_samples)
         success = margin_success(margin, dp)
         result = receive_value(p, q, shot_value(q, opp, teammates_except(mates, k), field_geom, rp, bp, dp), dp)
-        out.append(AttackOption(AttackChoice.CHIP, int(k), q, speed, angle, success,
+        out.append(AttackOption(AttackChoice.CHIP, int(k), q, kick.speed, kick.angle, success,
                                 float(success * params.chip_receive_factor * result)))
     return tuple(out)
 
@@ -284,6 +269,6 @@ def decide_attack(p: np.ndarray, carrier: int, teammates: np.ndarray, opponents:
     return AttackDecision(kind, shot, keep, options, best)
 
 
-__all__ = ["AttackChoice", "AttackParams", "AttackOption", "AttackDecision", "chip_kick", "chip_margin",
+__all__ = ["AttackChoice", "AttackParams", "AttackOption", "AttackDecision", "chip_margin",
            "evaluate_chips", "redirect_factor", "redirect_geometry", "evaluate_redirects",
            "evaluate_attack_passes", "decide_attack"]

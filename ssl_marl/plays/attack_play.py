@@ -6,12 +6,14 @@ builds (a shared :class:`~ssl_marl.plays.pass_coordinator.PassCoordinator` with 
 pass/receive handshake; restart, offense and defense plays) with three changes:
 
 * the carrier decides with :class:`AttackDecider` (the cost functions of
-  :mod:`~ssl_marl.plays.attack_decision`); a flat, chip or redirect pass opens the
-  coordinator's pass plan, the kind and its kick are remembered for the roles;
-* the ``passer`` role runs :class:`~ssl_marl.plays.chip_pass_tactic.ChipPass` (chip
-  angle and speed of the chosen chip, 0 for a flat pass) and the ``receiver`` role
-  :class:`~ssl_marl.plays.redirect_tactic.Redirect` (with the redirect's aim point for a
-  pass into a redirect, else an ordinary reception);
+  :mod:`~ssl_marl.plays.attack_decision`; a chip is an option only where the
+  hand-coded chip-pass skill kicks one); a flat, chip or redirect pass opens the
+  coordinator's pass plan, the chosen option is remembered for the roles;
+* the ``passer`` role runs :class:`~ssl_marl.plays.chip_pass_tactic.ChipPass` (for a
+  chosen chip the chip-pass skill, which picks the chip's speed and elevation itself;
+  else the pass skill) and the ``receiver`` role
+  :class:`~ssl_marl.plays.redirect_tactic.Redirect` (for a pass into a redirect the
+  redirect skill takes the incoming ball on to the goal, else an ordinary reception);
 * the supports stand on spots rated by :mod:`~ssl_marl.plays.spot_rating` (re-rated
   every ``rate_every`` ticks, one spot per support role, greedy so that no two share a
   spot or a lane) with :class:`~ssl_marl.plays.spot_support_tactic.SpotSupport`;
@@ -162,13 +164,13 @@ def _plan_option(coord: PassCoordinator, decider: AttackDecider) -> AttackOption
 
 def chip_passer_role(coord: PassCoordinator, decider: AttackDecider, priority: int = 95) -> RoleDef:
     """:func:`~ssl_marl.plays.passing_roles.passer_role` with
-    :class:`~ssl_marl.plays.chip_pass_tactic.ChipPass`: the chosen chip's elevation and
-    speed (0 for a flat pass), a pass into a redirect kicked to arrive firmer."""
+    :class:`~ssl_marl.plays.chip_pass_tactic.ChipPass`: a chosen chip runs the chip-pass
+    skill (which picks the chip's speed and elevation), a pass into a redirect is kicked
+    to arrive firmer."""
 
     def extra(ctx: PlayContext, plan: PassPlan) -> dict:
         o = _plan_option(coord, decider)
-        chip = o is not None and o.kind is AttackChoice.CHIP
-        return dict(chip_angle=o.chip_angle if chip else 0.0, chip_speed=o.kick_speed if chip else 0.0,
+        return dict(chip=o is not None and o.kind is AttackChoice.CHIP,
                     approach_behind=plan.restart, arrival_speed=decider.params.redirect_arrive_speed
                     if o is not None and o.kind is AttackChoice.REDIRECT else 2.0)
 

@@ -2,13 +2,12 @@
 
 The state machine, handshake and flat kick are :class:`~ssl_marl.plays.pass_tactic.Pass`'s
 (GET_BALL -> HOLD -> KICK -> DONE / FAILED; module :mod:`~ssl_marl.plays.pass_tactic`).
-With ``chip_angle`` > 0 the KICK state kicks the ball itself instead of running the
-pass skill: it keeps the ball on the dribbler and turns until its heading points at
-``target_point`` within ``chip_align_tol`` (a chip flies along the heading), then kicks
-with the 3-D speed ``chip_speed`` (m/s, the kick entry ``chip_speed / kick_speed_max``)
-and the elevation ``chip_angle`` (rad, the chip entry ``chip_angle / chip_angle_max``).
-The play chooses both from the flight model so that the first bounce lands short of
-the receiver (:func:`~ssl_marl.plays.attack_decision.chip_kick`).
+With ``chip`` set (the play's decision chose a chip pass) the KICK state runs the
+chip-pass skill instead of the pass skill (learned or baseline,
+:mod:`ssl_marl.plays.skillset`; :mod:`ssl_marl.skills.chip_pass`), told the same target
+point: the skill turns with the ball and chooses the chip's speed and elevation over
+the robot standing in the lane itself (the hand-coded skill passes flat where no chip
+fits). The skill's status ends KICK as the pass skill's does.
 
 Actions are the env's 6-entry chip layout (``parallel_env(chip_kicks=True)``; index 5
 the chip, 0 for a flat kick): the tactic runs only in a chip env.
@@ -20,10 +19,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..physics.state import WorldState, wrap_angle
-from ..skills.motion import velocity_command
-from ..skills.navigation import facing_towards
-from .pass_tactic import Pass, PassParams, PassState
+from ..physics.state import WorldState
+from .pass_tactic import Pass, PassParams
 
 
 @dataclass(frozen=True)
@@ -31,16 +28,10 @@ class ChipPassParams(PassParams):
     """:class:`~ssl_marl.plays.pass_tactic.PassParams` and:
 
     Attributes:
-        chip_angle: kick elevation (rad; 0: a flat pass by the pass skill).
-        chip_speed: 3-D kick speed of the chip (m/s).
-        chip_align_tol: the chip is kicked with the heading this close to the target (rad).
-        chip_turn_rate: turn rate while aiming the chip (rad/s).
+        chip: KICK runs the chip-pass skill (False: a flat pass by the pass skill).
     """
 
-    chip_angle: float = 0.0
-    chip_speed: float = 0.0
-    chip_align_tol: float = 0.04
-    chip_turn_rate: float = 3.0
+    chip: bool = False
 
 
 class ChipPass(Pass):
@@ -48,24 +39,21 @@ class ChipPass(Pass):
 
     name = "chip_pass"
     Params = ChipPassParams
+    uses_skills = ("go_to_ball", "pass", "chip_pass")
 
     def __init__(self, *args, **kwargs) -> None:
         self._chip = 0.0
         super().__init__(*args, **kwargs)
+        self.chip_skill = self._skill("chip_pass")
+
+    def kick_skill(self):
+        """The skill the KICK state runs: the chip-pass skill with ``chip`` set, else the pass skill."""
+        return self.chip_skill if self.params.chip else self.pass_skill
 
     def execute(self, world: WorldState, robot: int, inputs) -> np.ndarray:
-        p = self.params
-        self._chip = 0.0
-        if self.state is not PassState.KICK or p.chip_angle <= 0.0 or p.target_point is None:
-            return super().execute(world, robot, inputs)
-        ts = world.team(world.frame)
-        err = wrap_angle(facing_towards(ts.pos[robot], np.asarray(p.target_point, float)) - float(ts.heading[robot]))
-        if abs(err) > p.chip_align_tol:
-            omega = float(np.clip(p.hold_turn_gain * err, -p.chip_turn_rate, p.chip_turn_rate))
-            return velocity_command(world, robot, np.zeros(2), omega, self.rp, dribble=True)
-        self._chip = min(p.chip_angle / self.rp.chip_angle_max, 1.0)
-        kick = min(p.chip_speed / self.rp.kick_speed_max, 1.0)
-        return velocity_command(world, robot, np.zeros(2), 0.0, self.rp, dribble=False, kick=kick)
+        a = np.asarray(super().execute(world, robot, inputs), dtype=np.float32)
+        self._chip = float(a[5]) if a.shape == (6,) else 0.0
+        return a[:5]
 
     def act(self, world: WorldState, robot: int) -> np.ndarray:
         """:meth:`Pass.act` with the chip entry appended: a (6,) float32 action."""

@@ -136,6 +136,10 @@ class Pass(Tactic):
         self.nav = NavigateToPoint(self.field, self.rp, self.bp, NavParams(), tolerance=0.03)
         self.on_enter(self.state)
 
+    def kick_skill(self):
+        """The skill the KICK state runs: the pass skill."""
+        return self.pass_skill
+
     def set_params(self, **changes) -> None:
         """As :meth:`Tactic.set_params`; points (target_point) must be two finite
         numbers inside the field (ValueError naming the parameter)."""
@@ -146,7 +150,7 @@ class Pass(Tactic):
 
     def observe(self, world: WorldState, robot: int) -> PassInputs:
         p = self.params
-        status = skill_status(self.pass_skill) if self.state is PassState.KICK else SkillStatus.RUNNING
+        status = skill_status(self.kick_skill()) if self.state is PassState.KICK else SkillStatus.RUNNING
         has_target = p.target_point is not None and p.target_robot is not None
         return PassInputs(d_db=dribbler_ball_distance(world, robot, self.rp, self.bp), skill_status=status,
                           kicked=self._kicked, receiver_ready=bool(p.receiver_ready), has_target=has_target,
@@ -182,7 +186,7 @@ class Pass(Tactic):
         if state is PassState.GET_BALL:
             self.go_to_ball.reset()
         elif state is PassState.KICK:
-            self.pass_skill.reset()
+            self.kick_skill().reset()
 
     def execute(self, world: WorldState, robot: int, inputs: PassInputs) -> np.ndarray:
         S, p = PassState, self.params
@@ -214,10 +218,11 @@ class Pass(Tactic):
             omega = w0 + float(np.clip(omega - w0, -p.hold_alpha * self.dt, p.hold_alpha * self.dt))
             return velocity_command(world, robot, v, omega, self.rp, dribble=True)
         if self.state is S.KICK:
-            self.pass_skill.set_target(np.asarray(p.target_point, float))
-            if p.arrival_speed is not None and hasattr(self.pass_skill, "arrival_speed"):
-                self.pass_skill.arrival_speed = float(p.arrival_speed)
-            return self.pass_skill.act(world, robot)
+            skill = self.kick_skill()
+            skill.set_target(np.asarray(p.target_point, float))
+            if p.arrival_speed is not None and hasattr(skill, "arrival_speed"):
+                skill.arrival_speed = float(p.arrival_speed)
+            return skill.act(world, robot)
         return make_action()
 
 

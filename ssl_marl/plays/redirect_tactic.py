@@ -8,9 +8,13 @@ target the states mean:
   ball radius ahead of its centre) is on the receive point, its heading pointing at the
   target (a kick leaves along the heading); READY as in Receive, the heading measured
   against the target direction;
-* RECEIVING (ball incoming): it slides so that its face meets the ball's straight
-  line, keeps the heading on the target and arms the kicker (kick > 0: in a chip env
-  the robots kick on contact, so the kicker fires when the ball reaches the face);
+* RECEIVING (ball incoming): the redirect skill runs (learned or baseline,
+  :mod:`ssl_marl.plays.skillset`; :mod:`ssl_marl.skills.redirect`): it chooses its
+  aim point in the open part of the goal mouth and the contact point on the ball's
+  path, puts the face there turned towards the aim and keeps the kicker armed (in a
+  chip env the robots kick on contact, so the kicker fires when the ball reaches the
+  face). POSITION / READY do not run it: its contact planner needs a ball moving
+  towards the robot, and before the pass the robot only has to stand ready;
 * CONTROLLED: the ball left the robot faster than ``redirected_speed`` towards the
   target half-plane (the redirect is done; the play ends the pass); FETCH / FAILED as
   in Receive (a ball that stops short is fetched).
@@ -40,13 +44,13 @@ class RedirectParams(ReceiveParams):
     """:class:`~ssl_marl.plays.receive_tactic.ReceiveParams` and:
 
     Attributes:
-        redirect_target: (x, y) where the one-touch shot goes (m), or None (receive).
-        kick_strength: kick entry of the armed kicker (1: the kicker cap, a shot).
+        redirect_target: (x, y) the play's aim point of the one-touch shot (m), or None
+            (receive); the robot faces it while it waits, and a ball leaving towards
+            its half-plane is redirected (the skill picks the exact aim at contact).
         redirected_speed: the ball moving away faster than this (m/s) ends the redirect.
     """
 
     redirect_target: tuple[float, float] | None = None
-    kick_strength: float = 1.0
     redirected_speed: float = 2.0
 
 
@@ -64,6 +68,17 @@ class Redirect(Receive):
     name = "redirect"
     Params = RedirectParams
     Inputs = RedirectInputs
+    uses_skills = ("go_to_ball", "receive", "redirect")
+
+    def __init__(self, *args, **kwargs) -> None:
+        self.redirect_skill = None
+        super().__init__(*args, **kwargs)
+        self.redirect_skill = self._skill("redirect")
+
+    def _running_skill(self):
+        if self.params.redirect_target is not None and self.state is ReceiveState.RECEIVING:
+            return self.redirect_skill
+        return super()._running_skill()
 
     def set_params(self, **changes) -> None:
         """As :meth:`Receive.set_params`; ``redirect_target`` must be two finite numbers."""
@@ -113,24 +128,15 @@ class Redirect(Receive):
         p, S = self.params, ReceiveState
         if p.redirect_target is None or self.state not in (S.POSITION, S.READY, S.RECEIVING):
             return super().execute(world, robot, inputs)
-        ts = world.team(world.frame)
-        pos = ts.pos[robot]
-        point = np.asarray(p.receive_point, float) if p.receive_point is not None else pos
-        if self.state is S.RECEIVING:  # the face onto the ball's straight line
-            b, v = np.asarray(world.ball_pos, float), np.asarray(world.ball_vel, float)
-            sp = float(np.hypot(*v))
-            if sp > 1e-6:
-                u = v / sp
-                face = pos + self._face_offset() * np.array([math.cos(ts.heading[robot]), math.sin(ts.heading[robot])])
-                point = b + max(float((face - b) @ u), 0.0) * u
+        if self.state is S.RECEIVING:
+            return self.redirect_skill.act(world, robot)
+        point = np.asarray(p.receive_point, float) if p.receive_point is not None \
+            else world.team(world.frame).pos[robot]
         want = self._heading(point)
         self.nav.target = point - self._face_offset() * np.array([math.cos(want), math.sin(want)])
         self.nav.facing = want
         self.nav.dribble = False
-        a = np.array(self.nav.act(world, robot), dtype=np.float32)
-        if self.state is S.RECEIVING:
-            a[4] = p.kick_strength
-        return a
+        return self.nav.act(world, robot)
 
     def act(self, world: WorldState, robot: int) -> np.ndarray:
         """:meth:`Receive.act` with a flat chip entry appended: a (6,) float32 action."""

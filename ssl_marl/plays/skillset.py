@@ -42,8 +42,11 @@ SkillsSpec = Union[str, Mapping[str, Union[str, os.PathLike]]]
 CORE_SKILLS = ("go_to_ball", "aim_to_shoot")
 #: used only by the passing plays' Pass / Receive tactics
 PASSING_SKILLS = ("pass", "receive")
-#: every skill a team's tactics build (core and passing)
+#: every skill a passing team's tactics build (core and passing)
 TEAM_SKILLS = CORE_SKILLS + PASSING_SKILLS
+#: every skill the attacking plays' tactics build: the passing team's and the ChipPass /
+#: Redirect tactics' chip pass and one-touch redirect
+ATTACK_SKILLS = TEAM_SKILLS + ("chip_pass", "redirect")
 
 
 def swappable_skills() -> tuple[str, ...]:

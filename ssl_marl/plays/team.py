@@ -48,7 +48,8 @@ from .tactic_base import Tactic
 
 def required_skills(plays: Sequence[Play]) -> tuple[str, ...]:
     """Skills a team running ``plays`` builds: the core ones (go-to-ball, aim-to-shoot)
-    plus every ``uses_skills`` of the plays' tactics (pass, receive for passing plays)."""
+    plus every ``uses_skills`` of the plays' tactics (pass, receive for passing plays; also
+    chip pass, redirect for the attacking plays)."""
     names = list(CORE_SKILLS)
     for play in plays:
         for role in play.roles:

@@ -319,9 +319,11 @@ def make_controller(kind: Any, team: str, n_robots: int, field: Any = "div_b", s
 
 def kind_skills(kind: str) -> Any:
     """The skill set of STP team ``kind``: the kind itself ("learned" / "baseline"), or
-    for a passing or attacking team :func:`~ssl_marl.plays.skillset.team_skill_set` of its skill kind."""
-    from ..plays.skillset import team_skill_set
+    :func:`~ssl_marl.plays.skillset.team_skill_set` of its skill kind for a passing team
+    (:data:`~ssl_marl.plays.skillset.TEAM_SKILLS`) or an attacking team
+    (:data:`~ssl_marl.plays.skillset.ATTACK_SKILLS`: with the chip pass and the redirect)."""
+    from ..plays.skillset import ATTACK_SKILLS, TEAM_SKILLS, team_skill_set
 
     if kind in PASSING_KINDS + ATTACK_KINDS:
-        return team_skill_set(kind.split("-")[1], where=kind)
+        return team_skill_set(kind.split("-")[1], ATTACK_SKILLS if kind in ATTACK_KINDS else TEAM_SKILLS, where=kind)
     return kind

@@ -53,6 +53,11 @@ CHIP_PASS_ACTIONS = ("omega", "kick", "speed", "elevation")
 LANE_HALF_WIDTH = 0.5
 #: opponents nearer than this (m, along the lane) to the ball or the target are not blockers
 LANE_END_MARGIN = 0.2
+#: the hand-coded chip's first touchdown is at least this far (m) past the blocker's body
+#: and short of the receiver's face
+CHIP_LAND_SHORT = 0.6
+#: the hand-coded chip's ball passes this far (m) above the blocker's height
+CHIP_CLEARANCE = 0.05
 
 
 @dataclass(frozen=True)
@@ -67,7 +72,8 @@ class ChipKick:
 
 
 def chip_kick(blocker_distance: float, receiver_distance: float, rp: RobotParams, bp: BallParams,
-              clearance: float = 0.05, land_short: float = 0.6, body: float | None = None) -> ChipKick:
+              clearance: float = CHIP_CLEARANCE, land_short: float = CHIP_LAND_SHORT,
+              body: float | None = None) -> ChipKick:
     """The chip (speed <= ``rp.kick_speed_max``, elevation <= ``rp.chip_angle_max``)
     whose ball's lowest point stays ``clearance`` (m) above ``rp.height`` over the
     blocker's body (``blocker_distance`` +- ``body``, default robot radius + ball radius,
@@ -94,23 +100,49 @@ def chip_kick(blocker_distance: float, receiver_distance: float, rp: RobotParams
     return ChipKick(speed, angle, float(landing[i, j]), float(low[i, j]))
 
 
-def lane_blocker(world: WorldState, target: np.ndarray, half_width: float = LANE_HALF_WIDTH) -> np.ndarray:
-    """Team-frame position (m) of the opponent standing in the lane from the ball to
-    ``target``: of the opponents within ``half_width`` of the segment and more than
-    :data:`LANE_END_MARGIN` from either end along it, the one nearest the line; the
-    lane's midpoint when none stands there (a chip then clears an imagined robot
-    midway)."""
-    ball = world.ball_pos.astype(float)
-    opp = world.opponents(world.frame).pos
-    frame = line_frame(ball, target, opp.reshape(-1, 2))
+def lane_blocker_at(ball: np.ndarray, target: np.ndarray, opponents: np.ndarray,
+                    half_width: float = LANE_HALF_WIDTH) -> np.ndarray:
+    """Position (m, the frame of the inputs) of the opponent standing in the lane from
+    ``ball`` to ``target``: of the ``opponents`` ((k, 2), m) within ``half_width`` of the
+    segment and more than :data:`LANE_END_MARGIN` from either end along it, the one
+    nearest the line; the lane's midpoint when none stands there (a chip then clears an
+    imagined robot midway)."""
+    ball = np.asarray(ball, float)
+    opp = np.asarray(opponents, float).reshape(-1, 2)
+    frame = line_frame(ball, target, opp)
     if frame is None:
         return ball.copy()
     _, length, along, cross = frame
     cross = np.abs(cross)
     inside = (along > LANE_END_MARGIN) & (along < length - LANE_END_MARGIN) & (cross < half_width)
     if inside.any():
-        return opp[int(np.flatnonzero(inside)[np.argmin(cross[inside])])].astype(float)
+        return opp[int(np.flatnonzero(inside)[np.argmin(cross[inside])])].copy()
     return ball + 0.5 * (np.asarray(target, float) - ball)
+
+
+def lane_blocker(world: WorldState, target: np.ndarray, half_width: float = LANE_HALF_WIDTH) -> np.ndarray:
+    """Team-frame position (m) of the opponent standing in the lane from the ball to
+    ``target`` (team frame, m): :func:`lane_blocker_at` over the world's opponents."""
+    return lane_blocker_at(world.ball_pos, target, world.opponents(world.frame).pos, half_width)
+
+
+def lane_chip(ball: np.ndarray, target: np.ndarray, opponents: np.ndarray, rp: RobotParams, bp: BallParams,
+              clearance: float = CHIP_CLEARANCE, land_short: float = CHIP_LAND_SHORT) -> ChipKick | None:
+    """The hand-coded chip from ``ball`` to a receiver at ``target`` (m, the frame of the
+    inputs): :func:`chip_kick` over the lane's blocker
+    (:func:`lane_blocker_at` of ``opponents`` (k, 2), its distance along the lane from
+    the ball) landing ``land_short`` (m) short of the receiver's face (``rp.front_distance
+    + bp.radius`` before ``target``); None where no chip fits (a short pass, a blocker
+    too near either end)."""
+    reach = rp.front_distance + bp.radius
+    frame = line_frame(ball, target, lane_blocker_at(ball, target, opponents))
+    if frame is None:
+        return None
+    _, length, blocker, _ = frame
+    try:
+        return chip_kick(float(blocker), length - reach, rp, bp, clearance, land_short)
+    except ValueError:
+        return None
 
 
 def chip_pass_features(world: WorldState, robot: int, target: np.ndarray, target_vel: np.ndarray | None = None
@@ -206,27 +238,21 @@ class ChipPassSkill(PassSkill):
 class ChipPassBaseline(ChipPassSkill, PassBaseline):
     """Hand-coded chip pass: turn with the ball towards the target as the hand-coded
     pass does (:class:`~ssl_marl.skills.passing.PassBaseline`), then kick the
-    :func:`chip_kick` over the lane's blocker (:func:`lane_blocker`, its distance along
-    the lane from the ball) landing ``land_short`` (m) short of the receiver's face;
-    where no chip fits (a short pass, a blocker too near) the flat pass."""
+    :func:`lane_chip` (:func:`chip_kick` over the lane's blocker, landing ``land_short``
+    (m) short of the receiver's face); where no chip fits (a short pass, a blocker too
+    near) the flat pass."""
 
     def __init__(self, field: FieldGeometry, robot: RobotParams | None = None, ball: BallParams | None = None,
-                 target=None, target_vel=None, max_time_s=None, land_short: float = 0.6, clearance: float = 0.05,
-                 **pass_kwargs) -> None:
+                 target=None, target_vel=None, max_time_s=None, land_short: float = CHIP_LAND_SHORT,
+                 clearance: float = CHIP_CLEARANCE, **pass_kwargs) -> None:
         super().__init__(field, robot, ball, target, target_vel, max_time_s, **pass_kwargs)
         self.land_short, self.clearance = land_short, clearance
 
     def chip(self, world: WorldState) -> ChipKick | None:
-        """The chip over the lane's blocker to the current target, or None when none fits."""
-        reach = self.rp.front_distance + self.bp.radius
-        frame = line_frame(world.ball_pos, self.target, lane_blocker(world, self.target))
-        if frame is None:
-            return None
-        _, length, blocker, _ = frame
-        try:
-            return chip_kick(float(blocker), length - reach, self.rp, self.bp, self.clearance, self.land_short)
-        except ValueError:
-            return None
+        """The chip over the lane's blocker to the current target (:func:`lane_chip`), or
+        None when none fits."""
+        return lane_chip(world.ball_pos, self.target, world.opponents(world.frame).pos, self.rp, self.bp,
+                         self.clearance, self.land_short)
 
     def aim(self, world: WorldState, robot: int) -> tuple[np.ndarray, bool]:
         action, kicks = super().aim(world, robot)
@@ -261,6 +287,7 @@ class LearnedChipPass(ChipPassSkill):
         return a, bool(a[4] > 0)
 
 
-__all__ = ["CHIP_PASS_ACTIONS", "CHIP_PASS_NAMES", "CHIP_PASS_SPEC", "ChipKick", "ChipPassBaseline", "ChipPassSkill",
-           "LearnedChipPass", "chip_elevation", "chip_kick", "chip_pass_features",
-           "chip_pass_task_action", "chip_pass_task_values", "expand_chip_pass_action", "lane_blocker"]
+__all__ = ["CHIP_CLEARANCE", "CHIP_LAND_SHORT", "CHIP_PASS_ACTIONS", "CHIP_PASS_NAMES", "CHIP_PASS_SPEC", "ChipKick",
+           "ChipPassBaseline", "ChipPassSkill", "LearnedChipPass", "chip_elevation", "chip_kick", "chip_pass_features",
+           "chip_pass_task_action", "chip_pass_task_values", "expand_chip_pass_action", "lane_blocker",
+           "lane_blocker_at", "lane_chip"]

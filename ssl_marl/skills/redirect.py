@@ -350,9 +350,12 @@ class LearnedRedirect(RedirectSkill):
         self._base = RedirectBaseline(field, self.rp, self.bp) if self.action_form != "direct" else None
 
     def reset(self) -> None:
+        """As :meth:`SkillBase.reset`, with a fresh hand-coded planner: its contact point and
+        aim are per-run state, and copies of one learned prototype (the tactics' skills,
+        :mod:`ssl_marl.plays.skillset`) must not share them."""
         super().reset()
         if self._base is not None:
-            self._base.reset()
+            self._base = RedirectBaseline(self.field, self.rp, self.bp)
 
     def aim_action(self) -> np.ndarray:
         """The ``aim`` form's last aim as an action (:func:`redirect_aim_of`); ValueError
