@@ -16,6 +16,8 @@ match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
   decision's best eligible pass while the shot is worth less than ``shoot_fallback``);
 * ``receiver-guard``: the plain format with the decisions' ``receiver_guard_m`` at 1 m (a
   pass's last metre is the receiver's where it gets there before the opponents);
+* ``redirect-4.5``: the plain format with passes into a redirect kicked, and rated, to arrive
+  at 4.5 m/s (``AttackParams.redirect_arrive_speed``, default 2.5; ``ATTACK_PARAMS``);
 * ``ssl`` / ``ssl-receiver-guard``: the SSL format (``--format ssl``: halves, STOP, free kicks,
   fouls), without and with the 1 m receiver guard.
 
@@ -52,6 +54,8 @@ FORMAT = {"ssl": "ssl", "ssl-receiver-guard": "ssl"}
 PASSING = {"keep-2s": {"max_keep_s": 2.0}, "keep-inf": {"max_keep_s": math.inf}, "keep-pass": {"keep_expiry": "pass"}}
 #: ``ATTACK_PASSING.decision`` and ``.restart_decision`` fields of each variant
 DECISION = {"receiver-guard": {"receiver_guard_m": 1.0}, "ssl-receiver-guard": {"receiver_guard_m": 1.0}}
+#: ``ATTACK_PARAMS`` fields of each variant
+ATTACK = {"redirect-4.5": {"redirect_arrive_speed": 4.5}}
 
 
 def set_attack_passing(passing: dict | None = None, decision: dict | None = None) -> None:
@@ -67,6 +71,14 @@ def set_attack_passing(passing: dict | None = None, decision: dict | None = None
     attack_play.ATTACK_PASSING = ap
 
 
+def set_attack_params(fields: dict | None = None) -> None:
+    """Replace the attacking plays' ``ATTACK_PARAMS`` (read when a team is built) by a copy
+    with the ``fields``."""
+    from ssl_marl.plays import attack_play
+
+    attack_play.ATTACK_PARAMS = dataclasses.replace(attack_play.ATTACK_PARAMS, **(fields or {}))
+
+
 def summarize(rows: list[dict], seconds: float) -> dict:
     from ssl_marl.runners.statistics import series_statistics
 
@@ -77,7 +89,7 @@ def summarize(rows: list[dict], seconds: float) -> dict:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("variant", choices=sorted({*RULES, *FORMAT}), help="the variant (module docstring)")
+    ap.add_argument("variant", choices=sorted({*RULES, *FORMAT, *ATTACK}), help="the variant (module docstring)")
     ap.add_argument("--blue", default="attack-learned", help="blue team kind (default attack-learned)")
     ap.add_argument("--yellow", default="baseline", help="yellow team kind (default baseline)")
     ap.add_argument("--seed", type=int, default=61500, help="first seed (tuning seeds; default 61500)")
@@ -91,9 +103,11 @@ def main(argv: list[str] | None = None) -> int:
 
     env = {**format_options(FORMAT.get(args.variant, "plain"), args.seconds), **RULES.get(args.variant, {})}
     set_attack_passing(PASSING.get(args.variant), DECISION.get(args.variant))
+    set_attack_params(ATTACK.get(args.variant))
     manifest = build_manifest(rules={"variant": args.variant, "env": env,
                                      "attack_passing": {k: str(v) for k, v in PASSING.get(args.variant, {}).items()},
                                      "decision": DECISION.get(args.variant, {}),
+                                     "attack": ATTACK.get(args.variant, {}),
                                      "blue": args.blue, "yellow": args.yellow, "seconds": args.seconds},
                               seeds={"seed": args.seed, "matches": args.matches})
     rows = []

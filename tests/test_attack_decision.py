@@ -85,6 +85,27 @@ def test_open_teammate_with_a_good_deflection_gets_a_redirect():
     assert d.best.aim[0] == pytest.approx(F.half_length)
 
 
+def test_a_pass_into_a_redirect_is_rated_at_its_own_arrival_speed():
+    """The redirect option's kick and success are those of a pass arriving at
+    ``redirect_arrive_speed``, not the flat pass's: a firmer pass beats a defender the slow one loses to."""
+    from ssl_marl.physics import ball_model
+
+    mates = np.array([[-4.0, 0.0], [3.6, -2.0], [2.6, 0.6]])
+    opp = np.array([[4.4, -0.35], [3.1, -0.2], [-1.0, -1.0]])  # a defender 0.65 m beside the lane
+    p = np.array([3.6, -2.0])
+    length = float(np.hypot(*(mates[2] - p)))
+    rated = {}
+    for v in (2.0, 4.5):
+        d = decide_attack(p, 1, mates, opp, F, RP, BP, AttackParams(redirect_arrive_speed=v), candidates=(2,))
+        flat = next(o for o in d.options if o.kind is AttackChoice.PASS)
+        red = next(o for o in d.options if o.kind is AttackChoice.REDIRECT)
+        assert red.kick_speed == pytest.approx(ball_model.kick_speed_for_arrival(length, v, BP, RP.kick_speed_max),
+                                               abs=0.05)
+        assert flat.kick_speed < red.kick_speed or v == 2.0
+        rated[v] = red.success
+    assert rated[2.0] < DecisionParams().min_pass_success <= rated[4.5], rated
+
+
 def test_open_goal_gives_a_shot():
     mates = np.array([[-4.0, 0.0], [2.5, 0.0], [1.0, 2.0]])
     opp = np.array([[4.45, 0.45], [-2.0, 0.0]])

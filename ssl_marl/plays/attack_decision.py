@@ -29,8 +29,11 @@ times, path margins, shot value and pass value). Every option's value is
   samples and all opponents, so a chip is safe when it flies over the blockers and
   lands where no opponent reaches first. ``chip_receive_factor`` (< 1) prices the
   harder reception of a hopping ball.
-* **Pass into a redirect** (one-touch shot) to ``k``: ``P_flat * f_redirect(delta) *
-  w_redirect * shot_value(q)``. ``delta`` is the deflection at ``q``: the angle between
+* **Pass into a redirect** (one-touch shot) to ``k``: ``P_redirect * f_redirect(delta) *
+  w_redirect * shot_value(q)``. ``P_redirect`` is the flat pass success of a pass kicked
+  to arrive at ``redirect_arrive_speed`` (the speed the passer kicks it at: a firmer ball
+  than a flat pass, so less time for the opponents to cut the lane). ``delta`` is the
+  deflection at ``q``: the angle between
   the direction back to the passer and the direction to the aim point in ``q``'s open
   goal interval (0: the ball goes straight back). ``f_redirect`` is 1 up to 0.9 rad,
   falls linearly to 0 at 1.2 rad (TIGERs' redirect rating, Sumatra
@@ -48,6 +51,7 @@ least ``min_keep`` and the shot is below ``shoot_fallback``, otherwise SHOOT.
 
 from __future__ import annotations
 
+import dataclasses
 import enum
 import math
 from dataclasses import dataclass, field
@@ -83,8 +87,8 @@ class AttackParams:
             useful / beyond which it is useless (TIGERs: 0.9 / 1.2).
         w_redirect: weight of the receiver's shot value in a pass into a redirect.
         min_redirect_shot: a redirect needs at least this receiver shot value.
-        redirect_arrive_speed: a pass into a redirect arrives this fast (m/s; a firm
-            ball for the kicker to meet).
+        redirect_arrive_speed: a pass into a redirect is kicked, and its success rated, to
+            arrive this fast (m/s; a firm ball for the kicker to meet).
     """
 
     decision: DecisionParams = field(default_factory=DecisionParams)
@@ -209,7 +213,8 @@ def evaluate_redirects(p: np.ndarray, flat: tuple, teammates: np.ndarray, oppone
                        field_geom: FieldGeometry, rp: RobotParams, bp: BallParams,
                        params: AttackParams) -> tuple[AttackOption, ...]:
     """Passes into a redirect from the flat passes ``flat``
-    (:class:`~ssl_marl.plays.pass_decision.PassOption`; same success, module docstring)."""
+    (:class:`~ssl_marl.plays.pass_decision.PassOption`, rated at ``redirect_arrive_speed``:
+    their kick speed and success, module docstring)."""
     opp = np.asarray(opponents, float).reshape(-1, 2)
     mates = np.asarray(teammates, float).reshape(-1, 2)
     out = []
@@ -235,10 +240,14 @@ def evaluate_attack_passes(p: np.ndarray, carrier: int, teammates: np.ndarray, o
     mates = np.asarray(teammates, float).reshape(-1, 2)
     opp = np.asarray(opponents, float).reshape(-1, 2)
     points = {k: mates[k] for k in candidates if k != carrier}
-    flat = evaluate_passes(p, points, mates, opp, field_geom, rp, bp, params.decision, heading)
+    dp = params.decision
+    flat = evaluate_passes(p, points, mates, opp, field_geom, rp, bp, dp, heading)
     options = tuple(AttackOption(AttackChoice.PASS, o.teammate, o.point, o.kick_speed, 0.0, o.success, o.value)
                     for o in flat)
     options += evaluate_chips(p, points, mates, opp, field_geom, rp, bp, params)
+    if params.redirect_arrive_speed != dp.pass_arrive_speed:  # a redirect's pass is kicked to arrive firmer
+        flat = evaluate_passes(p, points, mates, opp, field_geom, rp, bp,
+                               dataclasses.replace(dp, pass_arrive_speed=params.redirect_arrive_speed), heading)
     return options + evaluate_redirects(p, flat, mates, opp, field_geom, rp, bp, params)
 
 

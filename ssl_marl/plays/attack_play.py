@@ -61,6 +61,9 @@ from .tactic_base import Tactic
 #: restarts are set pieces (decided before the kicker reaches the ball); a pass whose
 #: ball lies dead after the kick is dropped at once
 ATTACK_PASSING = PassingParams(abort_margin_s=-math.inf, decide_at_restart=True, dead_ball_s=0.6)
+#: the attacking team's decision parameters (chip, redirect; an :class:`AttackDecider` built
+#: without parameters reads them when it is built)
+ATTACK_PARAMS = AttackParams()
 
 
 @dataclass
@@ -91,7 +94,7 @@ class AttackDecider:
     receiver roles."""
 
     def __init__(self, params: AttackParams | None = None) -> None:
-        self.params = params or AttackParams()
+        self.params = params or ATTACK_PARAMS
         self.option: AttackOption | None = None
         self.last: AttackDecision | None = None
         self.counters = AttackCounters()
@@ -165,14 +168,17 @@ def _plan_option(coord: PassCoordinator, decider: AttackDecider) -> AttackOption
 def chip_passer_role(coord: PassCoordinator, decider: AttackDecider, priority: int = 95) -> RoleDef:
     """:func:`~ssl_marl.plays.passing_roles.passer_role` with
     :class:`~ssl_marl.plays.chip_pass_tactic.ChipPass`: a chosen chip runs the chip-pass
-    skill (which picks the chip's speed and elevation), a pass into a redirect is kicked
-    to arrive firmer."""
+    skill (which picks the chip's speed and elevation); a flat pass arrives at the
+    decision's ``pass_arrive_speed`` (the speed its success was rated at), a pass into a
+    redirect at ``redirect_arrive_speed``."""
 
     def extra(ctx: PlayContext, plan: PassPlan) -> dict:
         o = _plan_option(coord, decider)
+        redirect = o is not None and o.kind is AttackChoice.REDIRECT
+        decision = coord.params.restart_decision if plan.restart else coord.params.decision
         return dict(chip=o is not None and o.kind is AttackChoice.CHIP,
                     approach_behind=plan.restart, arrival_speed=decider.params.redirect_arrive_speed
-                    if o is not None and o.kind is AttackChoice.REDIRECT else 2.0)
+                    if redirect else decision.pass_arrive_speed)
 
     return passer_role(coord, priority, ChipPass, extra)
 
@@ -243,5 +249,5 @@ def attack_decider_of(plays) -> AttackDecider | None:
     return None
 
 
-__all__ = ["ATTACK_PASSING", "AttackCounters", "AttackDecider", "SpotPlanner", "AttackPrepare", "chip_passer_role",
+__all__ = ["ATTACK_PASSING", "ATTACK_PARAMS", "AttackCounters", "AttackDecider", "SpotPlanner", "AttackPrepare", "chip_passer_role",
            "redirect_receiver_role", "spot_support_role", "attack_roles", "attack_plays", "attack_decider_of"]
