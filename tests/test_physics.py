@@ -202,3 +202,30 @@ def test_bad_params_name_the_field():
         FieldGeometry.from_name("div_c")
     with pytest.raises(ValueError, match="goal_width"):
         FieldGeometry(name="custom", length=9.0, width=6.0, goal_width=7.0)
+
+
+@pytest.mark.parametrize("batched", [False, True], ids=["single", "batched"])
+def test_contested_kick_goes_to_the_robot_with_the_ball_centred_not_to_the_first_index(batched):
+    """A blue and a yellow robot face each other with the ball on both faces and kick in
+    the same step: the robot with the ball nearer the middle of its face gets the ball,
+    whichever team it plays for (a fixed robot order would hand every contested ball to
+    blue, the lower indices)."""
+    from ssl_marl.physics.batched import BatchedPhysics
+
+    f = FieldGeometry.div_b()
+    for off_centre, winner in ((0, 1), (1, 0)):  # the robot with the ball 3 cm off its face centre loses
+        pose = np.array([[-FACE, 0.0, 0.0], [FACE, 0.0, math.pi]])
+        pose[off_centre, 1] = 0.03
+        if batched:
+            w = BatchedPhysics(f, RP, BP, 1, 1, 1)
+            w.reset_world(0, pose, np.zeros(2))
+            assert w.on_dribbler[0].all()
+            w.step(np.zeros((1, 2, 2)), np.zeros((1, 2)), np.zeros((1, 2), bool), np.ones((1, 2)))
+            kicks = [(int(w.kicker[0]),)] if w.kicker[0] >= 0 else []
+        else:
+            w = PhysicsWorld(f, RP, BP, 1, 1)
+            w.reset(pose, np.zeros(2))
+            assert w.on_dribbler.all()
+            w.step(np.zeros((2, 2)), np.zeros(2), np.zeros(2, bool), np.ones(2))
+            kicks = w.kicks_this_step
+        assert [k[0] for k in kicks] == [winner], (off_centre, kicks)  # one kick, the centred robot's

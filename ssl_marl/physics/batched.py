@@ -260,7 +260,8 @@ class BatchedPhysics:
         cool = np.maximum(get(self.kick_cooldown) - dt, 0.0)
         fire = (kick > 0) & get(self.on_face_now) & (cool <= 0) & any_near[:, None]
         kicked = fire.any(axis=1)
-        kicker = np.where(kicked, np.argmax(fire, axis=1), -1)
+        offset = np.where(fire, self.face_offset(pos, heading, ball_pos), np.inf)  # PhysicsWorld.face_offset
+        kicker = np.where(kicked, np.argmin(offset, axis=1), -1)
         kick_speed = np.zeros(len(idx))
         slide_until = get(self.slide_until).copy()
         kj = np.flatnonzero(kicked)
@@ -367,13 +368,18 @@ class BatchedPhysics:
     def _fire_armed(self, idx: np.ndarray, armed: np.ndarray, kick: np.ndarray, chip: np.ndarray | None,
                     cool: np.ndarray, slide_until: np.ndarray, kicker: np.ndarray, kick_speed: np.ndarray) -> set[int]:
         """Kick on contact (PhysicsWorld.step's armed kickers): in each world with an armed
-        robot touching the ball now, the first such robot fires through the world's own
-        ``_fire_kick``; the batch's arrays take its result. Returns the worlds that fired."""
+        robot touching the ball now, that robot (the ball most centred on its face where
+        several have it: ``face_offset``, exact ties the lower index) fires through the
+        world's own ``_fire_kick``; the batch's arrays take its result. Returns the worlds
+        that fired."""
         wj, ri = np.nonzero(armed)
         rows = self._pair_rows(idx, wj, ri)
-        hit = self.ball_on_face(rows[:, 0:2] / SCALE, rows[:, 2], rows[:, 3:5] / SCALE)
+        pos, hd, ball = rows[:, 0:2] / SCALE, rows[:, 2], rows[:, 3:5] / SCALE
+        hit = np.flatnonzero(self.ball_on_face(pos, hd, ball))
+        if hit.size > 1:  # most centred first; a stable sort keeps the index order on exact ties
+            hit = hit[np.argsort(self.face_offset(pos[hit], hd[hit], ball[hit]), kind="stable")]
         fired: set[int] = set()
-        for m in np.flatnonzero(hit).tolist():
+        for m in hit.tolist():
             j, i = int(wj[m]), int(ri[m])
             k = int(idx[j])
             w = self.worlds[k]
@@ -472,6 +478,15 @@ class BatchedPhysics:
         ly = -s * d0 + c * d1
         gap = lx - rp.front_distance - self.ball_params.radius
         return (gap >= -_FACE_PENETRATION_TOL) & (gap <= rp.dribbler_tolerance) & (np.abs(ly) <= rp.dribbler_half_width)
+
+    def face_offset(self, pos: np.ndarray, heading: np.ndarray, ball_pos: np.ndarray) -> np.ndarray:
+        """Vectorised :meth:`PhysicsWorld.face_offset` (shapes as :meth:`ball_on_face`)."""
+        if ball_pos.ndim == pos.ndim - 1 and pos.ndim == 3:
+            ball_pos = ball_pos[:, None, :]
+        d0 = ball_pos[..., 0] - pos[..., 0]
+        d1 = ball_pos[..., 1] - pos[..., 1]
+        c, s = np.cos(heading), np.sin(heading)
+        return np.abs(-s * d0 + c * d1)
 
     # --------------------------------------------------------------- snapshots
     def snapshot(self, k: int) -> WorldState:

@@ -276,8 +276,9 @@ class PhysicsWorld(BallMechanics):
         self.kicks_this_step = []
         kickers = np.flatnonzero((kick > 0) & self._on_face_now & (self.kick_cooldown <= 0)) if near else ()
         kicked = len(kickers) > 0
-        if kicked:  # the first robot (in index order) whose kick fires gets the ball
-            i = int(kickers[0])
+        if kicked:  # of several kicks firing at once, the robot with the ball most centred on its face
+            i = int(kickers[int(np.argmin(self.face_offset(self.pos[kickers], self.heading[kickers],
+                                                             self.ball_pos)))])
             self._fire_kick(i, float(kick[i]), self.heading[i], 0.0 if chip is None else float(chip[i]))
         # kick on contact: an armed kicker fires when the ball reaches its face during the step
         armed = [i for i in near if kick[i] > 0 and self.kick_cooldown[i] <= 0] \
@@ -375,6 +376,15 @@ class PhysicsWorld(BallMechanics):
         ly = -s * d[:, 0] + c * d[:, 1]
         gap = lx - rp.front_distance - self.ball_params.radius
         return (gap >= -_FACE_PENETRATION_TOL) & (gap <= rp.dribbler_tolerance) & (np.abs(ly) <= rp.dribbler_half_width)
+
+    def face_offset(self, pos: np.ndarray, heading: np.ndarray, ball_pos: np.ndarray) -> np.ndarray:
+        """(n,) lateral offset (m) of the ball's centre from the middle of each robot's front
+        face (the ``ly`` of :meth:`ball_on_face`). When several robots' kicks fire in one
+        step the smallest offset gets the ball (exact ties: the lower index), so neither
+        team wins contested balls by its place in the robot order."""
+        d = ball_pos[None, :] - pos
+        c, s = np.cos(heading), np.sin(heading)
+        return np.abs(-s * d[:, 0] + c * d[:, 1])
 
     def snapshot(self) -> WorldState:
         """Ground-truth :class:`WorldState` (field frame). Arrays are read-only views of

@@ -47,8 +47,9 @@ class BallMechanics:
         self.kicks_this_step.append((i, speed))
 
     def _armed_contact(self, armed: list[int]) -> int:
-        """The first armed robot (index order) with the ball on its face now (Box2D's
-        current positions, raw angles), or -1; never while the ball is above the bar."""
+        """The armed robot with the ball on its face now (Box2D's current positions, raw
+        angles), the ball most centred on the face where several have it (``face_offset``;
+        exact ties: the lower index), or -1; never while the ball is above the bar."""
         if self.ball_z > self.ball_params.radius:
             return -1
         S = SCALE
@@ -57,6 +58,8 @@ class BallMechanics:
         pos = np.array([(b.position[0] / S, b.position[1] / S) for b in (self._robot_bodies[i] for i in armed)])
         hd = np.array([self._robot_bodies[i].angle for i in armed])
         hit = np.flatnonzero(self.ball_on_face(pos, hd, ball))
+        if hit.size > 1:
+            hit = hit[[int(np.argmin(self.face_offset(pos[hit], hd[hit], ball)))]]
         return armed[int(hit[0])] if hit.size else -1
 
     # ------------------------------------------------------------ ball in the air
