@@ -229,3 +229,27 @@ def test_contested_kick_goes_to_the_robot_with_the_ball_centred_not_to_the_first
             w.step(np.zeros((2, 2)), np.zeros(2), np.zeros(2, bool), np.ones(2))
             kicks = w.kicks_this_step
         assert [k[0] for k in kicks] == [winner], (off_centre, kicks)  # one kick, the centred robot's
+
+
+@pytest.mark.parametrize("batched", [False, True], ids=["single", "batched"])
+def test_contested_dribble_goes_to_the_robot_with_the_ball_centred_not_to_the_first_index(batched):
+    """Two robots facing each other dribble the same ball: the one with the ball nearer the
+    middle of its face holds it (its dribbler pulls the ball towards it), whichever team it
+    plays for; the robot order used to give every contested ball to blue."""
+    from ssl_marl.physics.batched import BatchedPhysics
+
+    f = FieldGeometry.div_b()
+    for off_centre, towards in ((0, +1.0), (1, -1.0)):  # blue (facing +x) off centre: yellow pulls it to +x
+        pose = np.array([[-FACE, 0.0, 0.0], [FACE, 0.0, math.pi]])
+        pose[off_centre, 1] = 0.03
+        if batched:
+            w = BatchedPhysics(f, RP, BP, 1, 1, 1)
+            w.reset_world(0, pose, np.zeros(2))
+            w.step(np.zeros((1, 2, 2)), np.zeros((1, 2)), np.ones((1, 2), bool), np.zeros((1, 2)))
+            vx = float(w.ball_vel[0, 0])
+        else:
+            w = PhysicsWorld(f, RP, BP, 1, 1)
+            w.reset(pose, np.zeros(2))
+            w.step(np.zeros((2, 2)), np.zeros(2), np.ones(2, bool), np.zeros(2))
+            vx = float(w.ball_vel[0])
+        assert np.sign(vx) == towards and abs(vx) > 1e-4, (off_centre, vx)

@@ -121,13 +121,16 @@ class BallMechanics:
 
     # ------------------------------------------------------ dribbler and friction
     def _apply_dribblers(self, idx: list[int]) -> None:
+        """One dribbler holds the ball at a time: of the robots ``idx`` with the dribbler on
+        and the ball on the face, the one with the ball nearest the middle of its face
+        (exact ties: the lower index; as a contested kick, ``face_offset``) pulls it in and
+        carries it along."""
         rp, S, dt = self.robot, SCALE, self.sub_dt
         ball = self._ball_body
         bp = ball.position
         bx, by = bp[0] / S, bp[1] / S
-        bv = ball.linearVelocity
-        vbx, vby = bv[0] / S, bv[1] / S
         hw = rp.dribbler_half_width
+        best = None
         for i in idx:
             b = self._robot_bodies[i]
             p = b.position
@@ -136,25 +139,30 @@ class BallMechanics:
             dx, dy = bx - rx, by - ry
             lx, ly = c * dx + s * dy, -s * dx + c * dy  # ball in robot frame
             gap = lx - rp.front_distance - self.ball_params.radius
-            if not (-_FACE_PENETRATION_TOL <= gap <= rp.dribbler_tolerance and abs(ly) <= hw):
-                continue
-            v = b.linearVelocity
-            w = b.angularVelocity
-            # velocity of the face point under the ball + pull-in + centring (robot frame -> field)
-            tx = v[0] / S - w * dy
-            ty = v[1] / S + w * dx
-            pull_l = -rp.dribbler_pull_speed
-            cent_l = -2.0 * ly
-            tx += c * pull_l - s * cent_l
-            ty += s * pull_l + c * cent_l
-            ddx, ddy = tx - vbx, ty - vby
-            dn = math.sqrt(ddx * ddx + ddy * ddy)
-            lim = rp.dribbler_max_accel * dt
-            if dn > lim:
-                ddx, ddy = ddx * lim / dn, ddy * lim / dn
-            vbx, vby = vbx + ddx, vby + ddy
-            ball.linearVelocity = (vbx * S, vby * S)
-            break  # one dribbler holds the ball at a time
+            if -_FACE_PENETRATION_TOL <= gap <= rp.dribbler_tolerance and abs(ly) <= hw \
+                    and (best is None or abs(ly) < abs(best[5])):
+                best = (b, c, s, dx, dy, ly)
+        if best is None:
+            return
+        b, c, s, dx, dy, ly = best
+        bv = ball.linearVelocity
+        vbx, vby = bv[0] / S, bv[1] / S
+        v = b.linearVelocity
+        w = b.angularVelocity
+        # velocity of the face point under the ball + pull-in + centring (robot frame -> field)
+        tx = v[0] / S - w * dy
+        ty = v[1] / S + w * dx
+        pull_l = -rp.dribbler_pull_speed
+        cent_l = -2.0 * ly
+        tx += c * pull_l - s * cent_l
+        ty += s * pull_l + c * cent_l
+        ddx, ddy = tx - vbx, ty - vby
+        dn = math.sqrt(ddx * ddx + ddy * ddy)
+        lim = rp.dribbler_max_accel * dt
+        if dn > lim:
+            ddx, ddy = ddx * lim / dn, ddy * lim / dn
+        vbx, vby = vbx + ddx, vby + ddy
+        ball.linearVelocity = (vbx * S, vby * S)
 
     def _launch_ball(self, speed: float) -> None:
         """A ball set moving at ``speed`` (m/s) by a kick or a placement slides until it
