@@ -58,6 +58,17 @@ ATTACK_SERIES = ["match_attack_learned_vs_baseline_600", "match_attack_learned_v
 ATTACK_TARGETS = ["match_attack_learned_vs_baseline_600_83000", "match_attack_learned_vs_passing_learned_600_84000",
                   "match_attack_learned_selfplay_600_85000", "match_attack_learned_vs_baseline_600_realistic_86000",
                   "match_attack_learned_vs_baseline_600_div_a_11v11_87000"]
+#: four of the five target series with the plays kicking chips and redirects through the skills (seeds 90000-90319)
+ATTACK_TARGETS_SKILLS = ["match_attack_learned_vs_baseline_600_90000",
+                         "match_attack_learned_vs_passing_learned_600_90100",
+                         "match_attack_learned_selfplay_600_90200",
+                         "match_attack_learned_vs_baseline_600_realistic_90300"]
+#: self-play series of one team, pooled: blue's surplus over yellow (a colour bias shows here)
+COLOUR_BALANCE = [("attacking team, robot order decides contested kicks",
+                   ("match_attack_learned_selfplay_600", "match_attack_learned_selfplay_600_85000",
+                    "match_attack_learned_selfplay_600_90200")),
+                  ("attacking team, the ball's place on the face decides", ("match_attack_learned_selfplay_600_92000",)),
+                  ("passing team (no kick on contact)", ("match_passing_learned_vs_passing_learned_snap",))]
 ATTACK_SKILL_SWAPS = ["match_attack_learned_vs_attack_baseline_600", "tuning/swap_none_all_learned",
                       "tuning/swap_aim_to_shoot_baseline",
                       "tuning/swap_pass_receive_baseline", "tuning/swap_go_to_ball_baseline",
@@ -79,7 +90,11 @@ MATCH_VARIANTS = [("plain format (play restarts at once)", "plain.json"),
                    ("selfplay/receiver-guard-61530.json", "selfplay/receiver-guard-61535.json")),
                   ("self-play, SSL format", ("selfplay/ssl-61540.json", "selfplay/ssl-61545.json")),
                   ("self-play, SSL format, both teams with the 1 m receiver guard",
-                   ("selfplay/ssl-receiver-guard-61540.json", "selfplay/ssl-receiver-guard-61545.json"))]
+                   ("selfplay/ssl-receiver-guard-61540.json", "selfplay/ssl-receiver-guard-61545.json")),
+                  ("plain, passes into a redirect kicked and rated to arrive at 4.5 m/s (`redirect_arrive_speed`)",
+                   ("redirect-4.5.json", "seeds61510/redirect-4.5.json")),
+                  ("plain, the plays kick chips and redirects through the skills (merged as 81b7d5a)",
+                   ("playskills/plain-61500.json", "playskills/plain-61510.json"))]
 SET_PIECE_SERIES = ["match_attack_learned_vs_baseline_600_ssl_058d181", "match_attack_learned_vs_baseline_600_ssl",
                     "match_attack_learned_vs_baseline_600_ssl_20261127"]
 KEEPAWAY = [("random", "keepaway_random"), ("always-hold", "keepaway_always-hold"),
@@ -92,6 +107,8 @@ DECISION_SERIES = ["match_attack_learned_decision_vs_attack_learned_600",
                    "match_attack_learned_decision_vs_attack_learned_600_realistic",
                    "match_attack_learned_decision_vs_attack_learned_600_div_a_11v11",
                    "match_attack_learned_decision_vs_passing_learned_600"]
+#: the learned decision against the hand-coded one with the contested-kick fix (seeds 93000-93029)
+DECISION_SERIES_FAIR = ["match_attack_learned_decision_vs_attack_learned_600_93000"]
 ATTACK_DRILL = [("hand-coded (the attacking plays' cost decision)", "attack_drill_handcoded"),
                 ("learned (shipped `attack_drill.pt`: cloned, then MAPPO `mappo_attack_drill_bc_s0`)",
                  "attack_drill_learned")]
@@ -134,7 +151,10 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "series_600_formats": lambda r: t.series_600(r, SERIES_600_SSL),
     "attack_series": lambda r: t.series_600(r, ATTACK_SERIES),
     "decision_series": lambda r: t.series_600(r, DECISION_SERIES),
+    "decision_series_fair": lambda r: t.series_600(r, DECISION_SERIES_FAIR),
     "attack_targets": lambda r: t.series_600(r, ATTACK_TARGETS),
+    "attack_targets_skills": lambda r: t.series_600(r, ATTACK_TARGETS_SKILLS),
+    "colour_balance": lambda r: t.colour_balance(r, COLOUR_BALANCE),
     "match_variants": lambda r: t.match_variants(r, MATCH_VARIANTS),
     "shot_outcomes": lambda r: t.shot_outcomes(r / "tuning" / "shot_outcome_probe.json"),
     "pass_options": lambda r: t.pass_options(r, ["pass_option_probe.json", "pass_option_probe_guard1.json"]),

@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Any, Iterable
 
 from ssl_marl.runners.statistics import wilson_interval
-from ssl_marl.runners.result import load_result
+from ssl_marl.runners.result import load_manifest, load_result
 from train.tools.compare import markdown, summarize
 
 Lines = list[str]
@@ -258,6 +258,36 @@ def match_variants(results: Path, entries: Iterable[tuple[str, str | tuple[str, 
                  str(len(ms)), f"{st['wins']}-{st['draws']}-{st['losses']}", f"{st['goals_for']}-{st['goals_against']}",
                  f"{st['goal_diff_per_600s']:+.2f} [{lo:+.2f}, {hi:+.2f}]", outs,
                  f"{sum(m['blue']['shots'] for m in ms) / len(ms):.1f}", passes]
+        rows.append("| " + " | ".join(cells) + " |")
+    return rows
+
+
+def colour_balance(results: Path, groups: Iterable[tuple[str, tuple[str, ...]]]) -> Lines:
+    """Self-play series (the same team on both sides), pooled per group (label, series
+    names under ``results/``): blue's goal and kick surplus over yellow per match with its
+    95 % t interval (:func:`~ssl_marl.runners.statistics.t_interval`), and blue's share of
+    the shots. With no colour bias both surpluses are 0."""
+    from ssl_marl.runners.statistics import t_interval
+
+    rows = _head("series", "commit", "team", "matches", "goals blue-yellow", "goal surplus of blue per match [95% CI]",
+                 "kick surplus of blue per match [95% CI]", "blue's share of the shots")
+    for label, names in groups:
+        ds = [load_result(results / f"{n}.json") for n in names]
+        ms = [m for d in ds for m in d["matches"]]
+        teams = {(m["config"]["blue"], m["config"]["yellow"]) for m in ms}
+        if len(teams) != 1 or len(next(iter(teams))) != 2 or len(set(next(iter(teams)))) != 1:
+            raise ValueError(f"colour_balance: {label} is not self-play of one team: {sorted(teams)}")
+        commits = sorted({(load_manifest(results / f"{n}.json") or {}).get("git", {}).get("commit", "?")[:7]
+                          for n in names})
+        goals = [m["score"]["blue"] - m["score"]["yellow"] for m in ms]
+        kicks = [m["stats"]["blue"]["kicks"] - m["stats"]["yellow"]["kicks"] for m in ms]
+        shots = [sum(m["stats"][c]["shots"] for m in ms) for c in ("blue", "yellow")]
+        cells = [label, ", ".join(commits), next(iter(teams))[0], str(len(ms)),
+                 f"{sum(m['score']['blue'] for m in ms)}-{sum(m['score']['yellow'] for m in ms)}"]
+        for v in (goals, kicks):
+            lo, hi = t_interval(v)
+            cells.append(f"{sum(v) / len(v):+.2f} [{lo:+.2f}, {hi:+.2f}]")
+        cells.append(f"{100 * shots[0] / max(sum(shots), 1):.0f} %")
         rows.append("| " + " | ".join(cells) + " |")
     return rows
 
