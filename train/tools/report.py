@@ -64,10 +64,10 @@ ATTACK_TARGETS_SKILLS = ["match_attack_learned_vs_baseline_600_90000",
                          "match_attack_learned_selfplay_600_90200",
                          "match_attack_learned_vs_baseline_600_realistic_90300"]
 #: self-play series of one team, pooled: blue's surplus over yellow (a colour bias shows here)
-COLOUR_BALANCE = [("attacking team, robot order decides contested kicks",
+COLOUR_BALANCE = [("attacking team, the robot order decides a contested ball",
                    ("match_attack_learned_selfplay_600", "match_attack_learned_selfplay_600_85000",
                     "match_attack_learned_selfplay_600_90200")),
-                  ("attacking team, the ball's place on the face decides", ("match_attack_learned_selfplay_600_92000",)),
+                  ("attacking team, the ball's place on the face decides (fixed)", ("match_attack_learned_selfplay_600_92000",)),
                   ("passing team (no kick on contact)", ("match_passing_learned_vs_passing_learned_snap",))]
 ATTACK_SKILL_SWAPS = ["match_attack_learned_vs_attack_baseline_600", "tuning/swap_none_all_learned",
                       "tuning/swap_aim_to_shoot_baseline",

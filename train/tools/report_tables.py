@@ -262,6 +262,14 @@ def match_variants(results: Path, entries: Iterable[tuple[str, str | tuple[str, 
     return rows
 
 
+def _played_commits(manifest: dict) -> list[str]:
+    """The commits a series was played with: its parts' (a merged series,
+    ``benchmarks/merge_match_series.py``) or its own (7 characters)."""
+    parts = manifest.get("parts")
+    gits = [p.get("git", {}) for p in parts.values()] if isinstance(parts, dict) else [manifest.get("git", {})]
+    return [g.get("commit", "?")[:7] for g in gits]
+
+
 def colour_balance(results: Path, groups: Iterable[tuple[str, tuple[str, ...]]]) -> Lines:
     """Self-play series (the same team on both sides), pooled per group (label, series
     names under ``results/``): blue's goal and kick surplus over yellow per match with its
@@ -277,8 +285,7 @@ def colour_balance(results: Path, groups: Iterable[tuple[str, tuple[str, ...]]])
         teams = {(m["config"]["blue"], m["config"]["yellow"]) for m in ms}
         if len(teams) != 1 or len(next(iter(teams))) != 2 or len(set(next(iter(teams)))) != 1:
             raise ValueError(f"colour_balance: {label} is not self-play of one team: {sorted(teams)}")
-        commits = sorted({(load_manifest(results / f"{n}.json") or {}).get("git", {}).get("commit", "?")[:7]
-                          for n in names})
+        commits = sorted({c for n in names for c in _played_commits(load_manifest(results / f"{n}.json") or {})})
         goals = [m["score"]["blue"] - m["score"]["yellow"] for m in ms]
         kicks = [m["stats"]["blue"]["kicks"] - m["stats"]["yellow"]["kicks"] for m in ms]
         shots = [sum(m["stats"][c]["shots"] for m in ms) for c in ("blue", "yellow")]
