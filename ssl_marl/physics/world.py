@@ -380,8 +380,9 @@ class PhysicsWorld(BallMechanics):
     def face_offset(self, pos: np.ndarray, heading: np.ndarray, ball_pos: np.ndarray) -> np.ndarray:
         """(n,) lateral offset (m) of the ball's centre from the middle of each robot's front
         face (the ``ly`` of :meth:`ball_on_face`). When several robots' kicks fire in one
-        step the smallest offset gets the ball (exact ties: the lower index), so neither
-        team wins contested balls by its place in the robot order."""
+        step, or several robots dribble the ball, the smallest offset gets the ball (exact
+        ties: the lower index), so neither team wins contested balls by its place in the
+        robot order."""
         d = ball_pos[None, :] - pos
         c, s = np.cos(heading), np.sin(heading)
         return np.abs(-s * d[:, 0] + c * d[:, 1])

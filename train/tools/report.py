@@ -108,7 +108,12 @@ DECISION_SERIES = ["match_attack_learned_decision_vs_attack_learned_600",
                    "match_attack_learned_decision_vs_attack_learned_600_div_a_11v11",
                    "match_attack_learned_decision_vs_passing_learned_600"]
 #: the learned decision against the hand-coded one with the contested-kick fix (seeds 93000-93029)
-DECISION_SERIES_FAIR = ["match_attack_learned_decision_vs_attack_learned_600_93000"]
+DECISION_SERIES_FAIR = ["match_attack_learned_decision_vs_attack_learned_600_93000",
+                        "match_attack_learned_vs_attack_learned_decision_600_93030"]
+#: the same 60 matches from the learned decision's side (blue in the first 30, yellow in the last 30)
+DECISION_FAIR_POOLED = [("attack-learned, learned decision vs attack-learned",
+                         (("match_attack_learned_decision_vs_attack_learned_600_93000", "blue"),
+                          ("match_attack_learned_vs_attack_learned_decision_600_93030", "yellow")))]
 ATTACK_DRILL = [("hand-coded (the attacking plays' cost decision)", "attack_drill_handcoded"),
                 ("learned (shipped `attack_drill.pt`: cloned, then MAPPO `mappo_attack_drill_bc_s0`)",
                  "attack_drill_learned")]
@@ -152,6 +157,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "attack_series": lambda r: t.series_600(r, ATTACK_SERIES),
     "decision_series": lambda r: t.series_600(r, DECISION_SERIES),
     "decision_series_fair": lambda r: t.series_600(r, DECISION_SERIES_FAIR),
+    "decision_fair_pooled": lambda r: t.pooled_sides(r, DECISION_FAIR_POOLED),
     "attack_targets": lambda r: t.series_600(r, ATTACK_TARGETS),
     "attack_targets_skills": lambda r: t.series_600(r, ATTACK_TARGETS_SKILLS),
     "colour_balance": lambda r: t.colour_balance(r, COLOUR_BALANCE),

@@ -270,6 +270,38 @@ def _played_commits(manifest: dict) -> list[str]:
     return [g.get("commit", "?")[:7] for g in gits]
 
 
+def pooled_sides(results: Path, rows_spec: Iterable[tuple[str, tuple[tuple[str, str], ...]]]) -> Lines:
+    """One row per (label, ((series name, side), ...)): the matches of the named series
+    pooled from the named side's point of view ("blue" or "yellow"), so a team played on
+    both colours is judged without a colour's advantage: W-D-L, win rate (Wilson) and goal
+    difference per 600 s (t interval), :func:`~ssl_marl.runners.statistics.series_statistics`."""
+    from ssl_marl.runners.statistics import series_statistics
+
+    rows = _head("team (side)", "series", "matches", "W-D-L", "win rate [95% CI]", "goals for-against",
+                 "goal diff per 600 s [95% CI]")
+    for label, parts in rows_spec:
+        gf, ga, secs = [], [], set()
+        for name, side in parts:
+            if side not in ("blue", "yellow"):
+                raise ValueError(f"pooled_sides: side must be blue or yellow, got {side!r}")
+            other = "yellow" if side == "blue" else "blue"
+            for m in load_result(results / f"{name}.json")["matches"]:
+                gf.append(m["score"][side])
+                ga.append(m["score"][other])
+                secs.add(float(m["config"]["seconds"]))
+        if len(secs) != 1:
+            raise ValueError(f"pooled_sides: {label} pools matches of different lengths {sorted(secs)}")
+        st = series_statistics(gf, ga, secs.pop())
+        wlo, whi = st["win_rate_ci95"]
+        lo, hi = st["goal_diff_per_600s_ci95"]
+        rows.append("| " + " | ".join([label, ", ".join(f"`{n}` ({s})" for n, s in parts), str(len(gf)),
+                                       f"{st['wins']}-{st['draws']}-{st['losses']}",
+                                       f"{100 * st['win_rate']:.0f} % [{100 * wlo:.0f}, {100 * whi:.0f}]",
+                                       f"{st['goals_for']}-{st['goals_against']}",
+                                       f"{st['goal_diff_per_600s']:+.2f} [{lo:+.2f}, {hi:+.2f}]"]) + " |")
+    return rows
+
+
 def colour_balance(results: Path, groups: Iterable[tuple[str, tuple[str, ...]]]) -> Lines:
     """Self-play series (the same team on both sides), pooled per group (label, series
     names under ``results/``): blue's goal and kick surplus over yellow per match with its
