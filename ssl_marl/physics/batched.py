@@ -37,7 +37,7 @@ from .field import FieldGeometry
 from .params import BallParams, RobotParams
 from .state import TeamState, WorldState, wrap_angle
 from .units import _FACE_PENETRATION_TOL, POS_ITERS, SCALE, VEL_ITERS
-from .world import PhysicsWorld, cap_velocities
+from .world import PhysicsWorld, ball_in_robot_frame, cap_velocities
 
 
 _R19 = np.arange(19)
@@ -260,8 +260,10 @@ class BatchedPhysics:
         cool = np.maximum(get(self.kick_cooldown) - dt, 0.0)
         fire = (kick > 0) & get(self.on_face_now) & (cool <= 0) & any_near[:, None]
         kicked = fire.any(axis=1)
-        offset = np.where(fire, self.face_offset(pos, heading, ball_pos), np.inf)  # PhysicsWorld.face_offset
-        kicker = np.where(kicked, np.argmin(offset, axis=1), -1)
+        kicker = np.where(kicked, np.argmax(fire, axis=1), -1)
+        for j in np.flatnonzero(fire.sum(axis=1) > 1).tolist():  # contested: PhysicsWorld.step's rule
+            offset = np.where(fire[j], self.face_offset(pos[j], heading[j], ball_pos[j]), np.inf)
+            kicker[j] = int(np.argmin(offset))
         kick_speed = np.zeros(len(idx))
         slide_until = get(self.slide_until).copy()
         kj = np.flatnonzero(kicked)
@@ -471,11 +473,7 @@ class BatchedPhysics:
         rp = self.robot
         if ball_pos.ndim == pos.ndim - 1 and pos.ndim == 3:
             ball_pos = ball_pos[:, None, :]
-        d0 = ball_pos[..., 0] - pos[..., 0]
-        d1 = ball_pos[..., 1] - pos[..., 1]
-        c, s = np.cos(heading), np.sin(heading)
-        lx = c * d0 + s * d1
-        ly = -s * d0 + c * d1
+        lx, ly = ball_in_robot_frame(pos, heading, ball_pos)
         gap = lx - rp.front_distance - self.ball_params.radius
         return (gap >= -_FACE_PENETRATION_TOL) & (gap <= rp.dribbler_tolerance) & (np.abs(ly) <= rp.dribbler_half_width)
 
@@ -483,10 +481,7 @@ class BatchedPhysics:
         """Vectorised :meth:`PhysicsWorld.face_offset` (shapes as :meth:`ball_on_face`)."""
         if ball_pos.ndim == pos.ndim - 1 and pos.ndim == 3:
             ball_pos = ball_pos[:, None, :]
-        d0 = ball_pos[..., 0] - pos[..., 0]
-        d1 = ball_pos[..., 1] - pos[..., 1]
-        c, s = np.cos(heading), np.sin(heading)
-        return np.abs(-s * d0 + c * d1)
+        return np.abs(ball_in_robot_frame(pos, heading, ball_pos)[1])
 
     # --------------------------------------------------------------- snapshots
     def snapshot(self, k: int) -> WorldState:

@@ -73,6 +73,16 @@ def cap_velocities(vel: np.ndarray, omega: np.ndarray | None, v_cap: float, w_ca
     return vel, omega, changed
 
 
+def ball_in_robot_frame(pos: np.ndarray, heading: np.ndarray, ball_pos: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(lx, ly) in m: the ball's centre in each robot's body frame (+x forward).
+    ``pos`` (..., 2) m, ``heading`` (...) rad, ``ball_pos`` broadcastable to ``pos``. The
+    one formula of the single and the batched worlds' face checks (bit-equal results)."""
+    d0 = ball_pos[..., 0] - pos[..., 0]
+    d1 = ball_pos[..., 1] - pos[..., 1]
+    c, s = np.cos(heading), np.sin(heading)
+    return c * d0 + s * d1, -s * d0 + c * d1
+
+
 class PhysicsWorld(BallMechanics):
     """Box2D simulation of one SSL field with robots and one ball.
 
@@ -370,10 +380,7 @@ class PhysicsWorld(BallMechanics):
         if pos.shape[0] == 0:
             return np.zeros(0, bool)
         rp = self.robot
-        d = ball_pos[None, :] - pos
-        c, s = np.cos(heading), np.sin(heading)
-        lx = c * d[:, 0] + s * d[:, 1]
-        ly = -s * d[:, 0] + c * d[:, 1]
+        lx, ly = ball_in_robot_frame(pos, heading, ball_pos)
         gap = lx - rp.front_distance - self.ball_params.radius
         return (gap >= -_FACE_PENETRATION_TOL) & (gap <= rp.dribbler_tolerance) & (np.abs(ly) <= rp.dribbler_half_width)
 
@@ -383,9 +390,7 @@ class PhysicsWorld(BallMechanics):
         step, or several robots dribble the ball, the smallest offset gets the ball (exact
         ties: the lower index), so neither team wins contested balls by its place in the
         robot order."""
-        d = ball_pos[None, :] - pos
-        c, s = np.cos(heading), np.sin(heading)
-        return np.abs(-s * d[:, 0] + c * d[:, 1])
+        return np.abs(ball_in_robot_frame(pos, heading, ball_pos)[1])
 
     def snapshot(self) -> WorldState:
         """Ground-truth :class:`WorldState` (field frame). Arrays are read-only views of
