@@ -45,6 +45,21 @@ def test_dribbling_1_2_m_is_a_foul_and_0_9_m_is_not():
     assert calls[-1] == ("excessive_dribbling", 0)
 
 
+def test_last_toucher_of_a_contested_tick_is_the_kicker_or_the_nearest_robot_not_the_last_row():
+    """A blue and a yellow robot come into contact with the ball in the same tick: the
+    last toucher (whose opponents get the free kick if the ball goes out) is the robot
+    that kicked, else the one nearer the ball, whichever colour it is."""
+    for blue_x, yellow_x, near in ((-0.10, 0.11, 0), (-0.11, 0.10, 1)):
+        watch = TouchWatch(1, 1, R_ROBOT, R_BALL)
+        ws = world([(blue_x, 0.0)], [(yellow_x, 0.0)], (0.0, 0.0))
+        watch.update(ws, watch.touching(ws, []), FIELD, False)
+        assert watch.last_robot == near and watch.last_team() == ("blue", "yellow")[near]
+        for kicker in (0, 1):
+            watch = TouchWatch(1, 1, R_ROBOT, R_BALL)
+            watch.update(ws, watch.touching(ws, [kicker]), FIELD, False, [kicker])
+            assert watch.last_robot == kicker
+
+
 def test_double_touch_after_a_free_kick():
     watch = TouchWatch(2, 1, R_ROBOT, R_BALL)
     assert touch_step(watch, world([(0.0, 0.0), (2.0, 2.0)], [(3.0, 2.0)], (0.1, 0.0))) is None

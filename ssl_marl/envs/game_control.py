@@ -116,8 +116,12 @@ class TouchWatch:
     def last_team(self) -> str | None:
         return None if self.last_robot is None else str(self.teams[self.last_robot])
 
-    def update(self, ws: WorldState, touch: np.ndarray, field: FieldGeometry, fouls: bool) -> tuple[str, int] | None:
-        """Record this tick's touches; returns (foul name, offending robot row) or None."""
+    def update(self, ws: WorldState, touch: np.ndarray, field: FieldGeometry, fouls: bool,
+               kicked: list[int] | tuple[int, ...] = ()) -> tuple[str, int] | None:
+        """Record this tick's touches (``kicked``: rows that kicked the ball this tick);
+        returns (foul name, offending robot row) or None. Of several robots that come into
+        contact in one tick, the last toucher is the one that kicked, else the one nearest
+        the ball (exact ties: the lower row), so the robot order favours neither team."""
         idx = np.flatnonzero(touch)
         if self.guard is not None and self.guard not in idx:
             self.guard_released = True
@@ -140,7 +144,12 @@ class TouchWatch:
             foul = foul or ("excessive_dribbling", self.dribbler)
         fresh = [i for i in idx.tolist() if i != self.last_robot]
         if fresh:  # the latest robot to come into contact is the last toucher
-            self.last_robot = int(fresh[-1])
+            kickers = [i for i in fresh if i in kicked]
+            if kickers:
+                fresh = kickers
+            pos = np.concatenate([ws.blue.pos, ws.yellow.pos])[fresh]
+            d2 = ((pos - ws.ball_pos[None, :]) ** 2).sum(1)
+            self.last_robot = int(fresh[int(np.argmin(d2))])
         return foul
 
     def taken_by(self, robot: int | None) -> None:

@@ -34,6 +34,13 @@ Model (all parameters in :mod:`ssl_marl.physics.params`):
   bounces; above the robots' height the ball's fixture stops colliding with robots
   (walls and goals still stop it). ``ball_max_height`` is the highest the ball has
   been since a robot last touched it (the goal rule's "at most 0.15 m").
+* Contest order: Box2D solves contacts in an order that follows body creation, and
+  when two robots squeeze the ball between them the one created later keeps it (in
+  1,500 random two-robot contests, 64 were decided by the order, 60 of them for the
+  later body). Robots are therefore created in an order drawn from the scene's own
+  poses (:func:`creation_order`): the same scene always builds the same world, and
+  no robot index, so no colour, is favoured on average. Contested kicks and
+  dribbles go to the robot with the ball most centred on its face (``face_offset``).
 """
 
 from __future__ import annotations
@@ -71,6 +78,15 @@ def cap_velocities(vel: np.ndarray, omega: np.ndarray | None, v_cap: float, w_ca
             omega = np.where(spin, np.clip(omega, -w_cap, w_cap).astype(np.float32), omega)
             changed |= spin
     return vel, omega, changed
+
+
+def creation_order(robot_pose: np.ndarray) -> np.ndarray:
+    """(n,) the order in which a world's robot bodies are created: a permutation drawn
+    from the bits of ``robot_pose`` ((n, 3) m, m, rad), so it is the same for the same
+    scene and independent of the robots' indices (module docstring, "Contest order")."""
+    pose = np.ascontiguousarray(robot_pose, dtype=np.float64)
+    entropy = np.frombuffer(pose.tobytes(), dtype=np.uint32)
+    return np.random.default_rng(entropy.tolist() or [0]).permutation(pose.shape[0])
 
 
 def ball_in_robot_frame(pos: np.ndarray, heading: np.ndarray, ball_pos: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -198,13 +214,16 @@ class PhysicsWorld(BallMechanics):
         self._walls_body = walls
         for fd in self._wall_fixdefs:
             walls.CreateFixture(fd)
-        self._robot_bodies = []
-        for (x, y, h), (vx, vy, om) in zip(robot_pose.tolist(), robot_vel.tolist()):
+        bodies: list = [None] * self.n  # by robot index, created in creation_order
+        poses, vels = robot_pose.tolist(), robot_vel.tolist()
+        for i in creation_order(robot_pose).tolist():
+            (x, y, h), (vx, vy, om) = poses[i], vels[i]
             b = w.CreateDynamicBody(position=(x * S, y * S), angle=h, linearVelocity=(vx * S, vy * S),
                                     angularVelocity=om)
             for fd in self._robot_fixdefs:
                 b.CreateFixture(fd)
-            self._robot_bodies.append(b)
+            bodies[i] = b
+        self._robot_bodies = bodies
         ball = w.CreateDynamicBody(position=(float(ball_pos[0]) * S, float(ball_pos[1]) * S), bullet=True,
                                    fixedRotation=True,
                                    linearVelocity=(float(ball_vel[0]) * S, float(ball_vel[1]) * S))

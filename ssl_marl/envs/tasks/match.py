@@ -204,7 +204,7 @@ class MatchTask(Task):
             self._restart(env, call.placement, team, truth.t, events)
             return False
         if st.command == RUNNING:
-            foul = self._touch.update(truth, touch, f, r.fouls)
+            foul = self._touch.update(truth, touch, f, r.fouls, kicked)
             if foul is not None:
                 name, row = foul
                 offender = str(self._touch.teams[row])
@@ -224,7 +224,7 @@ class MatchTask(Task):
             if truth.t - st.since >= r.stop_s - 1e-9:
                 self._command(FREE_KICK, self._pending_free_kick, self._spot, truth.t, events)
             return False
-        self._touch.update(truth, touch, f, False)  # KICKOFF / FREE_KICK: who touches, no fouls
+        self._touch.update(truth, touch, f, False, kicked)  # KICKOFF / FREE_KICK: who touches, no fouls
         taken = np.hypot(*(truth.ball_pos - self._spot)) > IN_PLAY_DISTANCE
         if taken or truth.t - st.since >= r.free_kick_timeout_s - 1e-9:
             taker = self._touch.last_robot if taken else None
