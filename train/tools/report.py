@@ -4,7 +4,8 @@
 
 Each table sits in the doc between ``<!-- table:NAME -->`` and ``<!-- /table:NAME -->``;
 this rewrites what lies between every pair of markers from :data:`TABLES` (the row
-builders are in :mod:`train.tools.report_tables`). ``--check`` changes nothing and exits 1
+builders are in :mod:`train.tools.report_tables` and
+:mod:`train.tools.report_match_tables`). ``--check`` changes nothing and exits 1
 naming the tables whose text differs from what the records give (and any marker
 without a table, or table without a marker). A result goes into the doc by adding its
 record under ``results/`` and its name to the table's entry here.
@@ -19,6 +20,7 @@ from pathlib import Path
 from typing import Callable
 
 from ssl_marl.io import atomic_write_bytes
+from train.tools import report_match_tables as m
 from train.tools import report_tables as t
 
 SKILLS_PAPER = ["go_to_ball_baseline", "go_to_ball_baseline_realistic", "go_to_ball_learned",
@@ -152,33 +154,33 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "redirect_skills": lambda r: t.skills(r, REDIRECT_SKILLS),
     "chip_pass_skills": lambda r: t.skills(r, CHIP_PASS_SKILLS),
     "chip_pass_selection": lambda r: t.selection(r, ["chip_pass_bc2k_s0", "chip_pass_bc100_s0"]),
-    "passing_series": lambda r: t.series(r, PASSING_SERIES),
-    "series_600_formats": lambda r: t.series_600(r, SERIES_600_SSL),
-    "attack_series": lambda r: t.series_600(r, ATTACK_SERIES),
-    "decision_series": lambda r: t.series_600(r, DECISION_SERIES),
-    "decision_series_fair": lambda r: t.series_600(r, DECISION_SERIES_FAIR),
-    "decision_fair_pooled": lambda r: t.pooled_sides(r, DECISION_FAIR_POOLED),
-    "attack_targets": lambda r: t.series_600(r, ATTACK_TARGETS),
-    "attack_targets_skills": lambda r: t.series_600(r, ATTACK_TARGETS_SKILLS),
-    "colour_balance": lambda r: t.colour_balance(r, COLOUR_BALANCE),
-    "match_variants": lambda r: t.match_variants(r, MATCH_VARIANTS),
-    "shot_outcomes": lambda r: t.shot_outcomes(r / "tuning" / "shot_outcome_probe.json"),
-    "pass_options": lambda r: t.pass_options(r, ["pass_option_probe.json", "pass_option_probe_guard1.json"]),
-    "set_piece_series": lambda r: t.set_piece_series(r, SET_PIECE_SERIES),
-    "attack_skill_swaps": lambda r: t.series_600(r, ATTACK_SKILL_SWAPS),
+    "passing_series": lambda r: m.series(r, PASSING_SERIES),
+    "series_600_formats": lambda r: m.series_600(r, SERIES_600_SSL),
+    "attack_series": lambda r: m.series_600(r, ATTACK_SERIES),
+    "decision_series": lambda r: m.series_600(r, DECISION_SERIES),
+    "decision_series_fair": lambda r: m.series_600(r, DECISION_SERIES_FAIR),
+    "decision_fair_pooled": lambda r: m.pooled_sides(r, DECISION_FAIR_POOLED),
+    "attack_targets": lambda r: m.series_600(r, ATTACK_TARGETS),
+    "attack_targets_skills": lambda r: m.series_600(r, ATTACK_TARGETS_SKILLS),
+    "colour_balance": lambda r: m.colour_balance(r, COLOUR_BALANCE),
+    "match_variants": lambda r: m.match_variants(r, MATCH_VARIANTS),
+    "shot_outcomes": lambda r: m.shot_outcomes(r / "tuning" / "shot_outcome_probe.json"),
+    "pass_options": lambda r: m.pass_options(r, ["pass_option_probe.json", "pass_option_probe_guard1.json"]),
+    "set_piece_series": lambda r: m.set_piece_series(r, SET_PIECE_SERIES),
+    "attack_skill_swaps": lambda r: m.series_600(r, ATTACK_SKILL_SWAPS),
     "go_to_ball_rolling_selection": lambda r: t.rolling_selection(r, {
         f: [f"tuning/go_to_ball_rolling_val5000_{f}.json", f"tuning/go_to_ball_rolling_val5000_{f}_2.json"]
         for f in ("div_b", "div_a")}),
     "go_to_ball_rolling": lambda r: t.rolling_probe(r, [f"go_to_ball_rolling/probe_{f}_{m}.json"
                                                         for f in ("div_b", "div_a") for m in ("none", "realistic")],
                                                     ROLLING_ACTOR),
-    "league_anchors": lambda r: t.league(r, "league_anchors"),
-    "league_learned": lambda r: t.league(r, "league_learned"),
-    "passing_contested_kick": lambda r: t.tuning(r, [("`contested_kick` on", "passing_contested_kick.json",
+    "league_anchors": lambda r: m.league(r, "league_anchors"),
+    "league_learned": lambda r: m.league(r, "league_learned"),
+    "passing_contested_kick": lambda r: m.tuning(r, [("`contested_kick` on", "passing_contested_kick.json",
                                                       "contested_kick_on"),
                                                      ("`contested_kick` off (the default)",
                                                       "passing_contested_kick.json", "contested_kick_off")]),
-    "passing_skill_swaps": lambda r: t.tuning(r, [
+    "passing_skill_swaps": lambda r: m.tuning(r, [
         ("all learned (`passing-learned`)", "ablation_all_learned.json", None),
         ("go-to-ball hand-coded, others learned", "ablation_gtb_baseline.json", None),
         ("pass and receive hand-coded, others learned", "ablation_pass_receive_baseline.json", None),

@@ -1,0 +1,328 @@
+"""Markdown tables of docs/RESULTS.md built from match series, leagues and match probes
+(``results/<name>.json`` series read with :func:`ssl_marl.runners.result.load_result`,
+tuning records under ``results/tuning/``). Every function takes the results folder and
+returns the table's lines; the skill, decision and training tables are
+:mod:`train.tools.report_tables`.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any, Iterable
+
+from ssl_marl.runners.result import load_manifest, load_result
+from train.tools.report_tables import Lines, _head
+
+
+def series(results: Path, names: Iterable[str]) -> Lines:
+    """One row per match series (``results/<name>.json``)."""
+    rows = _head("series", "blue", "yellow", "seeds", "matches", "W-D-L (blue)", "goals for-against", "goals/match",
+                 "goal diff/match", "blue: shots/match / passes / intercepted",
+                 "yellow: shots/match / passes / intercepted")
+    for n in names:
+        d = load_result(results / f"{n}.json")
+        s, seeds = d["summary"], [m["seed"] for m in d["matches"]]
+        k = max(s["matches"], 1)
+
+        def side(team: str) -> str:
+            t = s["stats"][team]
+            pc = "-" if t["pass_completion"] is None else f"{100 * t['pass_completion']:.0f} %"
+            return f"{t['shots'] / k:.1f} / {t['passes_completed']}-{t['passes_attempted']} ({pc}) / {t['passes_intercepted']}"
+        rows.append(f"| `{n}` | {s['blue']} | {s['yellow']} | {min(seeds)}-{max(seeds)} | {s['matches']} | "
+                    f"{s['wins']}-{s['draws']}-{s['losses']} | {s['goals_for']}-{s['goals_against']} | "
+                    f"{(s['goals_for'] + s['goals_against']) / k:.2f} | {s['goal_diff_mean']:+.2f} | {side('blue')} | "
+                    f"{side('yellow')} |")
+    return rows
+
+
+def _team_label(team: Any) -> str:
+    """A series' team: its kind, and the skills a team file or ``--*-skill`` option ran
+    hand-coded in a learned-skill team (``attack-learned, hand-coded pass``) or from an
+    actor file (``attack-learned, go-to-ball actor-000740001.pt``)."""
+    if not isinstance(team, dict):
+        return str(team)
+    skills = team.get("skills", {})
+    swapped = [k.replace("_", "-") for k, v in skills.items() if v == "baseline"]
+    files = [f"{k.replace('_', '-')} `{Path(v).name}`" for k, v in skills.items()
+             if isinstance(v, str) and v.endswith(".pt")]
+    return team["kind"] + (f", hand-coded {' + '.join(swapped)}" if swapped else "") + \
+        "".join(f", {f}" for f in files)
+
+
+def series_600(results: Path, names: Iterable[str]) -> Lines:
+    """One row per series of long matches (``results/<name>.json``): W-D-L, win rate and
+    goal difference per 600 s with their 95 % intervals
+    (:func:`~ssl_marl.runners.statistics.series_statistics`), blue's shots, goals and
+    passes by kind."""
+    rows = _head("series", "blue vs yellow", "field, realism", "seeds", "matches", "W-D-L (blue)",
+                 "win rate [95% CI]", "goals for-against (per match)", "goal diff per 600 s [95% CI]",
+                 "blue shots direct / redirect / after chip", "blue goals direct / redirect / after chip / other",
+                 "blue passes completed: flat / chip")
+    for n in names:
+        d = load_result(results / f"{n}.json")
+        s, st = d["summary"], d["summary"]["statistics"]
+        seeds = [m["seed"] for m in d["matches"]]
+        cfg = d["matches"][0]["config"]
+        b = s["stats"]["blue"]
+        k = max(s["matches"], 1)
+        lo, hi = st["goal_diff_per_600s_ci95"]
+        wlo, whi = st["win_rate_ci95"]
+
+        def frac(c: int, a: int) -> str:
+            return f"{c} of {a}" + (f" ({100 * c / a:.0f} %)" if a else "")
+        dec = cfg.get("decision") or {}
+        label = {side: _team_label(s[side]) + (f", {Path(str(dec[side])).name} decision"
+                                               if dec.get(side) not in (None, "handcoded") else "")
+                 for side in ("blue", "yellow")}
+        rows.append(f"| `{n}` | {label['blue']} vs {label['yellow']} | {cfg['field']}, {cfg['realism']} | "
+                    f"{min(seeds)}-{max(seeds)} | {s['matches']} | {s['wins']}-{s['draws']}-{s['losses']} | "
+                    f"{100 * st['win_rate']:.0f} % [{100 * wlo:.0f}, {100 * whi:.0f}] | "
+                    f"{s['goals_for']}-{s['goals_against']} ({s['goals_for'] / k:.2f}-{s['goals_against'] / k:.2f}) | "
+                    f"{st['goal_diff_per_600s']:+.2f} [{lo:+.2f}, {hi:+.2f}] | "
+                    f"{b['shots_direct']} / {b['shots_redirect']} / {b['shots_after_chip_pass']} | "
+                    f"{b['goals_direct']} / {b['goals_redirect']} / {b['goals_after_chip_pass']} / {b['goals_other']} | "
+                    f"{frac(b['passes_flat_completed'], b['passes_flat_attempted'])} / "
+                    f"{frac(b['passes_chip_completed'], b['passes_chip_attempted'])} |")
+    return rows
+
+
+def league(results: Path, name: str) -> Lines:
+    """The ratings table of a league folder (``results/<name>/league.json``), as
+    :func:`ssl_marl.runners.league.ratings_markdown` writes it."""
+    from ssl_marl.runners.league import ratings_markdown
+
+    text = ratings_markdown(json.loads((results / name / "league.json").read_text()))
+    return [ln for ln in text.splitlines() if ln.startswith("|")]
+
+
+def tuning(results: Path, entries: Iterable[tuple[str, str, str | None]]) -> Lines:
+    """Tuning match sets (``results/tuning/*.json``): (label, file, key inside it or None)."""
+    rows = _head("variant", "opponent", "seeds", "matches", "W-D-L (blue)", "goals", "shots (blue / yellow)",
+                 "passes completed / attempted (blue)", "no-progress restarts")
+    for label, file, key in entries:
+        d = json.loads((results / "tuning" / file).read_text())
+        d = d[key] if key else d
+        ms = d["matches"]
+        w = sum(m["score"]["blue"] > m["score"]["yellow"] for m in ms)
+        lo = sum(m["score"]["blue"] < m["score"]["yellow"] for m in ms)
+        tot = lambda team, f: sum(m["stats"][team][f] for m in ms)  # noqa: E731
+        restarts = sum(m["no_progress"] for m in ms) if all("no_progress" in m for m in ms) else "-"
+        seeds = [m["seed"] for m in ms]
+        rows.append(f"| {label} | {d['opponent']} | {min(seeds)}-{max(seeds)} | {len(ms)} | {w}-{len(ms) - w - lo}-{lo} | "
+                    f"{tot('blue', 'goals')}-{tot('yellow', 'goals')} | {tot('blue', 'shots')} / {tot('yellow', 'shots')} | "
+                    f"{tot('blue', 'passes_completed')} / {tot('blue', 'passes_attempted')} | {restarts} |")
+    return rows
+
+
+def match_variants(results: Path, entries: Iterable[tuple[str, str | tuple[str, ...]]]) -> Lines:
+    """Tuning matches under variants of the restarts and the carrier's keep rule
+    (``benchmarks/match_variants.py``; ``results/tuning/match_variants/<file>``): (label, file
+    or files whose matches are pooled)."""
+    from ssl_marl.runners.statistics import series_statistics
+
+    rows = _head("variant", "commit", "blue vs yellow", "seeds", "matches", "W-D-L (blue)", "goals for-against",
+                 "goal diff per 600 s [95% CI]", "ball-outs per match", "blue shots per match",
+                 "blue passes completed (the referee's count)")
+    for label, files in entries:
+        recs = [json.loads((results / "tuning" / "match_variants" / f).read_text())
+                for f in ((files,) if isinstance(files, str) else files)]
+        ms = [m for d in recs for m in d["matches"]]
+        rules = recs[0]["manifest"]["rules"]
+        commits = sorted({d["manifest"]["git"]["commit"][:7] + ("+" if d["manifest"]["git"].get("dirty") else "")
+                          for d in recs})  # +: uncommitted changes in the tree
+        st = series_statistics([m["score"]["blue"] for m in ms], [m["score"]["yellow"] for m in ms],
+                               float(rules["seconds"]))
+        lo, hi = st["goal_diff_per_600s_ci95"]
+        outs = (f"{sum(m['referee'].get('ball_out', 0) for m in ms) / len(ms):.0f}"
+                if all(m["referee"] for m in ms) else "-")
+        passes = "-"
+        if all("passes_attempted" in m["blue"] for m in ms):
+            done, tried = (sum(m["blue"][k] for m in ms) for k in ("passes_completed", "passes_attempted"))
+            passes = f"{done} of {tried} ({100 * done / max(tried, 1):.0f} %)"
+        seeds = [m["seed"] for m in ms]
+        cells = [label, ", ".join(commits), f"{rules['blue']} vs {rules['yellow']}", f"{min(seeds)}-{max(seeds)}",
+                 str(len(ms)), f"{st['wins']}-{st['draws']}-{st['losses']}", f"{st['goals_for']}-{st['goals_against']}",
+                 f"{st['goal_diff_per_600s']:+.2f} [{lo:+.2f}, {hi:+.2f}]", outs,
+                 f"{sum(m['blue']['shots'] for m in ms) / len(ms):.1f}", passes]
+        rows.append("| " + " | ".join(cells) + " |")
+    return rows
+
+
+def _played_commits(manifest: dict) -> list[str]:
+    """The commits a series was played with: its parts' (a merged series,
+    ``benchmarks/merge_match_series.py``) or its own (7 characters)."""
+    parts = manifest.get("parts")
+    gits = [p.get("git", {}) for p in parts.values()] if isinstance(parts, dict) else [manifest.get("git", {})]
+    return [g.get("commit", "?")[:7] for g in gits]
+
+
+def pooled_sides(results: Path, rows_spec: Iterable[tuple[str, tuple[tuple[str, str], ...]]]) -> Lines:
+    """One row per (label, ((series name, side), ...)): the matches of the named series
+    pooled from the named side's point of view ("blue" or "yellow"), so a team played on
+    both colours is judged without a colour's advantage: W-D-L, win rate (Wilson) and goal
+    difference per 600 s (t interval), :func:`~ssl_marl.runners.statistics.series_statistics`."""
+    from ssl_marl.runners.statistics import series_statistics
+
+    rows = _head("team (side)", "series", "matches", "W-D-L", "win rate [95% CI]", "goals for-against",
+                 "goal diff per 600 s [95% CI]")
+    for label, parts in rows_spec:
+        gf, ga, secs = [], [], set()
+        for name, side in parts:
+            if side not in ("blue", "yellow"):
+                raise ValueError(f"pooled_sides: side must be blue or yellow, got {side!r}")
+            other = "yellow" if side == "blue" else "blue"
+            for m in load_result(results / f"{name}.json")["matches"]:
+                gf.append(m["score"][side])
+                ga.append(m["score"][other])
+                secs.add(float(m["config"]["seconds"]))
+        if len(secs) != 1:
+            raise ValueError(f"pooled_sides: {label} pools matches of different lengths {sorted(secs)}")
+        st = series_statistics(gf, ga, secs.pop())
+        wlo, whi = st["win_rate_ci95"]
+        lo, hi = st["goal_diff_per_600s_ci95"]
+        rows.append("| " + " | ".join([label, ", ".join(f"`{n}` ({s})" for n, s in parts), str(len(gf)),
+                                       f"{st['wins']}-{st['draws']}-{st['losses']}",
+                                       f"{100 * st['win_rate']:.0f} % [{100 * wlo:.0f}, {100 * whi:.0f}]",
+                                       f"{st['goals_for']}-{st['goals_against']}",
+                                       f"{st['goal_diff_per_600s']:+.2f} [{lo:+.2f}, {hi:+.2f}]"]) + " |")
+    return rows
+
+
+def colour_balance(results: Path, groups: Iterable[tuple[str, tuple[str, ...]]]) -> Lines:
+    """Self-play series (the same team on both sides), pooled per group (label, series
+    names under ``results/``): blue's goal and kick surplus over yellow per match with its
+    95 % t interval (:func:`~ssl_marl.runners.statistics.t_interval`), and blue's share of
+    the shots. With no colour bias both surpluses are 0."""
+    from ssl_marl.runners.statistics import t_interval
+
+    rows = _head("series", "commit", "team", "matches", "goals blue-yellow", "goal surplus of blue per match [95% CI]",
+                 "kick surplus of blue per match [95% CI]", "blue's share of the shots")
+    for label, names in groups:
+        ds = [load_result(results / f"{n}.json") for n in names]
+        ms = [m for d in ds for m in d["matches"]]
+        teams = {(m["config"]["blue"], m["config"]["yellow"]) for m in ms}
+        if len(teams) != 1 or len(next(iter(teams))) != 2 or len(set(next(iter(teams)))) != 1:
+            raise ValueError(f"colour_balance: {label} is not self-play of one team: {sorted(teams)}")
+        commits = sorted({c for n in names for c in _played_commits(load_manifest(results / f"{n}.json") or {})})
+        goals = [m["score"]["blue"] - m["score"]["yellow"] for m in ms]
+        kicks = [m["stats"]["blue"]["kicks"] - m["stats"]["yellow"]["kicks"] for m in ms]
+        shots = [sum(m["stats"][c]["shots"] for m in ms) for c in ("blue", "yellow")]
+        cells = [label, ", ".join(commits), next(iter(teams))[0], str(len(ms)),
+                 f"{sum(m['score']['blue'] for m in ms)}-{sum(m['score']['yellow'] for m in ms)}"]
+        for v in (goals, kicks):
+            lo, hi = t_interval(v)
+            cells.append(f"{sum(v) / len(v):+.2f} [{lo:+.2f}, {hi:+.2f}]")
+        cells.append(f"{100 * shots[0] / max(sum(shots), 1):.0f} %")
+        rows.append("| " + " | ".join(cells) + " |")
+    return rows
+
+
+def shot_outcomes(path: Path) -> Lines:
+    """``benchmarks/shot_outcome_probe.py``'s summary: where the blue shots came from and how they ended."""
+    d = json.loads(path.read_text())
+    s, seeds = d["summary"], d["manifest"]["seeds"]["seeds"]
+    o = s["outcomes"]
+    rows = _head("seeds", "shots", "on target", "open < 0.05 rad", "from own half", "from the scoring zone",
+                 "after the carrier's decision: shoot / dribble / pass / none",
+                 "ended: goal / keeper / defender / teammate / out / stopped", "blue goals from no shot")
+    dec = s["after_decision"]
+    rows.append(f"| {min(seeds)}-{max(seeds)} | {s['shots']} | {s['on_target']} | {s['open_below_0_05rad']} | "
+                f"{s['from_own_half']} | {s['from_scoring_zone']} | "
+                f"{' / '.join(str(dec.get(k, 0)) for k in ('shoot', 'dribble', 'pass', 'none'))} | "
+                f"{' / '.join(str(o.get(k, 0)) for k in ('goal', 'keeper', 'defender', 'teammate', 'out', 'stopped'))} | "
+                f"{s['blue_goals_without_a_shot']} |")
+    return rows
+
+
+def pass_options(results: Path, files: Iterable[str]) -> Lines:
+    """``benchmarks/pass_option_probe.py`` records (``results/tuning/<file>``): the pass options
+    the attacking carrier's decision rated and its choices."""
+    rows = _head("receiver guard (m)", "seeds", "decisions", "flat passes rated: eligible (success >= 0.35)",
+                 "passes into a redirect rated: eligible", "choices: shoot / dribble / pass / chip / redirect")
+    for file in files:
+        d = json.loads((results / "tuning" / file).read_text())
+        s, seeds = d["summary"], d["manifest"]["seeds"]["seeds"]
+        pct = lambda a, b: f"{s[a]} of {s[b]} ({100 * s[a] / max(s[b], 1):.1f} %)"  # noqa: E731
+        rows.append(f"| {s['receiver_guard_m']:g} | {min(seeds)}-{max(seeds)} | {s['decisions']} | "
+                    f"{pct('flat_options_eligible', 'flat_options')} | {pct('redirect_options_eligible', 'redirect_options')} | "
+                    f"{' / '.join(str(s.get('choice_' + k, 0)) for k in ('shoot', 'dribble', 'pass', 'chip', 'redirect'))} |")
+    return rows
+
+
+def set_piece_series(results: Path, names: Iterable[str]) -> Lines:
+    """One row per series of long matches under SSL game control (``results/<name>.json``):
+    the code's commit (from the manifest), W-D-L, goals and goal difference per 600 s with
+    its 95 % interval, and blue's set pieces (awarded; passes, chips among them, and shots
+    as their first kick; goals of set-piece possessions; "-" where the code did not count
+    them), shots and pass completion."""
+    rows = _head("series", "code", "blue vs yellow", "seeds", "matches", "W-D-L (blue)", "goals for-against",
+                 "goal diff per 600 s [95% CI]", "blue set pieces: awarded / passes (chips) / shots",
+                 "blue goals from set pieces", "blue shots", "blue passes completed")
+    for n in names:
+        d = load_result(results / f"{n}.json")
+        s, st = d["summary"], d["summary"]["statistics"]
+        manifest = json.loads((results / json.loads((results / f"{n}.json").read_text())["manifest_file"]).read_text())
+        seeds = [m["seed"] for m in d["matches"]]
+        b = s["stats"]["blue"]
+        lo, hi = st["goal_diff_per_600s_ci95"]
+        counted = any("set_pieces" in m["stats"]["blue"] for m in d["matches"])
+        sp = (f"{b['set_pieces']} / {b['set_piece_passes']} ({b['set_piece_chips']}) / {b['set_piece_shots']}"
+              if counted else "-")
+        rows.append(f"| `{n}` | {manifest['git']['commit'][:7]} | {s['blue']} vs {s['yellow']} | "
+                    f"{min(seeds)}-{max(seeds)} | {s['matches']} | {s['wins']}-{s['draws']}-{s['losses']} | "
+                    f"{s['goals_for']}-{s['goals_against']} | {st['goal_diff_per_600s']:+.2f} [{lo:+.2f}, {hi:+.2f}] | "
+                    f"{sp} | {b['goals_set_piece'] if counted else '-'} | {b['shots']} | "
+                    f"{b['passes_completed']} of {b['passes_attempted']} |")
+    return rows
+
+
+def _side_matches(results: Path, label: str, parts: Iterable[tuple[str, str]]) -> tuple[list[dict], list[str], float]:
+    """The matches of ``parts`` ((series name, side), ...) with each side's stats and score
+    turned to the named side's point of view ("own" / "opp"), their series' commits and
+    the one match length (s) they share."""
+    ms, commits, secs = [], set(), set()
+    for name, side in parts:
+        if side not in ("blue", "yellow"):
+            raise ValueError(f"{label}: side must be blue or yellow, got {side!r}")
+        other = "yellow" if side == "blue" else "blue"
+        commits.update(_played_commits(load_manifest(results / f"{name}.json") or {}))
+        for m in load_result(results / f"{name}.json")["matches"]:
+            ms.append({"own": m["stats"][side], "opp": m["stats"][other], "gf": m["score"][side],
+                       "ga": m["score"][other]})
+            secs.add(float(m["config"]["seconds"]))
+    if len(secs) != 1:
+        raise ValueError(f"{label} pools matches of different lengths {sorted(secs)}")
+    return ms, sorted(commits), secs.pop()
+
+
+def pooled_attack(results: Path, rows_spec: Iterable[tuple[str, tuple[tuple[str, str], ...]]]) -> Lines:
+    """The attacking-game targets from one team's side, pooled over series where it played
+    blue and yellow (label, ((series name, side), ...)): W-D-L, win rate (Wilson), goals
+    scored and conceded per match, goal difference per 600 s (t interval), the side's
+    goals by kind and its passes completed by kind (the statistics module's counts)."""
+    from ssl_marl.runners.statistics import series_statistics
+
+    rows = _head("team (vs)", "series (side)", "commit", "matches", "W-D-L", "win rate [95% CI]",
+                 "goals scored-conceded per match", "goal diff per 600 s [95% CI]",
+                 "goals direct / redirect / after chip / other", "passes completed: flat / chip / all")
+    for label, parts in rows_spec:
+        parts = tuple(parts)
+        ms, commits, secs = _side_matches(results, label, parts)
+        st = series_statistics([m["gf"] for m in ms], [m["ga"] for m in ms], secs)
+        wlo, whi = st["win_rate_ci95"]
+        lo, hi = st["goal_diff_per_600s_ci95"]
+        tot = lambda key: sum(m["own"][key] for m in ms)  # noqa: E731
+
+        def frac(kind: str) -> str:
+            c, a = tot(f"passes{kind}_completed"), tot(f"passes{kind}_attempted")
+            return f"{c} of {a}" + (f" ({100 * c / a:.0f} %)" if a else "")
+        k = len(ms)
+        rows.append("| " + " | ".join([
+            label, ", ".join(f"`{n}` ({s})" for n, s in parts), ", ".join(commits), str(k),
+            f"{st['wins']}-{st['draws']}-{st['losses']}", f"{100 * st['win_rate']:.0f} % [{100 * wlo:.0f}, {100 * whi:.0f}]",
+            f"{st['goals_for'] / k:.2f}-{st['goals_against'] / k:.2f} ({st['goals_for']}-{st['goals_against']})",
+            f"{st['goal_diff_per_600s']:+.2f} [{lo:+.2f}, {hi:+.2f}]",
+            " / ".join(str(tot(f"goals_{g}")) for g in ("direct", "redirect", "after_chip_pass", "other")),
+            f"{frac('_flat')} / {frac('_chip')} / {frac('')}"]) + " |")
+    return rows
