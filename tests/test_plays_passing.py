@@ -281,6 +281,10 @@ def test_stats_deflection_is_not_control_and_timeout_loses_the_pass():
     tr.observe(_kick_world((0.0, 0.0), (0.0, 0.0), [(2.5, 0.0)], opp=[(1.2, 0.0)], t=5.0))
     s = tr.summary()["blue"]
     assert s["passes_lost"] == 1 and s["pass_completion"] == 0.0
+    assert [e.get("why") for e in tr.log if e["type"] == "pass_lost"] == ["timeout"]
+    tr.observe(_kick_world((0.0, 0.0), (3.0, 0.0), [(2.5, 0.0)], t=6.0), [{"type": "kick", "agent": "blue_0"}])
+    tr.observe(_kick_world((0.0, 0.0), (3.0, 0.0), [(2.5, 0.0)], t=6.2), [{"type": "ball_out", "t": 6.2}])
+    assert [e.get("why") for e in tr.log if e["type"] == "pass_lost"] == ["timeout", "ball_out"]
     with pytest.raises(ValueError, match="field-frame"):
         tr.observe(make_world(blue=[(0, 0, 0)], frame="blue"))
 

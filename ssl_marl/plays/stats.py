@@ -18,7 +18,9 @@ same rules:
 * A pass ends at the first control or kick by another robot: a teammate -> **completed**
   (a one-touch redirect counts); an opponent -> **intercepted** (the opponent's
   ``interceptions`` + 1). A goal, the ball leaving the field, the kicker itself taking
-  the ball back, or ``pass_timeout_s`` without a control end it as **lost**.
+  the ball back, or ``pass_timeout_s`` without a control end it as **lost** (the log's
+  ``pass_lost`` entry says which: ``why`` "goal", "ball_out", "no_progress", "foul",
+  "kicker" or "timeout").
 * **Goals** come from the referee's goal events.
 * **Kinds** of kicks, from what the physics reports of a kick (the kick event, the
   ball's vertical velocity ``ball_vz`` right after it, the ball's speed the step
@@ -174,7 +176,9 @@ class MatchStatsTracker:
                 return "pass"
         return "shot" if at_goal else "clear"
 
-    def _close(self, outcome: str, by: tuple[str, int] | None, t: float) -> None:
+    def _close(self, outcome: str, by: tuple[str, int] | None, t: float, why: str | None = None) -> None:
+        """End the open pass as "completed", "intercepted" or "lost" (``why``: what ended a
+        lost pass, logged: "kicker", "timeout", "goal", "ball_out", "no_progress", "foul")."""
         op = self._open
         if op is None:
             return
@@ -191,7 +195,7 @@ class MatchStatsTracker:
         else:
             s.passes_lost += 1
         self.log.append({"t": t, "type": "pass_" + outcome, "team": op.team, "kicker": op.kicker,
-                         "by": list(by) if by else None})
+                         "by": list(by) if by else None, **({"why": why} if why else {})})
         self._open = None
 
     def _touch(self, team: str, idx: int, t: float) -> None:
@@ -204,7 +208,7 @@ class MatchStatsTracker:
         elif idx != op.kicker:
             self._close("completed", (team, idx), t)
         else:
-            self._close("lost", (team, idx), t)
+            self._close("lost", (team, idx), t, "kicker")
 
     # ------------------------------------------------------------- the step
     def observe(self, world: WorldState, events: list[dict] | tuple = ()) -> None:
@@ -249,11 +253,11 @@ class MatchStatsTracker:
                 setattr(gs, f"goals_{gk}", getattr(gs, f"goals_{gk}") + 1)
                 self.log.append({"t": t, "type": "goal", "team": e["team"], "kind": gk})
                 self._restarted()
-                self._close("lost", None, t)
+                self._close("lost", None, t, "goal")
                 self._held.clear()
             elif kind in ("ball_out", "no_progress", "foul"):  # the referee restarts play
                 self._restarted()
-                self._close("lost", None, t)
+                self._close("lost", None, t, kind)
                 if kind == "no_progress":
                     self.log.append({"t": t, "type": "no_progress"})
                 self._held.clear()
@@ -267,7 +271,7 @@ class MatchStatsTracker:
                     self._end_set_piece_chain_unless(team)
         self._held = held
         if self._open is not None and t - self._open.t > self.params.pass_timeout_s:
-            self._close("lost", None, t)
+            self._close("lost", None, t, "timeout")
         self._prev_speed = float(np.hypot(*world.ball_vel))
 
     def _set_piece_kick(self, team: str, what: str, world: WorldState) -> None:
