@@ -65,6 +65,12 @@ ATTACK_TARGETS_SKILLS = ["match_attack_learned_vs_baseline_600_90000",
                          "match_attack_learned_vs_passing_learned_600_90100",
                          "match_attack_learned_selfplay_600_90200",
                          "match_attack_learned_vs_baseline_600_realistic_90300"]
+#: the target series with colour-fair physics (commit d55290a), the attacking team half its matches blue, half yellow
+ATTACK_TARGETS_FAIR = ["match_attack_learned_vs_baseline_600_94000", "match_baseline_vs_attack_learned_600_94010"]
+#: the same from the attacking team's side, both colours pooled
+ATTACK_TARGETS_FAIR_POOLED = [
+    ("attack-learned (vs baseline)", (("match_attack_learned_vs_baseline_600_94000", "blue"),
+                                      ("match_baseline_vs_attack_learned_600_94010", "yellow")))]
 #: self-play series of one team, pooled: blue's surplus over yellow (a colour bias shows here)
 COLOUR_BALANCE = [("attacking team, the robot order decides a contested ball",
                    ("match_attack_learned_selfplay_600", "match_attack_learned_selfplay_600_85000",
@@ -162,7 +168,11 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_fair_pooled": lambda r: m.pooled_sides(r, DECISION_FAIR_POOLED),
     "attack_targets": lambda r: m.series_600(r, ATTACK_TARGETS),
     "attack_targets_skills": lambda r: m.series_600(r, ATTACK_TARGETS_SKILLS),
+    "attack_targets_fair": lambda r: m.series_600(r, ATTACK_TARGETS_FAIR),
+    "attack_targets_fair_pooled": lambda r: m.pooled_attack(r, ATTACK_TARGETS_FAIR_POOLED),
     "colour_balance": lambda r: m.colour_balance(r, COLOUR_BALANCE),
+    "colour_mirror": lambda r: m.colour_mirror(r, ["colour_mirror_attack_baseline.json",
+                                                   "colour_mirror_attack_learned.json"]),
     "match_variants": lambda r: m.match_variants(r, MATCH_VARIANTS),
     "shot_outcomes": lambda r: m.shot_outcomes(r / "tuning" / "shot_outcome_probe.json"),
     "pass_options": lambda r: m.pass_options(r, ["pass_option_probe.json", "pass_option_probe_guard1.json"]),

@@ -326,3 +326,26 @@ def pooled_attack(results: Path, rows_spec: Iterable[tuple[str, tuple[tuple[str,
             " / ".join(str(tot(f"goals_{g}")) for g in ("direct", "redirect", "after_chip_pass", "other")),
             f"{frac('_flat')} / {frac('_chip')} / {frac('')}"]) + " |")
     return rows
+
+
+def colour_mirror(results: Path, files: Iterable[str]) -> Lines:
+    """``benchmarks/colour_mirror_check.py`` records (``results/tuning/<file>``): per team, the
+    control step at which a scene and its colour-swapped mirror first part (a command or the
+    world differs beyond the check's tolerances), and how far apart the worlds were then."""
+    import statistics
+
+    rows = _head("team (both sides)", "commit", "scenes", "first parting step: median (min-max)",
+                 "world difference then (m): median (max)", "scenes that never parted (steps)")
+    for file in files:
+        d = json.loads((results / "tuning" / file).read_text())
+        parted = [s for s in d["scenes"] if s["step"] is not None]
+        steps = [s["step"] for s in parted]
+        worlds = [s["world_diff_m"] for s in parted]
+        n_steps = d["command"].split("--steps")[1].split()[0] if "--steps" in d["command"] else "?"
+        rows.append("| " + " | ".join([
+            d["team"] if d["opponent"] == d["team"] else f"{d['team']} vs {d['opponent']}",
+            d["git"]["commit"][:7] + ("+" if d["git"].get("dirty") else ""), str(len(d["scenes"])),
+            f"{statistics.median(steps):.0f} ({min(steps)}-{max(steps)})" if steps else "-",
+            f"{statistics.median(worlds):.1e} ({max(worlds):.1e})" if worlds else "-",
+            f"{len(d['scenes']) - len(parted)} ({n_steps})"]) + " |")
+    return rows
