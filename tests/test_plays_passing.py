@@ -272,6 +272,21 @@ def test_stats_pass_completed_intercepted_and_shot():
     assert (s["shots"], s["kicks"], s["goals"], s["passes_attempted"]) == (1, 4, 1, 2)
 
 
+def test_stats_same_step_control_goes_to_the_robot_nearest_the_ball_not_to_blue():
+    """A blue pass; a blue receiver and a yellow robot both hold the ball on their dribblers
+    for the control time, beginning in the same step: the one nearer the ball takes it."""
+    for ball_x, outcome in ((2.45, "passes_completed"), (2.35, "passes_intercepted")):
+        tr = MatchStatsTracker(F, BP)
+        tr.observe(_kick_world((0.0, 0.0), (3.0, 0.0), [(2.5, 0.1)], opp=[(2.3, 0.1)]),
+                   [{"type": "kick", "agent": "blue_0", "speed": 3.0}])
+        for k in range(6):
+            tr.observe(make_world(blue=[(0.0, 0.0, 0.0), (2.5, 0.1, math.pi)], yellow=[(2.3, 0.1, 0.0)],
+                                  ball=(ball_x, 0.1), blue_on_dribbler=[False, True], yellow_on_dribbler=[True],
+                                  t=0.5 + k / 60))
+        s = tr.summary()["blue"]
+        assert s[outcome] == 1 and s["passes_completed"] + s["passes_intercepted"] == 1, (ball_x, s)
+
+
 def test_stats_deflection_is_not_control_and_timeout_loses_the_pass():
     tr = MatchStatsTracker(F, BP)
     tr.observe(_kick_world((0.0, 0.0), (3.0, 0.0), [(2.5, 0.0)], opp=[(1.2, 0.0)]),

@@ -15,7 +15,8 @@ same rules:
   at the goal (clearances) count only as kicks.
 * **Control**: a robot holds the ball on its dribbler for ``control_steps``
   consecutive steps (0.1 s at 60 Hz), so a deflection is not control.
-* A pass ends at the first control or kick by another robot: a teammate -> **completed**
+* A pass ends at the first control or kick by another robot (robots taking control in the same
+  step: the one nearest the ball first, whatever its team): a teammate -> **completed**
   (a one-touch redirect counts); an opponent -> **intercepted** (the opponent's
   ``interceptions`` + 1). A goal, the ball leaving the field, the kicker itself taking
   the ball back, or ``pass_timeout_s`` without a control end it as **lost** (the log's
@@ -261,14 +262,17 @@ class MatchStatsTracker:
                 if kind == "no_progress":
                     self.log.append({"t": t, "type": "no_progress"})
                 self._held.clear()
-        held = {}
+        held, controls = {}, []
         for team in TEAMS:
+            pos = world.team(team).pos
             for i in np.flatnonzero(world.team(team).ball_on_dribbler):
                 key = (team, int(i))
                 held[key] = self._held.get(key, 0) + 1
                 if held[key] == self.params.control_steps:
-                    self._touch(team, int(i), t)
-                    self._end_set_piece_chain_unless(team)
+                    controls.append((float(np.hypot(*(pos[i] - world.ball_pos))), key))
+        for _, (team, i) in sorted(controls):  # robots taking control in the same step: the nearest first
+            self._touch(team, i, t)
+            self._end_set_piece_chain_unless(team)
         self._held = held
         if self._open is not None and t - self._open.t > self.params.pass_timeout_s:
             self._close("lost", None, t, "timeout")
