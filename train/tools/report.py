@@ -66,11 +66,25 @@ ATTACK_TARGETS_SKILLS = ["match_attack_learned_vs_baseline_600_90000",
                          "match_attack_learned_selfplay_600_90200",
                          "match_attack_learned_vs_baseline_600_realistic_90300"]
 #: the target series with colour-fair physics (commit d55290a), the attacking team half its matches blue, half yellow
-ATTACK_TARGETS_FAIR = ["match_attack_learned_vs_baseline_600_94000", "match_baseline_vs_attack_learned_600_94010"]
+ATTACK_TARGETS_FAIR = ["match_attack_learned_vs_baseline_600_94000", "match_baseline_vs_attack_learned_600_94010",
+                       "match_attack_learned_vs_passing_learned_600_94100", "match_passing_learned_vs_attack_learned_600_94110",
+                       "match_attack_learned_selfplay_600_94200",
+                       "match_attack_learned_vs_baseline_600_realistic_94300",
+                       "match_baseline_vs_attack_learned_600_realistic_94305",
+                       "match_attack_learned_vs_baseline_600_div_a_11v11_94400",
+                       "match_baseline_vs_attack_learned_600_div_a_11v11_94405"]
 #: the same from the attacking team's side, both colours pooled
 ATTACK_TARGETS_FAIR_POOLED = [
     ("attack-learned (vs baseline)", (("match_attack_learned_vs_baseline_600_94000", "blue"),
-                                      ("match_baseline_vs_attack_learned_600_94010", "yellow")))]
+                                      ("match_baseline_vs_attack_learned_600_94010", "yellow"))),
+    ("attack-learned (vs passing-learned)", (("match_attack_learned_vs_passing_learned_600_94100", "blue"),
+                                             ("match_passing_learned_vs_attack_learned_600_94110", "yellow"))),
+    ("attack-learned (self-play, blue's side)", (("match_attack_learned_selfplay_600_94200", "blue"),)),
+    ("attack-learned (vs baseline, realistic)", (("match_attack_learned_vs_baseline_600_realistic_94300", "blue"),
+                                                 ("match_baseline_vs_attack_learned_600_realistic_94305", "yellow"))),
+    ("attack-learned (vs baseline, 11v11 Division A)",
+     (("match_attack_learned_vs_baseline_600_div_a_11v11_94400", "blue"),
+      ("match_baseline_vs_attack_learned_600_div_a_11v11_94405", "yellow")))]
 #: self-play series of one team, pooled: blue's surplus over yellow (a colour bias shows here)
 COLOUR_BALANCE = [("attacking team, the robot order decides a contested ball",
                    ("match_attack_learned_selfplay_600", "match_attack_learned_selfplay_600_85000",
@@ -125,7 +139,13 @@ DECISION_SERIES_FAIR = ["match_attack_learned_decision_vs_attack_learned_600_930
 #: the same 60 matches from the learned decision's side (blue in the first 30, yellow in the last 30)
 DECISION_FAIR_POOLED = [("attack-learned, learned decision vs attack-learned",
                          (("match_attack_learned_decision_vs_attack_learned_600_93000", "blue"),
-                          ("match_attack_learned_vs_attack_learned_decision_600_93030", "yellow")))]
+                          ("match_attack_learned_vs_attack_learned_decision_600_93030", "yellow"))),
+                        ("the same with Box2D's body order fixed (commit d55290a)",
+                         (("match_attack_learned_decision_vs_attack_learned_600_94500", "blue"),
+                          ("match_attack_learned_vs_attack_learned_decision_600_94530", "yellow")))]
+#: the learned decision against the hand-coded one with Box2D's body order fixed too (seeds 94500-94559)
+DECISION_SERIES_FAIR2 = ["match_attack_learned_decision_vs_attack_learned_600_94500",
+                         "match_attack_learned_vs_attack_learned_decision_600_94530"]
 ATTACK_DRILL = [("hand-coded (the attacking plays' cost decision)", "attack_drill_handcoded"),
                 ("learned (shipped `attack_drill.pt`: cloned, then MAPPO `mappo_attack_drill_bc_s0`)",
                  "attack_drill_learned")]
@@ -170,6 +190,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_series": lambda r: m.series_600(r, DECISION_SERIES),
     "decision_series_fair": lambda r: m.series_600(r, DECISION_SERIES_FAIR),
     "decision_fair_pooled": lambda r: m.pooled_sides(r, DECISION_FAIR_POOLED),
+    "decision_series_fair2": lambda r: m.series_600(r, DECISION_SERIES_FAIR2),
     "attack_targets": lambda r: m.series_600(r, ATTACK_TARGETS),
     "attack_targets_skills": lambda r: m.series_600(r, ATTACK_TARGETS_SKILLS),
     "attack_targets_fair": lambda r: m.series_600(r, ATTACK_TARGETS_FAIR),
