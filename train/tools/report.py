@@ -142,10 +142,20 @@ DECISION_FAIR_POOLED = [("attack-learned, learned decision vs attack-learned",
                           ("match_attack_learned_vs_attack_learned_decision_600_93030", "yellow"))),
                         ("the same with Box2D's body order fixed (commit d55290a)",
                          (("match_attack_learned_decision_vs_attack_learned_600_94500", "blue"),
-                          ("match_attack_learned_vs_attack_learned_decision_600_94530", "yellow")))]
+                          ("match_attack_learned_vs_attack_learned_decision_600_94530", "yellow"))),
+                        ("the same, `--realism realistic`",
+                         (("match_attack_learned_decision_vs_attack_learned_600_realistic_94600", "blue"),
+                          ("match_attack_learned_vs_attack_learned_decision_600_realistic_94610", "yellow"))),
+                        ("the same, 11v11 Division A",
+                         (("match_attack_learned_decision_vs_attack_learned_600_div_a_11v11_94700", "blue"),
+                          ("match_attack_learned_vs_attack_learned_decision_600_div_a_11v11_94705", "yellow")))]
 #: the learned decision against the hand-coded one with Box2D's body order fixed too (seeds 94500-94559)
 DECISION_SERIES_FAIR2 = ["match_attack_learned_decision_vs_attack_learned_600_94500",
-                         "match_attack_learned_vs_attack_learned_decision_600_94530"]
+                         "match_attack_learned_vs_attack_learned_decision_600_94530",
+                         "match_attack_learned_decision_vs_attack_learned_600_realistic_94600",
+                         "match_attack_learned_vs_attack_learned_decision_600_realistic_94610",
+                         "match_attack_learned_decision_vs_attack_learned_600_div_a_11v11_94700",
+                         "match_attack_learned_vs_attack_learned_decision_600_div_a_11v11_94705"]
 ATTACK_DRILL = [("hand-coded (the attacking plays' cost decision)", "attack_drill_handcoded"),
                 ("learned (shipped `attack_drill.pt`: cloned, then MAPPO `mappo_attack_drill_bc_s0`)",
                  "attack_drill_learned")]
