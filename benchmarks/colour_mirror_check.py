@@ -92,18 +92,18 @@ def main(argv: list[str] | None = None) -> int:
     lo, _, hi = args.seeds.partition("-")
     scenes = [check_scene(args.team, args.opponent or args.team, s, args.steps, args.command_tol, args.world_tol)
               for s in range(int(lo), int(hi or lo) + 1)]
-    from ssl_marl.runners.provenance import git_state, machine
-
-    summary = {"team": args.team, "opponent": args.opponent or args.team, "scenes": scenes,
-               "command": " ".join(["python", "benchmarks/colour_mirror_check.py", *sys.argv[1:]]),
-               "git": git_state(), "machine": machine()}
     for sc in scenes:
         print(json.dumps(sc))
     if args.out is not None:
         from ssl_marl.io import atomic_write_json
+        from ssl_marl.runners.provenance import build_manifest
 
+        opponent = args.opponent or args.team
         args.out.parent.mkdir(parents=True, exist_ok=True)
-        atomic_write_json(args.out, summary)
+        atomic_write_json(args.out, {"team": args.team, "opponent": opponent, "scenes": scenes, "manifest": build_manifest(
+            rules={"probe": "colour_mirror", "team": args.team, "opponent": opponent, "steps": args.steps,
+                   "command_tol": args.command_tol, "world_tol": args.world_tol},
+            seeds={"seeds": [sc["seed"] for sc in scenes]})})
     return 0
 
 

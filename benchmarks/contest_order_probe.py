@@ -78,17 +78,16 @@ def main(argv: list[str] | None = None) -> int:
         import ssl_marl.physics.world as world
 
         world.creation_order = lambda pose: np.arange(np.asarray(pose).shape[0])
-    summary = {**probe(args.scenes, args.seed), "index_order": bool(args.index_order), "seed": args.seed,
-               "command": " ".join(["python", "benchmarks/contest_order_probe.py", *sys.argv[1:]])}
-    from ssl_marl.runners.provenance import git_state, machine
-
-    summary.update(git=git_state(), machine=machine())
-    print(json.dumps(summary))
+    record = {**probe(args.scenes, args.seed), "index_order": bool(args.index_order)}
+    print(json.dumps(record))
     if args.out is not None:
         from ssl_marl.io import atomic_write_json
+        from ssl_marl.runners.provenance import build_manifest
 
         args.out.parent.mkdir(parents=True, exist_ok=True)
-        atomic_write_json(args.out, summary)
+        atomic_write_json(args.out, {**record, "manifest": build_manifest(
+            rules={"probe": "contest_order", "index_order": bool(args.index_order)},
+            seeds={"seed": args.seed, "scenes": args.scenes})})
     return 0
 
 

@@ -144,12 +144,11 @@ class TouchWatch:
             foul = foul or ("excessive_dribbling", self.dribbler)
         fresh = [i for i in idx.tolist() if i != self.last_robot]
         if fresh:  # the latest robot to come into contact is the last toucher
-            kickers = [i for i in fresh if i in kicked]
-            if kickers:
-                fresh = kickers
-            pos = np.concatenate([ws.blue.pos, ws.yellow.pos])[fresh]
-            d2 = ((pos - ws.ball_pos[None, :]) ** 2).sum(1)
-            self.last_robot = int(fresh[int(np.argmin(d2))])
+            fresh = [i for i in fresh if i in kicked] or fresh
+            if len(fresh) > 1:
+                pos = np.concatenate([ws.blue.pos, ws.yellow.pos])[fresh]
+                fresh = [fresh[int(np.argmin(((pos - ws.ball_pos[None, :]) ** 2).sum(1)))]]
+            self.last_robot = int(fresh[0])
         return foul
 
     def taken_by(self, robot: int | None) -> None:

@@ -471,17 +471,20 @@ class BatchedPhysics:
         """Vectorised :meth:`PhysicsWorld.ball_on_face`: pos (..., 2), heading (...),
         ball_pos broadcastable to pos (a (k, 2) ball is applied to every robot of its world)."""
         rp = self.robot
-        if ball_pos.ndim == pos.ndim - 1 and pos.ndim == 3:
-            ball_pos = ball_pos[:, None, :]
-        lx, ly = ball_in_robot_frame(pos, heading, ball_pos)
+        lx, ly = self._ball_local(pos, heading, ball_pos)
         gap = lx - rp.front_distance - self.ball_params.radius
         return (gap >= -_FACE_PENETRATION_TOL) & (gap <= rp.dribbler_tolerance) & (np.abs(ly) <= rp.dribbler_half_width)
 
     def face_offset(self, pos: np.ndarray, heading: np.ndarray, ball_pos: np.ndarray) -> np.ndarray:
         """Vectorised :meth:`PhysicsWorld.face_offset` (shapes as :meth:`ball_on_face`)."""
+        return np.abs(self._ball_local(pos, heading, ball_pos)[1])
+
+    @staticmethod
+    def _ball_local(pos: np.ndarray, heading: np.ndarray, ball_pos: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """:func:`ball_in_robot_frame` with one ball per world ((K, 2)) spread over (K, n, 2) robots."""
         if ball_pos.ndim == pos.ndim - 1 and pos.ndim == 3:
             ball_pos = ball_pos[:, None, :]
-        return np.abs(ball_in_robot_frame(pos, heading, ball_pos)[1])
+        return ball_in_robot_frame(pos, heading, ball_pos)
 
     # --------------------------------------------------------------- snapshots
     def snapshot(self, k: int) -> WorldState:

@@ -341,10 +341,10 @@ def colour_mirror(results: Path, files: Iterable[str]) -> Lines:
         parted = [s for s in d["scenes"] if s["step"] is not None]
         steps = [s["step"] for s in parted]
         worlds = [s["world_diff_m"] for s in parted]
-        n_steps = d["command"].split("--steps")[1].split()[0] if "--steps" in d["command"] else "?"
+        git, n_steps = d["manifest"]["git"], d["manifest"]["rules"]["steps"]
         rows.append("| " + " | ".join([
             d["team"] if d["opponent"] == d["team"] else f"{d['team']} vs {d['opponent']}",
-            d["git"]["commit"][:7] + ("+" if d["git"].get("dirty") else ""), str(len(d["scenes"])),
+            git["commit"][:7] + ("+" if git.get("dirty") else ""), str(len(d["scenes"])),
             f"{statistics.median(steps):.0f} ({min(steps)}-{max(steps)})" if steps else "-",
             f"{statistics.median(worlds):.1e} ({max(worlds):.1e})" if worlds else "-",
             f"{len(d['scenes']) - len(parted)} ({n_steps})"]) + " |")
