@@ -14,6 +14,10 @@ match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
   shot) at 2 s / never;
 * ``keep-pass``: the plain format with ``keep_expiry="pass"`` (an expired keep becomes the
   decision's best eligible pass while the shot is worth less than ``shoot_fallback``);
+* ``contested-kick``: the plain format with ``contested_kick`` (an opponent's dribbler on the
+  ball during a pass setup turns the plan urgent instead of dropping it);
+* ``press-0.6``: that and ``press_urgent_m`` 0.6 (an opponent within 0.6 m of the ball during
+  an open-play setup turns the plan urgent: the passer kicks once it faces the receive point);
 * ``receiver-guard``: the plain format with the decisions' ``receiver_guard_m`` at 1 m (a
   pass's last metre is the receiver's where it gets there before the opponents);
 * ``redirect-4.5``: the plain format with passes into a redirect kicked, and rated, to arrive
@@ -47,11 +51,14 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 RULES = {"plain": {}, "free-kick": {"ssl_restarts": True, "stop_s": 0.0},
          "free-kick-stop": {"ssl_restarts": True, "stop_s": 1.0},
          "free-kick-stop-fouls": {"ssl_restarts": True, "stop_s": 1.0, "fouls": True},
-         "keep-2s": {}, "keep-inf": {}, "keep-pass": {}, "receiver-guard": {}}
+         "keep-2s": {}, "keep-inf": {}, "keep-pass": {}, "receiver-guard": {},
+         "contested-kick": {}, "press-0.6": {}}
 #: the match format of each variant (:func:`ssl_marl.runners.match.format_options`; default plain)
 FORMAT = {"ssl": "ssl", "ssl-receiver-guard": "ssl"}
 #: ``ATTACK_PASSING`` fields of each variant
-PASSING = {"keep-2s": {"max_keep_s": 2.0}, "keep-inf": {"max_keep_s": math.inf}, "keep-pass": {"keep_expiry": "pass"}}
+PASSING = {"keep-2s": {"max_keep_s": 2.0}, "keep-inf": {"max_keep_s": math.inf}, "keep-pass": {"keep_expiry": "pass"},
+           "contested-kick": {"contested_kick": True},
+           "press-0.6": {"contested_kick": True, "press_urgent_m": 0.6}}
 #: ``ATTACK_PASSING.decision`` and ``.restart_decision`` fields of each variant
 DECISION = {"receiver-guard": {"receiver_guard_m": 1.0}, "ssl-receiver-guard": {"receiver_guard_m": 1.0}}
 #: ``ATTACK_PARAMS`` fields of each variant

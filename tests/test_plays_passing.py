@@ -272,6 +272,21 @@ def test_stats_pass_completed_intercepted_and_shot():
     assert (s["shots"], s["kicks"], s["goals"], s["passes_attempted"]) == (1, 4, 1, 2)
 
 
+def test_stats_full_power_flat_kick_past_a_teammate_is_no_pass_but_a_chip_is():
+    """A flat kick reaching the teammate 1.5 m ahead at more than 4 m/s (a clearance, a
+    stray shot) is no pass; the same kick at 3 m/s is one; a chip towards it at 6 m/s is one."""
+    import dataclasses
+
+    from ssl_marl.plays.stats import MatchStatsTracker as T
+
+    tr = T(F, BP)
+    mates, u = [(1.1, 1.0)], np.array([1.0, 1.0]) / math.sqrt(2.0)  # away from the goal mouth
+    assert tr.classify_kick(_kick_world((0.0, 0.0), 6.5 * u, mates), "blue", 0) == "clear"
+    assert tr.classify_kick(_kick_world((0.0, 0.0), 3.0 * u, mates), "blue", 0) == "pass"
+    chip = dataclasses.replace(_kick_world((0.0, 0.0), 6.0 * u, mates), ball_vz=3.0)
+    assert tr.classify_kick(chip, "blue", 0) == "pass"
+
+
 def test_stats_same_step_control_goes_to_the_robot_nearest_the_ball_not_to_blue():
     """A blue pass; a blue receiver and a yellow robot both hold the ball on their dribblers
     for the control time, beginning in the same step: the one nearer the ball takes it."""
@@ -570,6 +585,25 @@ def test_contested_setup_turns_urgent_and_the_passer_kicks_without_ready():
     c.plan = PassPlan(1, 2, np.array([2.0, 2.2]), PassPhase.SETUP, 1.9)
     c.prepare(ctx)
     assert c.plan is None and c.counters.aborted == 1
+
+
+def test_pressed_open_play_setup_turns_urgent_only_with_press_urgent_m():
+    """An opponent 0.5 m from the ball (not on it) during an open-play setup: with
+    ``press_urgent_m`` 0.6 the plan turns urgent (the passer kicks without READY); with
+    0.4, or off, it waits; a set piece's plan ignores it."""
+    from ssl_marl.plays.pass_coordinator import PassCoordinator, PassingParams, PassPhase, PassPlan
+
+    ball = np.asarray(BLOCKED["ball"])
+    pressed = dict(BLOCKED, yellow=[(3.3, -0.2, math.pi), (3.3, 0.0, math.pi), (ball[0] + 0.5, ball[1], math.pi)])
+    status = {"passer": _status(PassState.HOLD), "receiver": _status(ReceiveState.POSITION)}
+    for press, restart, urgent in ((0.6, False, True), (0.4, False, False), (None, False, False), (0.6, True, False)):
+        c = PassCoordinator(PassingParams(press_urgent_m=press))
+        c.plan = PassPlan(1, 2, np.array([2.0, 2.2]), PassPhase.SETUP, 1.9, restart=restart)
+        c.prepare(_ctx(make_world(**pressed, t=2.0, frame="blue"), status))
+        assert c.plan is not None and c.plan.urgent is urgent and c.counters.aborted == 0, (press, restart)
+    for bad in (0.0, -1.0, math.nan, math.inf):
+        with pytest.raises(ValueError, match="press_urgent_m"):
+            PassingParams(press_urgent_m=bad)
 
 
 def test_restart_play_applies_at_the_centre_mark_and_free_kick_spots():

@@ -59,8 +59,13 @@ from .tactic_base import Tactic
 
 #: the attacking team's pass plan: no setup abort on the flat lane (chips go over it);
 #: restarts are set pieces (decided before the kicker reaches the ball); a pass whose
-#: ball lies dead after the kick is dropped at once
-ATTACK_PASSING = PassingParams(abort_margin_s=-math.inf, decide_at_restart=True, dead_ball_s=0.6)
+#: ball lies dead after the kick is dropped at once; a pressed passer does not wait for the
+#: receiver's READY: an opponent within 0.6 m of the ball or on it turns the setup urgent
+#: (``press_urgent_m``, ``contested_kick``; 20 tuning matches against the no-pass baseline,
+#: seeds 61500-61519: 23-7 goals and 403 passes tried against 17-11 and 292 without;
+#: docs/RESULTS.md, section 12, "What limits scoring")
+ATTACK_PASSING = PassingParams(abort_margin_s=-math.inf, decide_at_restart=True, dead_ball_s=0.6,
+                               contested_kick=True, press_urgent_m=0.6)
 #: the attacking team's decision parameters (chip, redirect; an :class:`AttackDecider` built
 #: without parameters reads them when it is built)
 ATTACK_PARAMS = AttackParams()

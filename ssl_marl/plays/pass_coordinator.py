@@ -135,6 +135,10 @@ class PassingParams:
             (seeds 45200-45259) it completed fewer passes by the referee's count (52 % vs
             56 %) and scored 11-2 against 17-3 without it (docs/RESULTS.md, "Passing
             game"), although 9 of 11 setups in probe matches were dropped this way.
+        press_urgent_m: during an open-play setup, an opponent centre within this of the
+            ball (m) turns the plan urgent: the passer kicks as soon as it faces the
+            receive point, before the opponent reaches the ball (the receiver meets the
+            ball on its line while it runs); None: off.
     """
 
     decision: DecisionParams = DecisionParams()
@@ -154,10 +158,14 @@ class PassingParams:
     max_restart_setup_s: float = 5.0
     set_piece_wait_s: float = 2.0
     dead_ball_s: float | None = None
+    press_urgent_m: float | None = None
 
     def __post_init__(self) -> None:
         if self.keep_expiry not in KEEP_EXPIRY:
             raise ValueError(f"PassingParams.keep_expiry must be one of {KEEP_EXPIRY}, got {self.keep_expiry!r}")
+        m = self.press_urgent_m
+        if m is not None and not (isinstance(m, (int, float)) and math.isfinite(m) and m > 0):
+            raise ValueError(f"PassingParams.press_urgent_m must be None or a positive finite distance (m), got {m!r}")
 
 
 @dataclass
@@ -319,6 +327,9 @@ class PassCoordinator:
                 self.counters.kicked += 1
                 return
             if plan.restart and t - plan.t_start > p.set_piece_wait_s:
+                plan.urgent = True
+            if not plan.restart and p.press_urgent_m is not None and len(ctx.opp_pos) and float(
+                    np.min(np.hypot(*(ctx.opp_pos - ctx.ball).T))) < p.press_urgent_m:
                 plan.urgent = True
             max_setup = p.max_restart_setup_s if plan.restart else p.max_setup_s
             if (passer is not None and passer.state is PassState.FAILED) or t - plan.t_start > max_setup:

@@ -9,7 +9,12 @@ same rules:
 * **Pass attempt**: a kick whose straight path passes within ``pass_lane_m`` of a
   teammate (not the kicker) standing between ``min_pass_m`` and the ball's stop
   distance (+ ``pass_lane_m``) ahead; for a kick towards the goal mouth the teammate
-  must be within ``goal_lane_m`` (it stands right on the line: a pass, not a shot).
+  must be within ``goal_lane_m`` (it stands right on the line: a pass, not a shot). A
+  flat kick must also reach that teammate no faster than ``pass_max_arrive_speed``
+  (4 m/s, by the ball model): TIGERs kick a straight pass to arrive at <= 3.2 m/s
+  (docs/references.md, "Passing and pass rating"), so a full-power clearance or a stray
+  shot that runs past a teammate is not a pass. A chip (``ball_vz > 0``) towards a
+  teammate is a pass at any speed (its ground speed drops at each bounce).
 * **Shot**: any other kick whose straight path crosses the opponent goal line within
   the posts widened by ``shot_margin_m`` on each side. Kicks aimed at nobody and not
   at the goal (clearances) count only as kicks.
@@ -66,7 +71,9 @@ class StatsParams:
     pass_lane_m (teammate within this of the kick's path: a pass, m), goal_lane_m (the
     same for kicks towards the goal mouth, m), min_pass_m (m),
     control_steps (consecutive dribbler steps for control), pass_timeout_s (s),
-    redirect_speed (a kick of a ball arriving faster than this is a redirect, m/s)."""
+    redirect_speed (a kick of a ball arriving faster than this is a redirect, m/s),
+    pass_max_arrive_speed (a flat kick reaching the teammate faster than this is not a
+    pass, m/s)."""
 
     shot_margin_m: float = 0.25
     pass_lane_m: float = 0.5
@@ -75,6 +82,7 @@ class StatsParams:
     control_steps: int = 6
     pass_timeout_s: float = 4.0
     redirect_speed: float = 1.0
+    pass_max_arrive_speed: float = 4.0
 
 
 @dataclass
@@ -173,7 +181,9 @@ class MatchStatsTracker:
             rel = np.asarray(m, float) - p
             along = float(rel @ u)
             lateral = abs(float(rel[0] * u[1] - rel[1] * u[0]))
-            if self.params.min_pass_m <= along <= reach and lateral <= lane:
+            if self.params.min_pass_m <= along <= reach and lateral <= lane and (
+                    world.ball_vz > 0.0
+                    or ball_model.speed_at_distance(sp, along, self.ball) <= self.params.pass_max_arrive_speed):
                 return "pass"
         return "shot" if at_goal else "clear"
 

@@ -210,6 +210,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
                                                    "colour_mirror_attack_learned.json"]),
     "match_variants": lambda r: m.match_variants(r, MATCH_VARIANTS),
     "shot_outcomes": lambda r: m.shot_outcomes(r / "tuning" / "shot_outcome_probe.json"),
+    "pass_losses": lambda r: m.pass_losses([r / "tuning" / "pass_loss_probe_any_speed.json",
+                                            r / "tuning" / "pass_loss_probe.json"]),
     "pass_options": lambda r: m.pass_options(r, ["pass_option_probe.json", "pass_option_probe_guard1.json"]),
     "set_piece_series": lambda r: m.set_piece_series(r, SET_PIECE_SERIES),
     "attack_skill_swaps": lambda r: m.series_600(r, ATTACK_SKILL_SWAPS),

@@ -235,6 +235,40 @@ def shot_outcomes(path: Path) -> Lines:
     return rows
 
 
+def pass_losses(paths: Iterable[Path]) -> Lines:
+    """``benchmarks/pass_loss_probe.py`` records: the passes the referee's statistics counted
+    (under the record's ``pass_max_arrive_speed``), by the tactic the kicker ran and by how
+    they ended, and the lost passes by cause."""
+    rows = _head("seeds", "teams", "a flat pass reaches the teammate at most (m/s)", "kicker's tactic",
+                 "passes counted", "completed / intercepted / lost", "lost: ball out / other",
+                 "lost by cause: receiver touched / opponent touched / short / missed", "median kick speed (m/s)")
+    for path in paths:
+        rows += _pass_loss_rows(json.loads(path.read_text()))
+    return rows
+
+
+def _pass_loss_rows(d: dict) -> Lines:
+    import numpy as np
+
+    s, seeds = d["summary"], d["manifest"]["seeds"]["seeds"]
+    teams = f"{d['manifest']['rules']['blue']} vs {d['manifest']['rules']['yellow']}"
+    rows = []
+    by_tac: dict[str, list[dict]] = {}
+    for p in d["passes"]:
+        by_tac.setdefault(str(p.get("tactic")).split(":")[0], []).append(p)
+    for tac, ps in sorted(by_tac.items(), key=lambda kv: -len(kv[1])):
+        n = lambda o: sum(p["outcome"] == o for p in ps)  # noqa: E731
+        lost = [p for p in ps if p["outcome"] == "lost"]
+        out = sum(p["why"] == "ball_out" for p in lost)
+        causes = " / ".join(str(sum(p["cause"] == c for p in lost))
+                            for c in ("receiver_touched", "opponent_touched", "short", "missed"))
+        rows.append(f"| {min(seeds)}-{max(seeds)} | {teams} | {s['pass_max_arrive_speed']} | {tac} | {len(ps)} | "
+                    f"{n('completed')} / "
+                    f"{n('intercepted')} / {n('lost')} | {out} / {len(lost) - out} | {causes} | "
+                    f"{float(np.median([p['speed'] for p in ps])):.2f} |")
+    return rows
+
+
 def pass_options(results: Path, files: Iterable[str]) -> Lines:
     """``benchmarks/pass_option_probe.py`` records (``results/tuning/<file>``): the pass options
     the attacking carrier's decision rated and its choices."""

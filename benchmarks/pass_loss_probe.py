@@ -1,0 +1,182 @@
+"""Where passes go wrong: every pass of a few matches, followed from its kick to its end.
+
+For each pass the match statistics count (:class:`ssl_marl.plays.stats.MatchStatsTracker`,
+the same runner :func:`ssl_marl.runners.match.play_match`) this records, field frame:
+the kick speed (m/s, the step after the kick), the pass kind (flat / chip), the intended
+receiver (the teammate nearest the kick's straight path within the statistics' lane) with
+its distance along the path and lateral offset (m), the kicker's role and tactic state on
+the team controller's last tick (``ChipPass:kick``: a pass the team planned;
+``Attacker:aim_to_shoot``: a shot; ``Defender:clear_kick``: a clearance), the closest approach of that receiver
+and of the nearest opponent to the ball while the pass is open (m), the ball's speed at the
+receiver's closest approach (m/s), whether the receiver touched the ball (centre distance
+below robot radius + ball radius + 5 mm), and how the pass ended (completed, intercepted,
+lost with the statistics' ``why``). The summary counts lost passes by cause:
+``receiver_touched`` (the receiver reached the ball but did not control it),
+``opponent_touched``, ``short`` (nobody touched it, the ball stopped or ran out before the
+receiver: at its closest approach the receiver was still ahead of the ball),
+``missed`` (nobody touched it and it passed the receiver's spot more than a robot radius
+away). ``by_kicker_tactic`` counts the outcomes per kicker tactic: how many of the passes the
+statistics count were passes the team meant.
+
+    python benchmarks/pass_loss_probe.py --blue attack-learned --yellow attack-learned \\
+        --seconds 600 --seeds 61600-61601 --out results/tuning/pass_loss_probe.json
+    # the same with every flat kick past a teammate counted as a pass:
+    python benchmarks/pass_loss_probe.py ... --pass-max-arrive-speed inf --out results/tuning/pass_loss_probe_any_speed.json
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+from benchmarks.ball_out_probe import probe_args, write_probe  # noqa: E402
+
+TOUCH_M = 0.09 + 0.0215 + 0.005  # robot radius + ball radius + 5 mm (m)
+
+
+def _receiver(world, team: str, kicker: int, lane_m: float) -> tuple[int | None, float, float]:
+    """The teammate nearest the kick's straight path (index, along m, lateral m) or None."""
+    p, v = np.asarray(world.ball_pos, float), np.asarray(world.ball_vel, float)
+    u = v / max(float(np.hypot(*v)), 1e-9)
+    best = (None, 0.0, np.inf)
+    for k, m in enumerate(world.team(team).pos):
+        if k == kicker:
+            continue
+        rel = np.asarray(m, float) - p
+        along, lat = float(rel @ u), abs(float(rel[0] * u[1] - rel[1] * u[0]))
+        if along > 0.3 and lat <= lane_m and lat < best[2]:
+            best = (k, along, lat)
+    return best
+
+
+def probe_match(blue: str, yellow: str, seconds: float, seed: int,
+                max_arrive: float | None = None) -> list[dict]:
+    """Every pass of one match (see the module docstring); ``max_arrive`` (m/s) replaces the
+    statistics' ``pass_max_arrive_speed`` (inf: any flat kick past a teammate is a pass)."""
+    from ssl_marl.plays import stats as stats_mod
+    from ssl_marl.runners import match as match_runner
+
+    passes: list[dict] = []
+    cur: dict = {}
+    original = stats_mod.MatchStatsTracker.observe
+    make = match_runner.make_controller
+    ctrls: dict = {}
+
+    def capture(kind, team, *a, **kw):
+        ctrls[team] = make(kind, team, *a, **kw)
+        return ctrls[team]
+
+    def intent(team: str, idx: int) -> tuple[str | None, str | None]:
+        """(role, tactic class) the kicker ran on its last tick (None, None for a non-STP team)."""
+        c = ctrls.get(team)
+        if c is None or not hasattr(c, "tactic"):
+            return None, None
+        t = c.tactic(idx)
+        return c.roles.get(idx), (type(t).__name__ + ":" + str(getattr(getattr(t, "state", None), "value", ""))
+                                  if t is not None else None)
+
+    def observe(self, world, events=()):
+        if max_arrive is not None and self.params.pass_max_arrive_speed != max_arrive:
+            self.params = dataclasses.replace(self.params, pass_max_arrive_speed=max_arrive)
+        n_log = len(self.log)
+        original(self, world, events)
+        for entry in self.log[n_log:]:
+            if entry["type"] == "pass":
+                team = entry["team"]
+                other = "yellow" if team == "blue" else "blue"
+                r, along, lat = _receiver(world, team, entry["kicker"], self.params.pass_lane_m)
+                cur.clear()
+                role, tactic = intent(team, entry["kicker"])
+                cur.update(team=team, other=other, kicker=entry["kicker"], kind=entry["kind"], t=entry["t"],
+                           role=role, tactic=tactic,
+                           speed=float(np.hypot(*world.ball_vel)), receiver=r, along_m=along, lateral_m=lat,
+                           from_xy=np.round(world.ball_pos, 3).tolist(), rec_min_m=np.inf, opp_min_m=np.inf,
+                           speed_at_rec=None, rec_behind=None, steps=0)
+            elif entry["type"].startswith("pass_") and cur:
+                cur.update(outcome=entry["type"][5:], why=entry.get("why"), end_xy=np.round(world.ball_pos, 3).tolist(),
+                           duration_s=entry["t"] - cur["t"], seed=seed)
+                passes.append({k: (None if isinstance(v, float) and not np.isfinite(v) else v) for k, v in cur.items()})
+                cur.clear()
+        if cur and not any(e["type"].startswith("pass") for e in self.log[n_log:]):
+            b = np.asarray(world.ball_pos, float)
+            cur["steps"] += 1
+            if cur["receiver"] is not None:
+                rp = world.team(cur["team"]).pos[cur["receiver"]]
+                d = float(np.hypot(*(rp - b)))
+                if d < cur["rec_min_m"]:
+                    v = np.asarray(world.ball_vel, float)
+                    cur.update(rec_min_m=d, speed_at_rec=float(np.hypot(*v)),
+                               rec_behind=bool((rp - b) @ v < 0))  # the ball has passed the receiver
+            opp = world.team(cur["other"]).pos
+            if len(opp):
+                cur["opp_min_m"] = min(cur["opp_min_m"], float(np.min(np.hypot(*(opp - b).T))))
+
+    stats_mod.MatchStatsTracker.observe = observe
+    match_runner.make_controller = capture
+    try:
+        res = match_runner.play_match(blue=blue, yellow=yellow, seconds=seconds, seed=seed, progress=False)
+    finally:
+        stats_mod.MatchStatsTracker.observe = original
+        match_runner.make_controller = make
+    return [{**p, "score": res.score} for p in passes]
+
+
+def cause(p: dict) -> str:
+    """Why a pass that was not completed failed (see the module docstring)."""
+    if p["rec_min_m"] is not None and p["rec_min_m"] <= TOUCH_M:
+        return "receiver_touched"
+    if p["opp_min_m"] is not None and p["opp_min_m"] <= TOUCH_M:
+        return "opponent_touched"
+    if p["rec_behind"] is False or p["rec_behind"] is None:
+        return "short"
+    return "missed"
+
+
+def summarize(passes: list[dict]) -> dict:
+    lost = [p for p in passes if p["outcome"] == "lost"]
+    out: dict = {"passes": len(passes), "by_outcome": {}, "lost_by_why": {}, "lost_by_cause": {},
+                 "ball_out_by_cause": {}}
+    out["by_kicker_tactic"] = {}
+    for p in passes:
+        out["by_outcome"][p["outcome"]] = out["by_outcome"].get(p["outcome"], 0) + 1
+        tac = str(p.get("tactic")).split(":")[0]
+        row = out["by_kicker_tactic"].setdefault(tac, {})
+        row[p["outcome"]] = row.get(p["outcome"], 0) + 1
+    for p in lost:
+        c = cause(p)
+        out["lost_by_why"][p["why"]] = out["lost_by_why"].get(p["why"], 0) + 1
+        out["lost_by_cause"][c] = out["lost_by_cause"].get(c, 0) + 1
+        if p["why"] == "ball_out":
+            out["ball_out_by_cause"][c] = out["ball_out_by_cause"].get(c, 0) + 1
+    for name, sel in (("completed", [p for p in passes if p["outcome"] == "completed"]), ("lost", lost)):
+        if sel:
+            out[f"{name}_median"] = {k: float(np.median([p[k] for p in sel if p[k] is not None] or [np.nan]))
+                                     for k in ("speed", "along_m", "lateral_m", "rec_min_m", "speed_at_rec")}
+    return out
+
+
+def main(argv: list[str] | None = None) -> int:
+    def extra(ap):
+        ap.add_argument("--pass-max-arrive-speed", type=float, default=None,
+                        help="replace the statistics' pass_max_arrive_speed (m/s; inf: every flat kick past "
+                             "a teammate in its lane counts as a pass; default: the statistics' own)")
+
+    args = probe_args(__doc__.splitlines()[0], "61600-61601", "JSON output (summary and every pass)", argv, extra)
+    passes = [p for s in args.seeds
+              for p in probe_match(args.blue, args.yellow, args.seconds, s, args.pass_max_arrive_speed)]
+    for p in passes:
+        p["cause"] = None if p["outcome"] == "completed" else cause(p)
+    from ssl_marl.plays.stats import StatsParams
+
+    rule = StatsParams().pass_max_arrive_speed if args.pass_max_arrive_speed is None else args.pass_max_arrive_speed
+    write_probe(args, {"summary": {**summarize(passes), "pass_max_arrive_speed": str(rule)}, "passes": passes})
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
