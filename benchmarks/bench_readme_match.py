@@ -1,7 +1,7 @@
 """Wall time of the README's first command (after setup): the match with its GIF.
 
-Runs ``ssl-marl match --blue attack-learned --yellow attack-learned --seconds 300 --seed 5
---render-fps 5`` in a temporary folder under ``/usr/bin/time`` and records the process's wall
+Runs the ``ssl-marl match ...`` that ends the README's first command (read from README.md) in a
+temporary folder under ``/usr/bin/time`` and records the process's wall
 time and peak memory, the match's own wall time and score (from its summary line), the GIF's
 size and the load average before and after. A benchmark: run it on an idle machine.
 
@@ -14,6 +14,7 @@ import argparse
 import json
 import os
 import re
+import shlex
 import shutil
 import subprocess
 import tempfile
@@ -23,8 +24,16 @@ from pathlib import Path
 from ssl_marl.io import atomic_write_json
 from ssl_marl.runners.provenance import build_manifest
 
-ARGS = ["match", "--blue", "attack-learned", "--yellow", "attack-learned", "--seconds", "300", "--seed", "5",
-        "--render-fps", "5"]
+README = Path(__file__).resolve().parent.parent / "README.md"
+
+
+def readme_args() -> list[str]:
+    """The arguments after ``ssl-marl`` in the README's first command (its opening bash block's first line)."""
+    first = re.match(r"```bash\n(.*?)```", README.read_text(), flags=re.S).group(1).splitlines()[0]
+    return shlex.split(first.split("&& ssl-marl ", 1)[1])
+
+
+ARGS = readme_args()
 
 
 def main() -> None:
@@ -49,7 +58,7 @@ def main() -> None:
            "max_rss_kb": int(rss), "gif_bytes": gif,
            "load_average_1min_before_after": [load_before, os.getloadavg()[0]], "date": time.strftime("%Y-%m-%d %H:%M"),
            "manifest": build_manifest(rules={"blue": "attack-learned", "yellow": "attack-learned"},
-                                      seeds={"seed": 3})}
+                                      seeds={"seed": int(ARGS[ARGS.index("--seed") + 1])})}
     print(json.dumps({k: v for k, v in rec.items() if k != "manifest"}, indent=1))
     if a.out:
         atomic_write_json(a.out, rec)

@@ -85,6 +85,10 @@ ATTACK_TARGETS_FAIR_POOLED = [
     ("attack-learned (vs baseline, 11v11 Division A)",
      (("match_attack_learned_vs_baseline_600_div_a_11v11_94400", "blue"),
       ("match_baseline_vs_attack_learned_600_div_a_11v11_94405", "yellow")))]
+#: the targets again with the pressed passer (commit fcb21d2, seeds 95000-95409)
+ATTACK_TARGETS_PRESS = [n.replace("_94", "_95") for n in ATTACK_TARGETS_FAIR]
+ATTACK_TARGETS_PRESS_POOLED = [(label, tuple((n.replace("_94", "_95"), side) for n, side in parts))
+                               for label, parts in ATTACK_TARGETS_FAIR_POOLED]
 #: self-play series of one team, pooled: blue's surplus over yellow (a colour bias shows here)
 COLOUR_BALANCE = [("attacking team, the robot order decides a contested ball",
                    ("match_attack_learned_selfplay_600", "match_attack_learned_selfplay_600_85000",
@@ -120,7 +124,11 @@ MATCH_VARIANTS = [("plain format (play restarts at once)", "plain.json"),
                   ("plain, passes into a redirect kicked and rated to arrive at 4.5 m/s (`redirect_arrive_speed`)",
                    ("redirect-4.5.json", "seeds61510/redirect-4.5.json")),
                   ("plain, the plays kick chips and redirects through the skills (merged as 81b7d5a)",
-                   ("playskills/plain-61500.json", "playskills/plain-61510.json"))]
+                   ("playskills/plain-61500.json", "playskills/plain-61510.json")),
+                  ("plain, colour-fair physics (d55290a), passes counted up to 4 m/s arrival",
+                   ("press/plain-61500.json", "press/plain-61510.json")),
+                  ("the same, a pressed passer kicks at once (`press_urgent_m` 0.6, `contested_kick`)",
+                   ("press/press-0.6-61500.json", "press/press-0.6-61510.json"))]
 SET_PIECE_SERIES = ["match_attack_learned_vs_baseline_600_ssl_058d181", "match_attack_learned_vs_baseline_600_ssl",
                     "match_attack_learned_vs_baseline_600_ssl_20261127"]
 KEEPAWAY = [("random", "keepaway_random"), ("always-hold", "keepaway_always-hold"),
@@ -156,6 +164,12 @@ DECISION_SERIES_FAIR2 = ["match_attack_learned_decision_vs_attack_learned_600_94
                          "match_attack_learned_vs_attack_learned_decision_600_realistic_94610",
                          "match_attack_learned_decision_vs_attack_learned_600_div_a_11v11_94700",
                          "match_attack_learned_vs_attack_learned_decision_600_div_a_11v11_94705"]
+#: the learned decision against the hand-coded one with the pressed passer (commit fcb21d2, seeds 95500-95559)
+DECISION_SERIES_PRESS = ["match_attack_learned_decision_vs_attack_learned_600_95500",
+                         "match_attack_learned_vs_attack_learned_decision_600_95530"]
+DECISION_PRESS_POOLED = [("attack-learned, learned decision vs attack-learned (pressed passer, commit fcb21d2)",
+                          (("match_attack_learned_decision_vs_attack_learned_600_95500", "blue"),
+                           ("match_attack_learned_vs_attack_learned_decision_600_95530", "yellow")))]
 ATTACK_DRILL = [("hand-coded (the attacking plays' cost decision)", "attack_drill_handcoded"),
                 ("learned (shipped `attack_drill.pt`: cloned, then MAPPO `mappo_attack_drill_bc_s0`)",
                  "attack_drill_learned")]
@@ -201,16 +215,21 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_series_fair": lambda r: m.series_600(r, DECISION_SERIES_FAIR),
     "decision_fair_pooled": lambda r: m.pooled_sides(r, DECISION_FAIR_POOLED),
     "decision_series_fair2": lambda r: m.series_600(r, DECISION_SERIES_FAIR2),
+    "decision_series_press": lambda r: m.series_600(r, DECISION_SERIES_PRESS),
+    "decision_press_pooled": lambda r: m.pooled_sides(r, DECISION_PRESS_POOLED),
     "attack_targets": lambda r: m.series_600(r, ATTACK_TARGETS),
     "attack_targets_skills": lambda r: m.series_600(r, ATTACK_TARGETS_SKILLS),
     "attack_targets_fair": lambda r: m.series_600(r, ATTACK_TARGETS_FAIR),
     "attack_targets_fair_pooled": lambda r: m.pooled_attack(r, ATTACK_TARGETS_FAIR_POOLED),
+    "attack_targets_press": lambda r: m.series_600(r, ATTACK_TARGETS_PRESS),
+    "attack_targets_press_pooled": lambda r: m.pooled_attack(r, ATTACK_TARGETS_PRESS_POOLED),
     "colour_balance": lambda r: m.colour_balance(r, COLOUR_BALANCE),
     "colour_mirror": lambda r: m.colour_mirror(r, ["colour_mirror_attack_baseline.json",
                                                    "colour_mirror_attack_learned.json"]),
     "match_variants": lambda r: m.match_variants(r, MATCH_VARIANTS),
     "shot_outcomes": lambda r: m.shot_outcomes(r / "tuning" / "shot_outcome_probe.json"),
-    "pass_losses": lambda r: m.pass_losses([r / "tuning" / "pass_loss_probe_any_speed.json",
+    "pass_losses": lambda r: m.pass_losses([r / "tuning" / "pass_loss_probe_d8f659c.json",
+                                            r / "tuning" / "pass_loss_probe_any_speed.json",
                                             r / "tuning" / "pass_loss_probe.json"]),
     "pass_options": lambda r: m.pass_options(r, ["pass_option_probe.json", "pass_option_probe_guard1.json"]),
     "set_piece_series": lambda r: m.set_piece_series(r, SET_PIECE_SERIES),

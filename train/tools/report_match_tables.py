@@ -11,6 +11,8 @@ import json
 from pathlib import Path
 from typing import Any, Iterable
 
+import numpy as np
+
 from ssl_marl.runners.result import load_manifest, load_result
 from train.tools.report_tables import Lines, _head
 
@@ -239,7 +241,7 @@ def pass_losses(paths: Iterable[Path]) -> Lines:
     """``benchmarks/pass_loss_probe.py`` records: the passes the referee's statistics counted
     (under the record's ``pass_max_arrive_speed``), by the tactic the kicker ran and by how
     they ended, and the lost passes by cause."""
-    rows = _head("seeds", "teams", "a flat pass reaches the teammate at most (m/s)", "kicker's tactic",
+    rows = _head("seeds", "commit", "teams", "a flat pass reaches the teammate at most (m/s)", "kicker's tactic",
                  "passes counted", "completed / intercepted / lost", "lost: ball out / other",
                  "lost by cause: receiver touched / opponent touched / short / missed", "median kick speed (m/s)")
     for path in paths:
@@ -248,10 +250,10 @@ def pass_losses(paths: Iterable[Path]) -> Lines:
 
 
 def _pass_loss_rows(d: dict) -> Lines:
-    import numpy as np
-
     s, seeds = d["summary"], d["manifest"]["seeds"]["seeds"]
     teams = f"{d['manifest']['rules']['blue']} vs {d['manifest']['rules']['yellow']}"
+    git = d["manifest"]["git"]
+    commit = git["commit"][:7] + ("+" if git.get("dirty") else "")
     rows = []
     by_tac: dict[str, list[dict]] = {}
     for p in d["passes"]:
@@ -262,7 +264,7 @@ def _pass_loss_rows(d: dict) -> Lines:
         out = sum(p["why"] == "ball_out" for p in lost)
         causes = " / ".join(str(sum(p["cause"] == c for p in lost))
                             for c in ("receiver_touched", "opponent_touched", "short", "missed"))
-        rows.append(f"| {min(seeds)}-{max(seeds)} | {teams} | {s['pass_max_arrive_speed']} | {tac} | {len(ps)} | "
+        rows.append(f"| {min(seeds)}-{max(seeds)} | {commit} | {teams} | {s['pass_max_arrive_speed']} | {tac} | {len(ps)} | "
                     f"{n('completed')} / "
                     f"{n('intercepted')} / {n('lost')} | {out} / {len(lost) - out} | {causes} | "
                     f"{float(np.median([p['speed'] for p in ps])):.2f} |")
