@@ -166,10 +166,15 @@ DECISION_SERIES_FAIR2 = ["match_attack_learned_decision_vs_attack_learned_600_94
                          "match_attack_learned_vs_attack_learned_decision_600_div_a_11v11_94705"]
 #: the learned decision against the hand-coded one with the pressed passer (commit fcb21d2, seeds 95500-95559)
 DECISION_SERIES_PRESS = ["match_attack_learned_decision_vs_attack_learned_600_95500",
-                         "match_attack_learned_vs_attack_learned_decision_600_95530"]
+                         "match_attack_learned_vs_attack_learned_decision_600_95530",
+                         "match_attack_learned_decision_vs_attack_learned_600_realistic_95600",
+                         "match_attack_learned_vs_attack_learned_decision_600_realistic_95610"]
 DECISION_PRESS_POOLED = [("attack-learned, learned decision vs attack-learned (pressed passer, commit fcb21d2)",
                           (("match_attack_learned_decision_vs_attack_learned_600_95500", "blue"),
-                           ("match_attack_learned_vs_attack_learned_decision_600_95530", "yellow")))]
+                           ("match_attack_learned_vs_attack_learned_decision_600_95530", "yellow"))),
+                         ("the same, `--realism realistic`",
+                          (("match_attack_learned_decision_vs_attack_learned_600_realistic_95600", "blue"),
+                           ("match_attack_learned_vs_attack_learned_decision_600_realistic_95610", "yellow")))]
 ATTACK_DRILL = [("hand-coded (the attacking plays' cost decision)", "attack_drill_handcoded"),
                 ("learned (shipped `attack_drill.pt`: cloned, then MAPPO `mappo_attack_drill_bc_s0`)",
                  "attack_drill_learned")]
