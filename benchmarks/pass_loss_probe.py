@@ -36,22 +36,23 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from benchmarks.ball_out_probe import probe_args, write_probe  # noqa: E402
 
-TOUCH_M = 0.09 + 0.0215 + 0.005  # robot radius + ball radius + 5 mm (m)
+def _touch_m() -> float:
+    """Robot radius + ball radius + 5 mm (m): a centre distance at which the robot touches the ball."""
+    from ssl_marl.physics.params import BallParams, RobotParams
+
+    return RobotParams().radius + BallParams().radius + 0.005
 
 
-def _receiver(world, team: str, kicker: int, lane_m: float) -> tuple[int | None, float, float]:
-    """The teammate nearest the kick's straight path (index, along m, lateral m) or None."""
-    p, v = np.asarray(world.ball_pos, float), np.asarray(world.ball_vel, float)
-    u = v / max(float(np.hypot(*v)), 1e-9)
-    best = (None, 0.0, np.inf)
-    for k, m in enumerate(world.team(team).pos):
-        if k == kicker:
-            continue
-        rel = np.asarray(m, float) - p
-        along, lat = float(rel @ u), abs(float(rel[0] * u[1] - rel[1] * u[0]))
-        if along > 0.3 and lat <= lane_m and lat < best[2]:
-            best = (k, along, lat)
-    return best
+TOUCH_M = _touch_m()
+
+
+def _receiver(world, team: str, kicker: int, params) -> tuple[int | None, float, float]:
+    """The teammate nearest the kick's straight path within the statistics' lane and at
+    least ``min_pass_m`` ahead (index, along m, lateral m), or (None, 0, inf)."""
+    from ssl_marl.plays.stats import kick_path_offsets
+
+    lane = [o for o in kick_path_offsets(world, team, kicker) if o[1] >= params.min_pass_m and o[2] <= params.pass_lane_m]
+    return min(lane, key=lambda o: o[2]) if lane else (None, 0.0, np.inf)
 
 
 def probe_match(blue: str, yellow: str, seconds: float, seed: int,
@@ -89,7 +90,7 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int,
             if entry["type"] == "pass":
                 team = entry["team"]
                 other = "yellow" if team == "blue" else "blue"
-                r, along, lat = _receiver(world, team, entry["kicker"], self.params.pass_lane_m)
+                r, along, lat = _receiver(world, team, entry["kicker"], self.params)
                 cur.clear()
                 role, tactic = intent(team, entry["kicker"])
                 cur.update(team=team, other=other, kicker=entry["kicker"], kind=entry["kind"], t=entry["t"],

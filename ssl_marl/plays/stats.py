@@ -134,6 +134,24 @@ class _OpenPass:
     kind: str = "flat"
 
 
+def kick_path_offsets(world: WorldState, team: str, kicker: int) -> list[tuple[int, float, float]]:
+    """``(teammate, along, lateral)`` for each of ``team``'s robots but ``kicker``: its
+    distance along the ball's straight path from the ball and its distance from that path
+    (m, field frame); empty while the ball is still."""
+    p = np.asarray(world.ball_pos, float)
+    v = np.asarray(world.ball_vel, float)
+    sp = float(np.hypot(*v))
+    if sp < 1e-6:
+        return []
+    u = v / sp
+    out = []
+    for k, m in enumerate(world.team(team).pos):
+        if k != kicker:
+            rel = np.asarray(m, float) - p
+            out.append((k, float(rel @ u), abs(float(rel[0] * u[1] - rel[1] * u[0]))))
+    return out
+
+
 @dataclass
 class MatchStatsTracker:
     """Event tracker over a match (see the module docstring). Call :meth:`observe` once
@@ -174,13 +192,7 @@ class MatchStatsTracker:
             at_goal = abs(y) <= self.field.goal_width / 2.0 + self.params.shot_margin_m
         reach = ball_model.stop_distance(sp, self.ball) + self.params.pass_lane_m
         lane = self.params.goal_lane_m if at_goal else self.params.pass_lane_m
-        mates = world.team(team).pos
-        for k, m in enumerate(mates):
-            if k == kicker:
-                continue
-            rel = np.asarray(m, float) - p
-            along = float(rel @ u)
-            lateral = abs(float(rel[0] * u[1] - rel[1] * u[0]))
+        for _, along, lateral in kick_path_offsets(world, team, kicker):
             if self.params.min_pass_m <= along <= reach and lateral <= lane and (
                     world.ball_vz > 0.0
                     or ball_model.speed_at_distance(sp, along, self.ball) <= self.params.pass_max_arrive_speed):

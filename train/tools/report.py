@@ -169,12 +169,10 @@ DECISION_SERIES_PRESS = ["match_attack_learned_decision_vs_attack_learned_600_95
                          "match_attack_learned_vs_attack_learned_decision_600_95530",
                          "match_attack_learned_decision_vs_attack_learned_600_realistic_95600",
                          "match_attack_learned_vs_attack_learned_decision_600_realistic_95610"]
-DECISION_PRESS_POOLED = [("attack-learned, learned decision vs attack-learned (pressed passer, commit fcb21d2)",
-                          (("match_attack_learned_decision_vs_attack_learned_600_95500", "blue"),
-                           ("match_attack_learned_vs_attack_learned_decision_600_95530", "yellow"))),
-                         ("the same, `--realism realistic`",
-                          (("match_attack_learned_decision_vs_attack_learned_600_realistic_95600", "blue"),
-                           ("match_attack_learned_vs_attack_learned_decision_600_realistic_95610", "yellow")))]
+#: each pair of DECISION_SERIES_PRESS (learned decision blue, then yellow) from the learned side
+DECISION_PRESS_POOLED = [(label, ((blue, "blue"), (yellow, "yellow"))) for label, blue, yellow in zip(
+    ("attack-learned, learned decision vs attack-learned (pressed passer, commit fcb21d2)",
+     "the same, `--realism realistic`"), DECISION_SERIES_PRESS[::2], DECISION_SERIES_PRESS[1::2])]
 ATTACK_DRILL = [("hand-coded (the attacking plays' cost decision)", "attack_drill_handcoded"),
                 ("learned (shipped `attack_drill.pt`: cloned, then MAPPO `mappo_attack_drill_bc_s0`)",
                  "attack_drill_learned")]
