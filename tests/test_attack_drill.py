@@ -143,6 +143,18 @@ def test_deterministic_under_the_seed_and_the_handcoded_scores():
     assert goals >= 1  # the cost decision scores in the drill (about 0.6 of episodes)
 
 
+def test_an_episode_does_not_depend_on_the_one_before():
+    """The plays' state between ticks (the pass coordinator's plan, the supports' rated
+    spots) is reset with the team: an episode replayed on the same env after another one
+    repeats itself exactly (evaluations and rollouts do not depend on episode order)."""
+    env, pol = _env(max_time_s=6.0), HandcodedAttackDrillPolicy()
+    first = run_episode(env, pol, seed=46003, record=True)
+    run_episode(env, pol, seed=46010)
+    again = run_episode(env, pol, seed=46003, record=True)
+    assert again["trace"] == first["trace"] and again["outcome"] == first["outcome"]
+    assert again["steps"] == first["steps"]
+
+
 class _Fixed:
     def __init__(self, option):
         self.option, self.calls, self.spaces = option, 0, None

@@ -58,6 +58,15 @@ def test_episode_score_spaces_and_determinism():
     assert env.state().shape == (4 + 8 * 3 + 2,) and env.state_space.contains(env.state())
 
 
+def test_an_episode_does_not_depend_on_the_one_before():
+    """The attacking plays' coordinator and spots are reset with the team (6 robots: the supports' spots)."""
+    env = AttackMatchEnv({"baseline": TeamSpec(skills="baseline")}, skills="baseline", robots=6, seconds=4.0)
+    first = run_episode(env, RandomPolicy(1), seed=5, record=True)
+    run_episode(env, RandomPolicy(1), seed=9)
+    again = run_episode(env, RandomPolicy(1), seed=5, record=True)
+    assert again["trace"] == first["trace"] and again["goal_diff"] == first["goal_diff"]
+
+
 def test_parallel_api():
     from pettingzoo.test import parallel_api_test
 

@@ -157,7 +157,7 @@ def test_a_version_2_train_state_with_a_flat_config_resumes_exactly(tmp_path: Pa
 
 # --- documented entry points ----------------------------------------------------------------------
 @pytest.mark.parametrize("module", ["train", "train.select", "train.compare", "train.sweep", "train.report",
-                                    "train.plots", "train.export", "train.mappo_bc", "train.mappo_eval",
+                                    "train.plots", "train.export", "train.mappo_bc", "train.mappo_rollout_pi", "train.mappo_eval",
                                     "train.mappo_export", "train.mappo_report"])
 def test_documented_module_commands_answer_help(module: str, monkeypatch, capsys) -> None:
     argv = [module, "--help"] if module != "train" else [module, "go-to-ball", "--help"]

@@ -311,3 +311,34 @@ def test_behaviour_cloning_imitates_a_benchmark_policy(tmp_path: Path) -> None:
     assert pol.act(env, "keeper_0", obs["keeper_0"], infos["keeper_0"]) == HOLD
     with pytest.raises(ValueError, match="episodes must be >= 1"):
         collect_demonstrations("keepaway", "always-hold", 0, 0, progress=False)
+
+
+def test_rollout_policy_improvement_labels_fit_and_resume(tmp_path: Path) -> None:
+    """train.mappo.rollout_pi: every legal option of the drill's first decision is played out
+    (the benchmark's own option carries the benchmark episode's return, illegal ones NaN); a
+    rerun resumes without replaying; the fitted actor's greedy pick is the best-valued option."""
+    import numpy as np
+
+    from ssl_marl.decisions import make_decision_policy
+    from ssl_marl.decisions.attack_drill import AttackDrillEnv
+    from ssl_marl.decisions.policies import run_episode
+    from train.mappo.rollout_pi import collect, fit_value_actor, load_labels
+
+    files = collect("attack-drill", tmp_path, 1, 46004, max_decisions=1, chunk=1, progress=False)
+    lab = load_labels(tmp_path)
+    assert lab["obs"].shape == (1, 48) and lab["decision"].tolist() == [0]
+    legal = lab["mask"][0].astype(bool)
+    assert np.all(np.isnan(lab["value"][0][~legal])) and not np.any(np.isnan(lab["value"][0][legal]))
+    base = run_episode(AttackDrillEnv(), make_decision_policy("handcoded", "attack-drill"), seed=46004)
+    assert lab["value"][0][lab["base_option"][0]] == base["return"]
+    stamp = files[0].stat().st_mtime_ns
+    collect("attack-drill", tmp_path, 1, 46004, max_decisions=1, chunk=1, progress=False)
+    assert files[0].stat().st_mtime_ns == stamp
+    lab["value"][0][legal] = 0.0
+    best = int(np.flatnonzero(legal)[-1])
+    lab["value"][0][best] = 1.0
+    agent, stats = fit_value_actor("attack-drill", lab, epochs=200, holdout=0.0)
+    assert stats["train"]["picked_value"] == 1.0 and stats["picked_options"][best] == 1
+    lab["value"][0][best] = 2.0
+    with pytest.raises(ValueError, match=r"\[0, 1\]"):
+        fit_value_actor("attack-drill", lab, epochs=1, holdout=0.0)

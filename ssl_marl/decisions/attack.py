@@ -235,7 +235,6 @@ class Attack3v2Env(CarrierRequestHooks, DecisionEnv):
 
     def on_reset(self) -> None:
         self.decider.reset()
-        self.coordinator.reset()
         self.blue.reset()
         self.yellow.reset()
         self._request_obs = self._request_mask = None

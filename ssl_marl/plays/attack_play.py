@@ -135,6 +135,10 @@ class SpotPlanner:
                  ball: BallParams | None = None) -> None:
         self.n_spots, self.rate_every, self.params = n_spots, rate_every, params
         self.bp = ball or BallParams()
+        self.reset()
+
+    def reset(self) -> None:
+        """Forget the spots (a new episode: the next :meth:`update` rates them)."""
         self.spots: np.ndarray | None = None
         self._tick = 0
 
@@ -154,6 +158,11 @@ class AttackPrepare:
     coordinator: PassCoordinator
     planner: SpotPlanner
     restart: bool = False
+
+    def reset(self) -> None:
+        """A new episode: the coordinator's plan and the spots are forgotten."""
+        self.coordinator.reset()
+        self.planner.reset()
 
     def __call__(self, ctx: PlayContext) -> None:
         dec, recv = self.coordinator.decider, ctx.role_status.get("receiver")

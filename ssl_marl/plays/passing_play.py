@@ -70,6 +70,10 @@ class PrepareHook:
     coordinator: PassCoordinator
     restart: bool = False
 
+    def reset(self) -> None:
+        """A new episode: the coordinator's plan is forgotten."""
+        self.coordinator.reset()
+
     def __call__(self, ctx: PlayContext) -> None:
         self.coordinator.prepare(ctx, restart=self.restart)
 

@@ -175,7 +175,8 @@ class Play:
     the current one after the hold time (kickoff > open play). ``prepare`` (optional)
     runs once per tick while the play is selected, before its roles' targets are
     evaluated: team-level decisions that several roles share (the passing plays'
-    pass coordinator) are made there."""
+    pass coordinator) are made there; a ``prepare`` with a ``reset()`` method is reset
+    whenever the team's play selector is (a new episode)."""
 
     name: str
     applicable: Callable[[PlayContext], bool]
@@ -368,10 +369,21 @@ class PlaySelector:
         self.since = 0.0
         self._last_t: float | None = None
         self.rng = np.random.default_rng(self.seed)
+        self._reset_prepares()
 
     def new_episode(self) -> None:
         """Drop the running play (the env was reset); keep weights and statistics."""
         self.current, self.since, self._last_t = None, 0.0, None
+        self._reset_prepares()
+
+    def _reset_prepares(self) -> None:
+        """Reset every play's ``prepare`` that keeps state between ticks (it has a
+        ``reset()``: the pass coordinator's plan, the supports' spots), so that an episode
+        does not depend on the one before."""
+        for p in self.plays:
+            reset = getattr(p.prepare, "reset", None)
+            if callable(reset):
+                reset()
 
     def _pick(self, candidates: list[Play]) -> Play:
         top = max(p.priority for p in candidates)

@@ -1,0 +1,260 @@
+"""Rollout policy improvement: one step of approximate policy iteration over a benchmark decision policy.
+
+CLI::
+
+    python -m train.mappo_rollout_pi collect --task attack-drill --episodes 600 --seed 120000 --out runs/rpi_drill
+    python -m train.mappo_rollout_pi fit --task attack-drill --labels runs/rpi_drill --out runs/rpi_drill/actor.pt
+    ssl-marl eval-task attack-drill --policy learned --actor runs/rpi_drill/actor.pt --episodes 200 --seed 49000
+
+**collect** plays the benchmark policy (``handcoded`` by default) on seeds ``SEED + i``; at each of
+an episode's first ``--max-decisions`` decisions it plays the episode again once per other legal
+option: the benchmark everywhere, that option at that decision (the tasks are deterministic under
+the seed, so the replay reaches the same decision; a replay that does not raises). Each decision
+row keeps the deciding agent's observation, mask and index, the benchmark's option, and the
+episode's return after every legal option (NaN for illegal ones): Monte-Carlo values Q(s, o) of
+the benchmark policy (Bertsekas's rollout; Lagoudakis and Parr's classification-based policy
+iteration). Rows go to ``OUT/labels-<first seed>.npz`` in chunks of ``--chunk`` episodes, written
+atomically; a rerun skips the chunks already there, so collection resumes and several processes
+can share the seed range (``--episodes`` / ``--seed`` per process).
+
+**fit** trains the shared actor of the task's default MAPPO config (sizes, observation scaling,
+agent one-hot) to predict each legal option's return from the observation: its logits are the
+options' values under a logistic link (binary cross-entropy on the observed returns, which must lie
+in [0, 1]: the drills' goal / no goal). A greedy decision actor (``--policy learned``) therefore
+picks the option with the highest predicted value: the improved policy. The last ``--holdout``
+fraction of the episodes is held out; the printed figures compare, on those decisions, the mean
+return of the option the actor picks with the benchmark's (the rollout values of both are known).
+The actor is written in the decision-actor format, so it is evaluated like any learned decision,
+or warm-starts MAPPO (``--set init_actor=PATH``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import tempfile
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import torch
+from tqdm import tqdm
+
+from ssl_marl.decisions.policies import run_episode
+
+from train.mappo.algorithm import MAPPO
+from train.mappo.bc import _task_spec, save_bc_actor
+from train.mappo.loop import task_config
+from train.mappo.tasks import get_task
+
+LABEL_KEYS = ("obs", "mask", "agent", "seed", "decision", "base_option", "value")
+
+
+class _Branch:
+    """The benchmark policy everywhere but at decision ``k`` of the episode, where it answers
+    ``option``; the benchmark is asked at every decision (its own state, e.g. the keep clock,
+    runs as in the benchmark's episode). Records each decision's observation, mask and agent."""
+
+    def __init__(self, base: Any, k: int = -1, option: int = 0) -> None:
+        self.base, self.k, self.option = base, k, option
+
+    def reset(self, env: Any) -> None:
+        self.base.reset(env)
+        self.i = 0
+        self.rows: list[tuple[np.ndarray, np.ndarray, str, int]] = []
+
+    def act(self, env: Any, agent: str, obs: np.ndarray, info: dict) -> int:
+        mask = np.asarray(info["action_mask"], np.int8)
+        o = int(self.base.act(env, agent, obs, info))
+        self.rows.append((np.asarray(obs, np.float32), mask, agent, o))
+        i, self.i = self.i, self.i + 1
+        return self.option if i == self.k else o
+
+
+def rollout_labels(env: Any, base: Any, seed: int, max_decisions: int) -> dict[str, np.ndarray] | None:
+    """One episode's decision rows (module docstring); None if the benchmark made no decision."""
+    root = _Branch(base)
+    ret0 = float(run_episode(env, root, seed=seed)["return"])
+    rows = root.rows[:max_decisions]
+    if not rows:
+        return None
+    agents = list(env.possible_agents)
+    value = np.full((len(rows), env.n_options), np.nan, np.float32)
+    for k, (obs_k, mask_k, _, base_o) in enumerate(rows):
+        value[k, base_o] = ret0
+        for o in np.flatnonzero(mask_k):
+            if int(o) == base_o:
+                continue
+            br = _Branch(base, k, int(o))
+            value[k, o] = float(run_episode(env, br, seed=seed)["return"])
+            seen = br.rows[k] if len(br.rows) > k else None
+            if seen is None or not (np.array_equal(seen[0], obs_k) and np.array_equal(seen[1], mask_k)):
+                raise RuntimeError(f"seed {seed}: the replay did not reach decision {k} as the benchmark's episode "
+                                   "did; the task is not deterministic under the seed")
+    return {"obs": np.stack([r[0] for r in rows]), "mask": np.stack([r[1] for r in rows]),
+            "agent": np.array([agents.index(r[2]) for r in rows], np.int64),
+            "seed": np.full(len(rows), seed, np.int64),
+            "decision": np.arange(len(rows), dtype=np.int64),
+            "base_option": np.array([r[3] for r in rows], np.int64), "value": value}
+
+
+def _concat(parts: list[dict[str, np.ndarray]]) -> dict[str, np.ndarray]:
+    return {k: np.concatenate([p[k] for p in parts]) for k in LABEL_KEYS}
+
+
+def _write_npz(path: Path, data: dict[str, np.ndarray], meta: dict) -> None:
+    fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
+    os.close(fd)
+    with open(tmp, "wb") as f:
+        np.savez_compressed(f, meta=np.array(json.dumps(meta)), **data)
+    os.replace(tmp, path)
+
+
+def collect(task: str, out: str | Path, episodes: int, seed: int, policy: str = "handcoded",
+            max_decisions: int = 4, chunk: int = 25, progress: bool = True) -> list[Path]:
+    """Label ``episodes`` episodes (seeds ``seed + i``) into ``out``'s chunk files (module
+    docstring); returns the chunk files of this range, new and already there."""
+    from ssl_marl.decisions import make_decision_policy
+    from ssl_marl.skills.checkpoint import git_commit
+
+    if episodes < 1 or chunk < 1 or max_decisions < 1:
+        raise ValueError(f"episodes, chunk and max_decisions must be >= 1, got {episodes}, {chunk}, {max_decisions}")
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    env = get_task(task).factory(**task_config(task).task_kwargs)
+    base = make_decision_policy(policy, task, seed=seed)
+    files = []
+    bar = tqdm(total=episodes, disable=not progress, desc=f"rollout labels {task}", unit="ep")
+    for c0 in range(seed, seed + episodes, chunk):
+        n = min(chunk, seed + episodes - c0)
+        path = out / f"labels-{c0}.npz"
+        files.append(path)
+        if path.exists():
+            bar.update(n)
+            continue
+        parts = []
+        for s in range(c0, c0 + n):
+            rows = rollout_labels(env, base, s, max_decisions)
+            if rows is not None:
+                parts.append(rows)
+            bar.update(1)
+        meta = {"task": task, "policy": policy, "seeds": [c0, c0 + n - 1], "max_decisions": max_decisions,
+                "commit": git_commit()}
+        _write_npz(path, _concat(parts) if parts else {k: np.zeros(0) for k in LABEL_KEYS}, meta)
+    bar.close()
+    env.close()
+    return files
+
+
+def load_labels(folder: str | Path) -> dict[str, np.ndarray]:
+    """Every chunk file of ``folder``, concatenated (rows ordered by seed)."""
+    files = sorted(Path(folder).glob("labels-*.npz"), key=lambda p: int(p.stem.split("-")[1]))
+    if not files:
+        raise ValueError(f"no labels-*.npz in {folder}")
+    parts = []
+    for f in files:
+        with np.load(f, allow_pickle=False) as z:
+            if z["obs"].size:
+                parts.append({k: z[k] for k in LABEL_KEYS})
+    if not parts:
+        raise ValueError(f"the chunk files in {folder} hold no decision")
+    return _concat(parts)
+
+
+def fit_value_actor(task: str, labels: dict[str, np.ndarray], epochs: int = 300, lr: float = 1e-3,
+                    batch: int = 256, holdout: float = 0.2, weight_decay: float = 1e-4,
+                    seed: int = 0) -> tuple[MAPPO, dict[str, Any]]:
+    """A MAPPO agent (the task's default config) whose actor logits predict each legal option's
+    return (binary cross-entropy; module docstring); and the fit's figures."""
+    val = labels["value"]
+    seen = ~np.isnan(val)
+    if np.any((val[seen] < 0) | (val[seen] > 1)):
+        raise ValueError("rollout returns must lie in [0, 1] (goal / no goal) to be fitted as values")
+    sp = _task_spec(task)
+    agent = MAPPO(sp["obs_dim"], sp["state_dim"], len(sp["agents"]), sp["n_out"], sp["cfg"].algo)
+    torch.manual_seed(seed)
+    gen = torch.Generator().manual_seed(seed)
+    eps = np.unique(labels["seed"])
+    n_hold = min(int(round(holdout * len(eps))), len(eps) - 1)
+    cut = eps[len(eps) - n_hold] if n_hold > 0 else eps[-1] + 1
+    train_i, test_i = np.flatnonzero(labels["seed"] < cut), np.flatnonzero(labels["seed"] >= cut)
+    if len(train_i) == 0:
+        raise ValueError("no training decisions left after the holdout; collect more episodes")
+    x = agent.actor_input((labels["obs"] - sp["obs_c"]) / sp["obs_s"], labels["agent"])
+    y = torch.as_tensor(np.nan_to_num(val, nan=0.0))
+    w = torch.as_tensor(seen.astype(np.float32))
+    opt = torch.optim.Adam(agent.actor.parameters(), lr=lr, weight_decay=weight_decay)
+    bce = torch.nn.BCEWithLogitsLoss(reduction="none")
+
+    def loss_of(idx: torch.Tensor) -> torch.Tensor:
+        return (bce(agent.actor.net(x[idx]), y[idx]) * w[idx]).sum() / w[idx].sum().clamp(min=1.0)
+
+    def figures(idx: np.ndarray) -> dict[str, float]:
+        if len(idx) == 0:
+            return {}
+        with torch.no_grad():
+            logits = agent.actor.net(x[idx]).numpy()
+            loss = float(loss_of(torch.as_tensor(idx)))
+        pick = np.argmax(np.where(seen[idx], logits, -np.inf), axis=1)
+        v = val[idx]
+        return {"decisions": int(len(idx)), "loss": loss,
+                "picked_value": float(v[np.arange(len(idx)), pick].mean()),
+                "benchmark_value": float(v[np.arange(len(idx)), labels["base_option"][idx]].mean()),
+                "best_value": float(np.nanmax(v, axis=1).mean()),
+                "agrees_with_benchmark": float((pick == labels["base_option"][idx]).mean())}
+
+    ti = torch.as_tensor(train_i)
+    for _ in range(epochs):
+        perm = ti[torch.randperm(len(ti), generator=gen)]
+        for s in range(0, len(perm), batch):
+            loss = loss_of(perm[s:s + batch])
+            opt.zero_grad(set_to_none=True)
+            loss.backward()
+            opt.step()
+    picks = np.argmax(np.where(seen, agent.actor.net(x).detach().numpy(), -np.inf), axis=1)
+    stats = {"episodes": int(len(eps)), "train": figures(train_i), "holdout": figures(test_i),
+             "picked_options": np.bincount(picks, minlength=agent.n_out).tolist(),
+             "benchmark_options": np.bincount(labels["base_option"], minlength=agent.n_out).tolist(),
+             "epochs": epochs, "lr": lr, "weight_decay": weight_decay}
+    return agent, stats
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(prog="python -m train.mappo_rollout_pi", description=__doc__,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = p.add_subparsers(dest="cmd", required=True)
+    c = sub.add_parser("collect", help="label decisions with the rollout values of every legal option")
+    c.add_argument("--task", required=True, help="decision task (attack-3v2, attack-drill)")
+    c.add_argument("--policy", default="handcoded", help="benchmark policy (default handcoded)")
+    c.add_argument("--episodes", type=int, required=True, help="episodes to label")
+    c.add_argument("--seed", type=int, required=True, help="episode i uses seed SEED+i")
+    c.add_argument("--max-decisions", type=int, default=4, help="label an episode's first N decisions (default 4)")
+    c.add_argument("--chunk", type=int, default=25, help="episodes per chunk file (default 25)")
+    c.add_argument("--out", type=Path, required=True, help="folder of the chunk files (resumed if there)")
+    c.add_argument("--no-progress", action="store_true", help="no progress bar")
+    f = sub.add_parser("fit", help="fit a value actor to the labels and write it")
+    f.add_argument("--task", required=True, help="decision task the labels come from")
+    f.add_argument("--labels", type=Path, nargs="+", required=True, help="folders of chunk files")
+    f.add_argument("--epochs", type=int, default=300, help="passes over the training decisions (default 300)")
+    f.add_argument("--lr", type=float, default=1e-3, help="Adam learning rate (default 1e-3)")
+    f.add_argument("--weight-decay", type=float, default=1e-4, help="Adam weight decay (default 1e-4)")
+    f.add_argument("--holdout", type=float, default=0.2, help="fraction of episodes held out (default 0.2)")
+    f.add_argument("--seed", type=int, default=0, help="torch seed (default 0)")
+    f.add_argument("--out", type=Path, required=True, help="actor file to write (.pt)")
+    args = p.parse_args(argv)
+    if args.cmd == "collect":
+        files = collect(args.task, args.out, args.episodes, args.seed, args.policy, args.max_decisions, args.chunk,
+                        progress=not args.no_progress)
+        print(json.dumps({"out": str(args.out), "chunks": [f.name for f in files]}))
+        return 0
+    if not 0 <= args.holdout < 1:
+        p.error(f"--holdout must be in [0, 1), got {args.holdout}")
+    labels = _concat([load_labels(d) for d in args.labels])
+    agent, stats = fit_value_actor(args.task, labels, epochs=args.epochs, lr=args.lr, holdout=args.holdout,
+                                   weight_decay=args.weight_decay, seed=args.seed)
+    seeds = sorted({int(s) for s in labels["seed"]})
+    save_bc_actor(agent, args.task, args.out, seed=args.seed,
+                  rollout_pi={"labels": [str(d) for d in args.labels], "seeds": [seeds[0], seeds[-1]], **stats})
+    print(json.dumps({"out": str(args.out), **stats}))
+    return 0
