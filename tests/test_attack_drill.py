@@ -143,6 +143,17 @@ def test_deterministic_under_the_seed_and_the_handcoded_scores():
     assert goals >= 1  # the cost decision scores in the drill (about 0.6 of episodes)
 
 
+def test_the_attackers_build_the_attacking_teams_skills():
+    """The drill's attackers run the skills ``attack-learned`` runs in matches (the learned chip
+    pass and redirect included); the flat-kicking defence builds the passing team's."""
+    from ssl_marl.runners.controllers import kind_skills
+
+    env = AttackDrillEnv(skills="learned")
+    assert env.skills == kind_skills("attack-learned") and "redirect" in env.skills
+    assert "redirect" not in env.defence_skills
+    assert _env().skills == kind_skills("attack-baseline")
+
+
 def test_an_episode_does_not_depend_on_the_one_before():
     """The plays' state between ticks (the pass coordinator's plan, the supports' rated
     spots) is reset with the team: an episode replayed on the same env after another one

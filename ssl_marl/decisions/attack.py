@@ -65,7 +65,7 @@ from ..plays.pass_coordinator import CarrierDecider, CarrierRequest, CostDecider
 from ..plays.passing_play import PrepareHook, coordinator_of
 from ..plays.passing_roles import passer_role, passing_attacker_role, passing_support_role, receiver_role
 from ..plays.play import Play, defender_role, goalie_role
-from ..plays.skillset import team_skill_set
+from ..plays.skillset import TEAM_SKILLS, team_skill_set
 from ..plays.team import TeamSpec, build_team
 from ..plays.pass_decision import shot_value
 from .attack_features import (ATTACK_OBS_DIM, ATTACK_OPTIONS, OBS_BOUND, SHOOT, attack_action_mask,
@@ -187,10 +187,13 @@ class Attack3v2Env(CarrierRequestHooks, DecisionEnv):
     n_agents = N_ATTACKERS
     team = "blue"
     default_option = SHOOT
+    #: the skills the attackers' tactics build (those of the passing plays); the defence builds the passing team's
+    attacker_skills: tuple[str, ...] = TEAM_SKILLS
 
     def __init__(self, skills: str = "learned", rules: AttackRules | None = None, spawn: AttackSpawn | None = None,
                  passing: PassingParams | None = None, **kwargs: Any) -> None:
-        self.skills = team_skill_set(skills, where="Attack3v2Env")
+        self.skills = team_skill_set(skills, self.attacker_skills, where=type(self).__name__)
+        self.defence_skills = team_skill_set(skills, where=type(self).__name__)
         self.skills_kind = skills
         self.rules, self.spawn = rules or AttackRules(), spawn or AttackSpawn()
         self.passing = passing or PassingParams(decide_every=1)
@@ -203,7 +206,7 @@ class Attack3v2Env(CarrierRequestHooks, DecisionEnv):
         self.blue = build_team(attack, "blue", N_ATTACKERS + 1, self.field, self.rp, self.bp, dt=self.dt)
         self.coordinator = coordinator_of(self.blue.selector.plays)
         self.decider.coordinator = self.coordinator
-        self.yellow = build_team(TeamSpec(plays=drill_defence_plays, skills=self.skills), "yellow", 2, self.field,
+        self.yellow = build_team(TeamSpec(plays=drill_defence_plays, skills=self.defence_skills), "yellow", 2, self.field,
                                  self.rp, self.bp, dt=self.dt)
         self._request_obs: np.ndarray | None = None
         self._request_mask: np.ndarray | None = None

@@ -10,8 +10,11 @@ the match's attacking plays in place of the passing play:
   attacker aiming at the widest open part of the goal mouth, two supports on rated spots) with
   the attacking plays' pass coordinator settings (``ATTACK_PASSING``, asked every tick:
   ``decide_every=1``); the only change from a match is that the carrier's decision comes from
-  the agents (:class:`DrillAttackDecider`). The world is the chip env (``chip_kicks=True``);
-  the defence (the project's Goalie and Defender tactics, as in Attack 3v2) kicks flat.
+  the agents (:class:`DrillAttackDecider`). The attackers build the attacking team's skills
+  (:data:`~ssl_marl.plays.skillset.ATTACK_SKILLS`: with ``skills="learned"`` the shipped chip-pass
+  and redirect actors too, as ``attack-learned`` plays in matches). The world is the chip env
+  (``chip_kicks=True``); the defence (the project's Goalie and Defender tactics, as in Attack 3v2)
+  kicks flat.
 * **Options, mask, observation**: :mod:`ssl_marl.decisions.attack_drill_features` (10 options:
   shoot, flat pass / chip / pass into a redirect to teammate slot 1 or 2, three dribbles; 48
   values), the same functions a match's :class:`~ssl_marl.decisions.match_decider.PolicyAttackDecider`
@@ -38,6 +41,7 @@ from ..plays.attack_play import (ATTACK_PASSING, AttackDecider, AttackPrepare, S
                                  redirect_receiver_role, spot_support_role)
 from ..plays.pass_coordinator import CarrierRequest, PassCoordinator, PassingParams
 from ..plays.passing_roles import passing_attacker_role
+from ..plays.skillset import ATTACK_SKILLS
 from ..plays.play import Play, goalie_role
 from .attack import Attack3v2Env, CarrierRequestHooks, DrillDecider, HandcodedCarrierPolicy
 from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, DRIBBLE_GOAL_OPTION, SHOOT, SlotPasses,
@@ -135,6 +139,8 @@ class AttackDrillEnv(AttackOptionsMixin, Attack3v2Env):
     task_name = "attack-drill"
     option_names = ATTACK_DRILL_OPTIONS
     default_option = SHOOT
+    #: the attacking team's skills (with the chip pass and the redirect), as in matches
+    attacker_skills = ATTACK_SKILLS
 
     def __init__(self, skills: str = "learned", attack: AttackParams | None = None, **kwargs: Any) -> None:
         self.attack = attack or AttackParams()

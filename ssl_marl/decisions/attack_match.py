@@ -52,7 +52,7 @@ from ..plays.attack_play import AttackDecider, attack_plays
 from ..plays.pass_coordinator import CarrierRequest
 from ..plays.pass_decision import Decision
 from ..plays.passing_play import coordinator_of
-from ..plays.skillset import team_skill_set
+from ..plays.skillset import ATTACK_SKILLS, team_skill_set
 from ..plays.team import TeamController, TeamSpec, build_team
 from .attack_drill import AttackOptionsMixin, DrillAttackDecider
 from .attack_drill_features import ATTACK_DRILL_OPTIONS, SHOOT, SlotPasses
@@ -127,7 +127,7 @@ class AttackMatchEnv(AttackOptionsMixin, DecisionEnv):
             raise ValueError(f"seconds must be a positive number, got {seconds!r}")
         self.n_agents = robots - 1
         self.robots, self.seconds, self.pfsp = robots, float(seconds), bool(pfsp)
-        self.skills = team_skill_set(skills, where="AttackMatchEnv")
+        self.skills = team_skill_set(skills, ATTACK_SKILLS, where="AttackMatchEnv")
         self.opponent_specs = dict(opponents)
         self.snapshot_dir, self.max_snapshots = snapshot_dir, int(max_snapshots)
         self.snapshot_spec = snapshot_spec or self._snapshot_spec
