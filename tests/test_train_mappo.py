@@ -322,7 +322,7 @@ def test_rollout_policy_improvement_labels_fit_and_resume(tmp_path: Path) -> Non
     from ssl_marl.decisions import make_decision_policy
     from ssl_marl.decisions.attack_drill import AttackDrillEnv
     from ssl_marl.decisions.policies import run_episode
-    from train.mappo.rollout_pi import collect, fit_value_actor, load_labels
+    from train.mappo.rollout_pi import collect, fit_value_actor, load_labels, summarize
 
     files = collect("attack-drill", tmp_path, 1, 46004, max_decisions=1, chunk=1, progress=False)
     lab = load_labels(tmp_path)
@@ -334,6 +334,9 @@ def test_rollout_policy_improvement_labels_fit_and_resume(tmp_path: Path) -> Non
     stamp = files[0].stat().st_mtime_ns
     collect("attack-drill", tmp_path, 1, 46004, max_decisions=1, chunk=1, progress=False)
     assert files[0].stat().st_mtime_ns == stamp
+    summary = summarize("attack-drill", [tmp_path])
+    assert summary["episodes"] == 1 and summary["by_decision"][0]["benchmark"] == base["return"]
+    assert summary["chunks"][0]["seeds"] == [46004, 46004] and summary["chunks"][0]["policy"] == "handcoded"
     lab["value"][0][legal] = 0.0
     best = int(np.flatnonzero(legal)[-1])
     lab["value"][0][best] = 1.0

@@ -4,6 +4,7 @@ CLI::
 
     python -m train.mappo_rollout_pi collect --task attack-drill --episodes 600 --seed 120000 --out runs/rpi_drill
     python -m train.mappo_rollout_pi fit --task attack-drill --labels runs/rpi_drill --out runs/rpi_drill/actor.pt
+    python -m train.mappo_rollout_pi summarize --task attack-drill --labels runs/rpi_drill --out values.json
     ssl-marl eval-task attack-drill --policy learned --actor runs/rpi_drill/actor.pt --episodes 200 --seed 49000
 
 **collect** plays the benchmark policy (``handcoded`` by default) on seeds ``SEED + i``; at each of
@@ -26,6 +27,9 @@ fraction of the episodes is held out; the printed figures compare, on those deci
 return of the option the actor picks with the benchmark's (the rollout values of both are known).
 The actor is written in the decision-actor format, so it is evaluated like any learned decision,
 or warm-starts MAPPO (``--set init_actor=PATH``).
+
+**summarize** writes the labels' mean value of every option, by decision index and by the option
+the benchmark chose (where the benchmark loses against another option), with each chunk's record.
 """
 
 from __future__ import annotations
@@ -220,6 +224,38 @@ def fit_value_actor(task: str, labels: dict[str, np.ndarray], epochs: int = 300,
     return agent, stats
 
 
+def summarize(task: str, folders: list[str | Path]) -> dict[str, Any]:
+    """The labels' mean rollout value of every option (by decision index, and by the option the
+    benchmark chose), with each chunk's collection record (commit, seeds, policy)."""
+    labels = _concat([load_labels(d) for d in folders])
+    names = list(_task_spec(task)["option_names"] or range(labels["value"].shape[1]))
+    val, base, dec = labels["value"], labels["base_option"], labels["decision"]
+
+    def options(rows: np.ndarray) -> dict[str, list[float]]:
+        v = val[rows]
+        return {str(n): [int((~np.isnan(v[:, j])).sum()), float(np.nanmean(v[:, j]))]
+                for j, n in enumerate(names) if (~np.isnan(v[:, j])).any()}
+
+    by_decision = []
+    for k in np.unique(dec):
+        rows = np.flatnonzero(dec == k)
+        by_decision.append({"decision": int(k), "decisions": int(len(rows)),
+                            "benchmark": float(val[rows, base[rows]].mean()), "options": options(rows)})
+    by_choice = []
+    for o in np.unique(base):
+        rows = np.flatnonzero(base == o)
+        by_choice.append({"option": str(names[o]), "decisions": int(len(rows)),
+                          "value": float(val[rows, o].mean()), "options": options(rows)})
+    chunks = []
+    for d in folders:
+        for f in sorted(Path(d).glob("labels-*.npz"), key=lambda p: int(p.stem.split("-")[1])):
+            with np.load(f, allow_pickle=False) as z:
+                chunks.append({"file": f.name, **json.loads(str(z["meta"]))})
+    seeds = sorted({int(x) for x in labels["seed"]})
+    return {"task": task, "episodes": len(seeds), "decisions": int(len(base)), "seeds": [seeds[0], seeds[-1]],
+            "by_decision": by_decision, "by_benchmark_option": by_choice, "chunks": chunks}
+
+
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(prog="python -m train.mappo_rollout_pi", description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -242,7 +278,21 @@ def main(argv: list[str] | None = None) -> int:
     f.add_argument("--holdout", type=float, default=0.2, help="fraction of episodes held out (default 0.2)")
     f.add_argument("--seed", type=int, default=0, help="torch seed (default 0)")
     f.add_argument("--out", type=Path, required=True, help="actor file to write (.pt)")
+    m = sub.add_parser("summarize", help="write the labels' mean option values (JSON with a manifest)")
+    m.add_argument("--task", required=True, help="decision task the labels come from")
+    m.add_argument("--labels", type=Path, nargs="+", required=True, help="folders of chunk files")
+    m.add_argument("--out", type=Path, required=True, help="JSON file to write")
     args = p.parse_args(argv)
+    if args.cmd == "summarize":
+        from ssl_marl.io import atomic_write_json
+        from ssl_marl.runners.provenance import build_manifest
+
+        out = summarize(args.task, args.labels)
+        out["manifest"] = build_manifest(rules={"probe": "rollout_values", "task": args.task},
+                                         seeds={"seeds": out["seeds"]})
+        atomic_write_json(args.out, out)
+        print(json.dumps({k: out[k] for k in ("task", "episodes", "decisions", "seeds")}))
+        return 0
     if args.cmd == "collect":
         files = collect(args.task, args.out, args.episodes, args.seed, args.policy, args.max_decisions, args.chunk,
                         progress=not args.no_progress)

@@ -173,6 +173,18 @@ DECISION_SERIES_PRESS = ["match_attack_learned_decision_vs_attack_learned_600_95
 DECISION_PRESS_POOLED = [(label, ((blue, "blue"), (yellow, "yellow"))) for label, blue, yellow in zip(
     ("attack-learned, learned decision vs attack-learned (pressed passer, commit fcb21d2)",
      "the same, `--realism realistic`"), DECISION_SERIES_PRESS[::2], DECISION_SERIES_PRESS[1::2])]
+#: the learned decision on Division A against the hand-coded one, and against the no-pass baseline (commit 319a5ae)
+DECISION_SERIES_97 = ["match_attack_learned_decision_vs_attack_learned_600_div_a_11v11_97000",
+                      "match_attack_learned_vs_attack_learned_decision_600_div_a_11v11_97005",
+                      "match_attack_learned_decision_vs_baseline_600_97100",
+                      "match_baseline_vs_attack_learned_decision_600_97105",
+                      "match_attack_learned_decision_vs_baseline_600_97110",
+                      "match_baseline_vs_attack_learned_decision_600_97115"]
+DECISION_97_POOLED = [("attack-learned, learned decision vs attack-learned, 11v11 Division A (commit 319a5ae)",
+                       ((DECISION_SERIES_97[0], "blue"), (DECISION_SERIES_97[1], "yellow"))),
+                      ("attack-learned-decision vs baseline (commit 319a5ae)",
+                       ((DECISION_SERIES_97[2], "blue"), (DECISION_SERIES_97[3], "yellow"),
+                        (DECISION_SERIES_97[4], "blue"), (DECISION_SERIES_97[5], "yellow")))]
 ATTACK_DRILL = [("hand-coded (the attacking plays' cost decision)", "attack_drill_handcoded"),
                 ("learned (shipped `attack_drill.pt`: cloned, then MAPPO `mappo_attack_drill_bc_s0`)",
                  "attack_drill_learned")]
@@ -187,6 +199,13 @@ ATTACK_DRILL_FT_SELECTION = [("hand-coded", "tuning/attack_drill_handcoded_val49
                              ("learned, shipped `attack_drill.pt`", "tuning/attack_drill_shipped_val49300"),
                              ("`mappo_attack_drill_ft_s1` at 5,084 decisions", "tuning/attack_drill_ft_s1_5084_val49300"),
                              ("`mappo_attack_drill_ft_s1` at 7,098 decisions", "tuning/attack_drill_ft_s1_7098_val49300")]
+#: the attack drill's rollout values: the drill with the hand-coded chip pass and redirect (87714dd), then as in matches
+ROLLOUT_VALUES = lambda r: [r / "tuning" / f"attack_drill_rollout_values{s}.json" for s in ("_87714dd", "")]  # noqa: E731
+ATTACK_DRILL_RPI = [("hand-coded", "tuning/attack_drill_handcoded_val49000_87714dd"),
+                    ("value actor, weight decay 1e-3 (`rollout_pi_attack_drill/a_1e-3_300.pt`)",
+                     "tuning/attack_drill_rpi_wd1e-3_val49000"),
+                    ("value actor, weight decay 1e-4 (`rollout_pi_attack_drill/a_1e-4_300.pt`)",
+                     "tuning/attack_drill_rpi_wd1e-4_val49000")]
 ATTACK_DRILL_44000 = [("hand-coded", "attack_drill_handcoded_44000"),
                       ("learned, shipped `attack_drill.pt`", "attack_drill_learned_44000"),
                       ("`mappo_attack_drill_ft_s1` at 7,098 decisions (not shipped)",
@@ -220,6 +239,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_series_fair2": lambda r: m.series_600(r, DECISION_SERIES_FAIR2),
     "decision_series_press": lambda r: m.series_600(r, DECISION_SERIES_PRESS),
     "decision_press_pooled": lambda r: m.pooled_sides(r, DECISION_PRESS_POOLED),
+    "decision_series_97": lambda r: m.series_600(r, DECISION_SERIES_97),
+    "decision_97_pooled": lambda r: m.pooled_sides(r, DECISION_97_POOLED),
     "attack_targets": lambda r: m.series_600(r, ATTACK_TARGETS),
     "attack_targets_skills": lambda r: m.series_600(r, ATTACK_TARGETS_SKILLS),
     "attack_targets_fair": lambda r: m.series_600(r, ATTACK_TARGETS_FAIR),
@@ -245,6 +266,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
                                                     ROLLING_ACTOR),
     "league_anchors": lambda r: m.league(r, "league_anchors"),
     "league_learned": lambda r: m.league(r, "league_learned"),
+    "league_96000": lambda r: m.league(r, "league_96000"),
     "passing_contested_kick": lambda r: m.tuning(r, [("`contested_kick` on", "passing_contested_kick.json",
                                                       "contested_kick_on"),
                                                      ("`contested_kick` off (the default)",
@@ -261,7 +283,12 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "attack_drill_selection": lambda r: t.attack(r, ATTACK_DRILL_SELECTION),
     "attack_drill_ft_selection": lambda r: t.attack(r, ATTACK_DRILL_FT_SELECTION),
     "attack_drill_44000": lambda r: t.attack(r, ATTACK_DRILL_44000),
+    "attack_drill_rollout_pi": lambda r: t.attack(r, ATTACK_DRILL_RPI),
+    "attack_drill_42000": lambda r: t.attack(r, [("hand-coded", "attack_drill_handcoded_42000"),
+                                                 ("learned, shipped `attack_drill.pt`", "attack_drill_learned_42000")]),
     "attack_drill_aim": lambda r: t.probe_rows(r / "tuning" / "attack_drill_aim.json", "rule"),
+    "attack_drill_rollout_values": lambda r: t.rollout_values(ROLLOUT_VALUES(r), "decision"),
+    "attack_drill_rollout_choices": lambda r: t.rollout_values(ROLLOUT_VALUES(r), "choice"),
     "mappo_attack_match": lambda r: t.mappo_runs(r, [("mappo_attack_match_s0", "")], None, "goal"),
     "mappo_attack_drill": lambda r: t.mappo_runs(r, [("mappo_attack_drill_bc_s0", "attack_drill_learned")],
                                                  "attack_drill_handcoded", "goal"),

@@ -339,3 +339,27 @@ def rolling_selection(results: Path, by_field: dict[str, list[str]]) -> Lines:
         cells = " | ".join(f"{merged[p][f]['success_rate']:.3f}, {merged[p][f]['mean_time_s']:.2f}" for f in fields)
         rows.append(f"| {label} | {cells} | {s:.3f} | {'**yes**' if p == best else ''} |")
     return rows
+
+
+def rollout_values(paths: Iterable[Path], by: str) -> Lines:
+    """``python -m train.mappo_rollout_pi summarize`` records: every option's mean rollout value
+    (the episode's return after it, the benchmark everywhere else) and how many decisions offered
+    it, by decision index (``by="decision"``) or by the option the benchmark chose (``"choice"``)."""
+    key, first = ("by_decision", "decision") if by == "decision" else ("by_benchmark_option", "benchmark chose")
+    rows = _head(first, "seeds", "collected at", "decisions",
+                 "benchmark's value" if by == "decision" else "its value", "every legal option: mean value (decisions)")
+    for path in paths:
+        rows += _rollout_value_rows(json.loads(Path(path).read_text()), key, by)
+    return rows
+
+
+def _rollout_value_rows(d: dict, key: str, by: str) -> Lines:
+    commits = sorted({c["commit"][:7] for c in d["chunks"]})
+    rows = []
+    for r in d[key]:
+        opts = ", ".join(f"{n} {v:.2f} ({c})" for n, (c, v) in r["options"].items())
+        label = r["decision"] if by == "decision" else r["option"]
+        value = r["benchmark"] if by == "decision" else r["value"]
+        rows.append(f"| {label} | {d['seeds'][0]}-{d['seeds'][1]} | {', '.join(commits)} | {r['decisions']} | "
+                    f"{value:.3f} | {opts} |")
+    return rows
