@@ -284,6 +284,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "attack_drill_ft_selection": lambda r: t.attack(r, ATTACK_DRILL_FT_SELECTION),
     "attack_drill_44000": lambda r: t.attack(r, ATTACK_DRILL_44000),
     "attack_drill_rollout_pi": lambda r: t.attack(r, ATTACK_DRILL_RPI),
+    "attack_drill_shoot_threshold": lambda r: t.probe_rows(r / "tuning" / "attack_drill_shoot_threshold.json",
+                                                           "shoot_threshold"),
     "attack_drill_42000": lambda r: t.attack(r, [("hand-coded", "attack_drill_handcoded_42000"),
                                                  ("learned, shipped `attack_drill.pt`", "attack_drill_learned_42000")]),
     "attack_drill_aim": lambda r: t.probe_rows(r / "tuning" / "attack_drill_aim.json", "rule"),
