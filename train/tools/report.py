@@ -185,6 +185,10 @@ DECISION_97_POOLED = [("attack-learned, learned decision vs attack-learned, 11v1
                       ("attack-learned-decision vs baseline (commit 319a5ae)",
                        ((DECISION_SERIES_97[2], "blue"), (DECISION_SERIES_97[3], "yellow"),
                         (DECISION_SERIES_97[4], "blue"), (DECISION_SERIES_97[5], "yellow")))]
+#: the attacking team with learned skills against itself with hand-coded skills, both colours (commit e395ab2)
+SKILLS_97200 = ["match_attack_learned_vs_attack_baseline_600_97200", "match_attack_baseline_vs_attack_learned_600_97230"]
+SKILLS_97200_POOLED = [("attack-learned vs attack-baseline (commit e395ab2)",
+                        ((SKILLS_97200[0], "blue"), (SKILLS_97200[1], "yellow")))]
 ATTACK_DRILL = [("hand-coded (the attacking plays' cost decision)", "attack_drill_handcoded"),
                 ("learned (shipped `attack_drill.pt`: cloned, then MAPPO `mappo_attack_drill_bc_s0`)",
                  "attack_drill_learned")]
@@ -241,6 +245,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_press_pooled": lambda r: m.pooled_sides(r, DECISION_PRESS_POOLED),
     "decision_series_97": lambda r: m.series_600(r, DECISION_SERIES_97),
     "decision_97_pooled": lambda r: m.pooled_sides(r, DECISION_97_POOLED),
+    "skills_97200": lambda r: m.series_600(r, SKILLS_97200),
+    "skills_97200_pooled": lambda r: m.pooled_sides(r, SKILLS_97200_POOLED),
     "attack_targets": lambda r: m.series_600(r, ATTACK_TARGETS),
     "attack_targets_skills": lambda r: m.series_600(r, ATTACK_TARGETS_SKILLS),
     "attack_targets_fair": lambda r: m.series_600(r, ATTACK_TARGETS_FAIR),
