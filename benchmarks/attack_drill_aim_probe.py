@@ -61,14 +61,19 @@ def kick_rule(rule: str):
     return action
 
 
+def drill_outcomes(env: AttackDrillEnv, episodes: int, seed: int, desc: str, progress: bool) -> Counter:
+    """Outcome counts of ``episodes`` drill episodes (seeds ``seed + i``) with the hand-coded decision."""
+    policy, outcomes = HandcodedAttackDrillPolicy(), Counter()
+    for i in tqdm(range(episodes), desc=desc, disable=not progress, leave=False):
+        outcomes[run_episode(env, policy, seed=seed + i)["outcome"]] += 1
+    return outcomes
+
+
 def run(rule: str, episodes: int, seed: int, progress: bool) -> dict:
     original = shoot.GoToBallAndShoot.open_goal_action
     shoot.GoToBallAndShoot.open_goal_action = kick_rule(rule)
     try:
-        env, policy = AttackDrillEnv(), HandcodedAttackDrillPolicy()
-        outcomes: Counter = Counter()
-        for i in tqdm(range(episodes), desc=rule, disable=not progress, leave=False):
-            outcomes[run_episode(env, policy, seed=seed + i)["outcome"]] += 1
+        outcomes = drill_outcomes(AttackDrillEnv(), episodes, seed, rule, progress)
     finally:
         shoot.GoToBallAndShoot.open_goal_action = original
     return {"rule": rule, "episodes": episodes, "goal_rate": outcomes["goal"] / episodes, "outcomes": dict(outcomes)}

@@ -16,23 +16,22 @@ import argparse
 import dataclasses
 import math
 import sys
-from collections import Counter
+from pathlib import Path
 
-from tqdm import tqdm
-
-from ssl_marl.decisions.attack_drill import DRILL_PASSING, AttackDrillEnv, HandcodedAttackDrillPolicy
-from ssl_marl.decisions.policies import run_episode
+from ssl_marl.decisions.attack_drill import DRILL_PASSING, AttackDrillEnv
 from ssl_marl.io import atomic_write_json
 from ssl_marl.runners.provenance import build_manifest
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+from benchmarks.attack_drill_aim_probe import drill_outcomes  # noqa: E402
 
 
 def run(threshold: float, episodes: int, seed: int, progress: bool) -> dict:
     """Goal rate and outcomes of the hand-coded drill with shot threshold and fallback ``threshold``."""
     decision = dataclasses.replace(DRILL_PASSING.decision, shoot_threshold=threshold, shoot_fallback=threshold)
     env = AttackDrillEnv(passing=dataclasses.replace(DRILL_PASSING, decision=decision))
-    policy, outcomes = HandcodedAttackDrillPolicy(), Counter()
-    for i in tqdm(range(episodes), desc=f"threshold {threshold}", disable=not progress, leave=False):
-        outcomes[run_episode(env, policy, seed=seed + i)["outcome"]] += 1
+    outcomes = drill_outcomes(env, episodes, seed, f"threshold {threshold}", progress)
     return {"shoot_threshold": threshold, "episodes": episodes, "goal_rate": outcomes["goal"] / episodes,
             "outcomes": dict(outcomes)}
 

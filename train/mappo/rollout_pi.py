@@ -35,9 +35,8 @@ the benchmark chose (where the benchmark loses against another option), with eac
 from __future__ import annotations
 
 import argparse
+import io
 import json
-import os
-import tempfile
 from pathlib import Path
 from typing import Any
 
@@ -46,6 +45,7 @@ import torch
 from tqdm import tqdm
 
 from ssl_marl.decisions.policies import run_episode
+from ssl_marl.io import atomic_write_bytes, atomic_write_json
 
 from train.mappo.algorithm import MAPPO
 from train.mappo.bc import _task_spec, save_bc_actor
@@ -108,11 +108,9 @@ def _concat(parts: list[dict[str, np.ndarray]]) -> dict[str, np.ndarray]:
 
 
 def _write_npz(path: Path, data: dict[str, np.ndarray], meta: dict) -> None:
-    fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
-    os.close(fd)
-    with open(tmp, "wb") as f:
-        np.savez_compressed(f, meta=np.array(json.dumps(meta)), **data)
-    os.replace(tmp, path)
+    buf = io.BytesIO()
+    np.savez_compressed(buf, meta=np.array(json.dumps(meta)), **data)
+    atomic_write_bytes(path, buf.getvalue())
 
 
 def collect(task: str, out: str | Path, episodes: int, seed: int, policy: str = "handcoded",
@@ -284,7 +282,6 @@ def main(argv: list[str] | None = None) -> int:
     m.add_argument("--out", type=Path, required=True, help="JSON file to write")
     args = p.parse_args(argv)
     if args.cmd == "summarize":
-        from ssl_marl.io import atomic_write_json
         from ssl_marl.runners.provenance import build_manifest
 
         out = summarize(args.task, args.labels)

@@ -204,7 +204,7 @@ ATTACK_DRILL_FT_SELECTION = [("hand-coded", "tuning/attack_drill_handcoded_val49
                              ("`mappo_attack_drill_ft_s1` at 5,084 decisions", "tuning/attack_drill_ft_s1_5084_val49300"),
                              ("`mappo_attack_drill_ft_s1` at 7,098 decisions", "tuning/attack_drill_ft_s1_7098_val49300")]
 #: the attack drill's rollout values: the drill with the hand-coded chip pass and redirect (87714dd), then as in matches
-ROLLOUT_VALUES = lambda r: [r / "tuning" / f"attack_drill_rollout_values{s}.json" for s in ("_87714dd", "")]  # noqa: E731
+ROLLOUT_VALUES = ("tuning/attack_drill_rollout_values_87714dd.json", "tuning/attack_drill_rollout_values.json")
 ATTACK_DRILL_RPI = [("hand-coded", "tuning/attack_drill_handcoded_val49000_87714dd"),
                     ("value actor, weight decay 1e-3 (`rollout_pi_attack_drill/a_1e-3_300.pt`)",
                      "tuning/attack_drill_rpi_wd1e-3_val49000"),
@@ -295,8 +295,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "attack_drill_42000": lambda r: t.attack(r, [("hand-coded", "attack_drill_handcoded_42000"),
                                                  ("learned, shipped `attack_drill.pt`", "attack_drill_learned_42000")]),
     "attack_drill_aim": lambda r: t.probe_rows(r / "tuning" / "attack_drill_aim.json", "rule"),
-    "attack_drill_rollout_values": lambda r: t.rollout_values(ROLLOUT_VALUES(r), "decision"),
-    "attack_drill_rollout_choices": lambda r: t.rollout_values(ROLLOUT_VALUES(r), "choice"),
+    "attack_drill_rollout_values": lambda r: t.rollout_values([r / f for f in ROLLOUT_VALUES], "decision"),
+    "attack_drill_rollout_choices": lambda r: t.rollout_values([r / f for f in ROLLOUT_VALUES], "choice"),
     "mappo_attack_match": lambda r: t.mappo_runs(r, [("mappo_attack_match_s0", "")], None, "goal"),
     "mappo_attack_drill": lambda r: t.mappo_runs(r, [("mappo_attack_drill_bc_s0", "attack_drill_learned")],
                                                  "attack_drill_handcoded", "goal"),

@@ -14,7 +14,7 @@ from typing import Any, Iterable
 import numpy as np
 
 from ssl_marl.runners.result import load_manifest, load_result
-from train.tools.report_tables import Lines, _head
+from train.tools.report_tables import Lines, _head, commit_label
 
 
 def series(results: Path, names: Iterable[str]) -> Lines:
@@ -131,8 +131,7 @@ def match_variants(results: Path, entries: Iterable[tuple[str, str | tuple[str, 
                 for f in ((files,) if isinstance(files, str) else files)]
         ms = [m for d in recs for m in d["matches"]]
         rules = recs[0]["manifest"]["rules"]
-        commits = sorted({d["manifest"]["git"]["commit"][:7] + ("+" if d["manifest"]["git"].get("dirty") else "")
-                          for d in recs})  # +: uncommitted changes in the tree
+        commits = sorted({commit_label(d["manifest"]["git"]) for d in recs})
         st = series_statistics([m["score"]["blue"] for m in ms], [m["score"]["yellow"] for m in ms],
                                float(rules["seconds"]))
         lo, hi = st["goal_diff_per_600s_ci95"]
@@ -252,8 +251,7 @@ def pass_losses(paths: Iterable[Path]) -> Lines:
 def _pass_loss_rows(d: dict) -> Lines:
     s, seeds = d["summary"], d["manifest"]["seeds"]["seeds"]
     teams = f"{d['manifest']['rules']['blue']} vs {d['manifest']['rules']['yellow']}"
-    git = d["manifest"]["git"]
-    commit = git["commit"][:7] + ("+" if git.get("dirty") else "")
+    commit = commit_label(d["manifest"]["git"])
     rows = []
     by_tac: dict[str, list[dict]] = {}
     for p in d["passes"]:
@@ -377,10 +375,10 @@ def colour_mirror(results: Path, files: Iterable[str]) -> Lines:
         parted = [s for s in d["scenes"] if s["step"] is not None]
         steps = [s["step"] for s in parted]
         worlds = [s["world_diff_m"] for s in parted]
-        git, n_steps = d["manifest"]["git"], d["manifest"]["rules"]["steps"]
+        n_steps = d["manifest"]["rules"]["steps"]
         rows.append("| " + " | ".join([
             d["team"] if d["opponent"] == d["team"] else f"{d['team']} vs {d['opponent']}",
-            git["commit"][:7] + ("+" if git.get("dirty") else ""), str(len(d["scenes"])),
+            commit_label(d["manifest"]["git"]), str(len(d["scenes"])),
             f"{statistics.median(steps):.0f} ({min(steps)}-{max(steps)})" if steps else "-",
             f"{statistics.median(worlds):.1e} ({max(worlds):.1e})" if worlds else "-",
             f"{len(d['scenes']) - len(parted)} ({n_steps})"]) + " |")

@@ -24,6 +24,12 @@ def _head(*columns: str) -> Lines:
     return ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
 
 
+def commit_label(git: dict) -> str:
+    """A manifest's ``git`` record as a table cell: the short commit, "+" when the tree had
+    uncommitted changes."""
+    return git["commit"][:7] + ("+" if git.get("dirty") else "")
+
+
 def _summary(results: Path, name: str) -> dict[str, Any]:
     """``results/<name>/results.json`` without its rows (fast)."""
     return json.loads((results / name / "results.json").read_text())
