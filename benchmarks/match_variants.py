@@ -23,7 +23,11 @@ match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
 * ``redirect-4.5``: the plain format with passes into a redirect kicked, and rated, to arrive
   at 4.5 m/s (``AttackParams.redirect_arrive_speed``, default 2.5; ``ATTACK_PARAMS``);
 * ``ssl`` / ``ssl-receiver-guard``: the SSL format (``--format ssl``: halves, STOP, free kicks,
-  fouls), without and with the 1 m receiver guard.
+  fouls), without and with the 1 m receiver guard;
+* ``opp-one-defender`` / ``opp-no-defender``: the plain format against a weakened defence: the
+  standard plays (the ``baseline`` / ``learned`` teams' plays) keep only their first defender /
+  none of their defenders on the ball-goal line (the robots freed take the plays' next roles:
+  marks and supports); the goalie is unchanged. A probe of what limits scoring, not a team.
 
 Writes per match the score, the blue team's statistics and the referee's counts, and a
 summary: :func:`ssl_marl.runners.statistics.series_statistics` (win-draw-loss, goals, the goal
@@ -63,6 +67,23 @@ PASSING = {"keep-2s": {"max_keep_s": 2.0}, "keep-inf": {"max_keep_s": math.inf},
 DECISION = {"receiver-guard": {"receiver_guard_m": 1.0}, "ssl-receiver-guard": {"receiver_guard_m": 1.0}}
 #: ``ATTACK_PARAMS`` fields of each variant
 ATTACK = {"redirect-4.5": {"redirect_arrive_speed": 4.5}}
+#: defenders the standard plays keep in each variant (the rest of their roles unchanged)
+OPP_DEFENDERS = {"opp-one-defender": 1, "opp-no-defender": 0}
+
+
+def set_standard_defenders(n: int | None) -> None:
+    """Make the standard plays (:func:`ssl_marl.plays.play.standard_plays`, as the
+    ``baseline`` and ``learned`` teams build them) keep only their first ``n`` defender roles
+    (None: unchanged)."""
+    if n is None:
+        return
+    from ssl_marl.plays import play, team
+
+    def kept(r) -> bool:
+        return not (r.name.startswith("defender_") and int(r.name.rsplit("_", 1)[1]) >= n)
+
+    team.standard_plays = lambda: tuple(dataclasses.replace(p, roles=tuple(filter(kept, p.roles)))
+                                        for p in play.standard_plays())
 
 
 def set_attack_passing(passing: dict | None = None, decision: dict | None = None) -> None:
@@ -96,7 +117,7 @@ def summarize(rows: list[dict], seconds: float) -> dict:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("variant", choices=sorted({*RULES, *FORMAT, *ATTACK}), help="the variant (module docstring)")
+    ap.add_argument("variant", choices=sorted({*RULES, *FORMAT, *ATTACK, *OPP_DEFENDERS}), help="the variant (module docstring)")
     ap.add_argument("--blue", default="attack-learned", help="blue team kind (default attack-learned)")
     ap.add_argument("--yellow", default="baseline", help="yellow team kind (default baseline)")
     ap.add_argument("--seed", type=int, default=61500, help="first seed (tuning seeds; default 61500)")
@@ -111,10 +132,12 @@ def main(argv: list[str] | None = None) -> int:
     env = {**format_options(FORMAT.get(args.variant, "plain"), args.seconds), **RULES.get(args.variant, {})}
     set_attack_passing(PASSING.get(args.variant), DECISION.get(args.variant))
     set_attack_params(ATTACK.get(args.variant))
+    set_standard_defenders(OPP_DEFENDERS.get(args.variant))
     manifest = build_manifest(rules={"variant": args.variant, "env": env,
                                      "attack_passing": {k: str(v) for k, v in PASSING.get(args.variant, {}).items()},
                                      "decision": DECISION.get(args.variant, {}),
                                      "attack": ATTACK.get(args.variant, {}),
+                                     "standard_plays_defenders": OPP_DEFENDERS.get(args.variant),
                                      "blue": args.blue, "yellow": args.yellow, "seconds": args.seconds},
                               seeds={"seed": args.seed, "matches": args.matches})
     rows = []
