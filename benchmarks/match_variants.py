@@ -24,6 +24,9 @@ match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
   at 4.5 m/s (``AttackParams.redirect_arrive_speed``, default 2.5; ``ATTACK_PARAMS``);
 * ``ssl`` / ``ssl-receiver-guard``: the SSL format (``--format ssl``: halves, STOP, free kicks,
   fouls), without and with the 1 m receiver guard;
+* ``edge-spots``: the plain format with the supports' spot grid extended by spots on the
+  opponent defence area's border (``SpotParams.edge_spots`` 5; ``ATTACK_SPOTS``), where no
+  marker can stand on the goal side;
 * ``opp-one-defender`` / ``opp-no-defender``: the plain format against a weakened defence: the
   standard plays (the ``baseline`` / ``learned`` teams' plays) keep only their first defender /
   none of their defenders on the ball-goal line (the robots freed take the plays' next roles:
@@ -67,8 +70,18 @@ PASSING = {"keep-2s": {"max_keep_s": 2.0}, "keep-inf": {"max_keep_s": math.inf},
 DECISION = {"receiver-guard": {"receiver_guard_m": 1.0}, "ssl-receiver-guard": {"receiver_guard_m": 1.0}}
 #: ``ATTACK_PARAMS`` fields of each variant
 ATTACK = {"redirect-4.5": {"redirect_arrive_speed": 4.5}}
+#: ``ATTACK_SPOTS`` fields of each variant
+SPOTS = {"edge-spots": {"edge_spots": 5}}
 #: defenders the standard plays keep in each variant (the rest of their roles unchanged)
 OPP_DEFENDERS = {"opp-one-defender": 1, "opp-no-defender": 0}
+
+
+def set_attack_spots(fields: dict | None = None) -> None:
+    """Replace the attacking plays' ``ATTACK_SPOTS`` (read when a team is built) by a copy
+    with the ``fields``."""
+    from ssl_marl.plays import attack_play
+
+    attack_play.ATTACK_SPOTS = dataclasses.replace(attack_play.ATTACK_SPOTS, **(fields or {}))
 
 
 def set_standard_defenders(n: int | None) -> None:
@@ -117,7 +130,7 @@ def summarize(rows: list[dict], seconds: float) -> dict:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("variant", choices=sorted({*RULES, *FORMAT, *ATTACK, *OPP_DEFENDERS}), help="the variant (module docstring)")
+    ap.add_argument("variant", choices=sorted({*RULES, *FORMAT, *ATTACK, *SPOTS, *OPP_DEFENDERS}), help="the variant (module docstring)")
     ap.add_argument("--blue", default="attack-learned", help="blue team kind (default attack-learned)")
     ap.add_argument("--yellow", default="baseline", help="yellow team kind (default baseline)")
     ap.add_argument("--seed", type=int, default=61500, help="first seed (tuning seeds; default 61500)")
@@ -132,11 +145,13 @@ def main(argv: list[str] | None = None) -> int:
     env = {**format_options(FORMAT.get(args.variant, "plain"), args.seconds), **RULES.get(args.variant, {})}
     set_attack_passing(PASSING.get(args.variant), DECISION.get(args.variant))
     set_attack_params(ATTACK.get(args.variant))
+    set_attack_spots(SPOTS.get(args.variant))
     set_standard_defenders(OPP_DEFENDERS.get(args.variant))
     manifest = build_manifest(rules={"variant": args.variant, "env": env,
                                      "attack_passing": {k: str(v) for k, v in PASSING.get(args.variant, {}).items()},
                                      "decision": DECISION.get(args.variant, {}),
                                      "attack": ATTACK.get(args.variant, {}),
+                                     "spots": SPOTS.get(args.variant, {}),
                                      "standard_plays_defenders": OPP_DEFENDERS.get(args.variant),
                                      "blue": args.blue, "yellow": args.yellow, "seconds": args.seconds},
                               seeds={"seed": args.seed, "matches": args.matches})

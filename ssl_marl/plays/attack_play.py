@@ -69,6 +69,8 @@ ATTACK_PASSING = PassingParams(abort_margin_s=-math.inf, decide_at_restart=True,
 #: the attacking team's decision parameters (chip, redirect; an :class:`AttackDecider` built
 #: without parameters reads them when it is built)
 ATTACK_PARAMS = AttackParams()
+#: the supports' spot rating (a :class:`SpotPlanner` built without parameters reads it when built)
+ATTACK_SPOTS = SpotParams()
 
 
 @dataclass
@@ -131,9 +133,9 @@ class AttackDecider:
 class SpotPlanner:
     """The supports' rated spots, re-rated every ``rate_every`` ticks (module docstring)."""
 
-    def __init__(self, n_spots: int = 4, rate_every: int = 6, params: SpotParams = SpotParams(),
+    def __init__(self, n_spots: int = 4, rate_every: int = 6, params: SpotParams | None = None,
                  ball: BallParams | None = None) -> None:
-        self.n_spots, self.rate_every, self.params = n_spots, rate_every, params
+        self.n_spots, self.rate_every, self.params = n_spots, rate_every, params or ATTACK_SPOTS
         self.bp = ball or BallParams()
         self.reset()
 
@@ -263,5 +265,5 @@ def attack_decider_of(plays) -> AttackDecider | None:
     return None
 
 
-__all__ = ["ATTACK_PASSING", "ATTACK_PARAMS", "AttackCounters", "AttackDecider", "SpotPlanner", "AttackPrepare", "chip_passer_role",
+__all__ = ["ATTACK_PASSING", "ATTACK_PARAMS", "ATTACK_SPOTS", "AttackCounters", "AttackDecider", "SpotPlanner", "AttackPrepare", "chip_passer_role",
            "redirect_receiver_role", "spot_support_role", "attack_roles", "attack_plays", "attack_decider_of"]

@@ -20,6 +20,12 @@ Team frame (own goal at -x), metres, rad. A grid of candidate spots ahead of the
   within ``lane_clear_m`` of a teammate that is not the supporter itself (it would
   block the lane), else 1.
 
+With ``edge_spots`` > 0 the grid also holds spots on the opponent defence area's border
+(``edge_margin_m`` outside it: ``edge_spots`` along its front line, two on each side line).
+A supporter there cannot be marked from the goal side: a marker's goal-side spot lies inside
+the defence area, which it may not enter, so the supporter's shot and redirect lines are open
+but for the goalie (the defenders' wall stands on the ball's line to the goal).
+
 :func:`assign_spots` picks spots for several supporters greedily: the best spot, then
 the best of the rest with spots within ``min_separation_m`` of a chosen one removed and
 the lanes that cross a chosen spot penalised; so two supporters never pick the same spot
@@ -53,6 +59,10 @@ class SpotParams:
         lane_block_factor: rating factor of a blocked lane.
         min_separation_m: two supporters' spots are at least this far apart (m).
         min_rating: a fallback floor so spots with P = 0 still order by value.
+        edge_spots: extra candidates along the front line of the opponent defence area (0:
+            none; with any, also two on each of its side lines; module docstring).
+        edge_margin_m: the edge spots' distance outside the defence area (m; robots keep
+            ``NavParams.defense_margin``, 0.12 m, from it).
     """
 
     grid: tuple[int, int] = (7, 9)
@@ -70,6 +80,13 @@ class SpotParams:
     lane_block_factor: float = 0.3
     min_separation_m: float = 1.2
     min_rating: float = 0.02
+    edge_spots: int = 0
+    edge_margin_m: float = 0.14
+
+    def __post_init__(self) -> None:
+        if self.edge_spots < 0 or self.edge_margin_m < 0:
+            raise ValueError(f"SpotParams: edge_spots and edge_margin_m must be >= 0, got "
+                             f"{self.edge_spots}, {self.edge_margin_m}")
 
 
 def candidate_grid(field: FieldGeometry, ball: np.ndarray, params: SpotParams = SpotParams()) -> np.ndarray:
@@ -84,8 +101,25 @@ def candidate_grid(field: FieldGeometry, ball: np.ndarray, params: SpotParams = 
     c = np.column_stack([gx.ravel(), gy.ravel()])
     in_def = (c[:, 0] > field.half_length - field.defense_depth - params.defense_gap_m) & (
         np.abs(c[:, 1]) < 0.5 * field.defense_width + params.defense_gap_m)
+    c = c[~in_def]
+    if params.edge_spots:
+        c = np.concatenate([c, defense_edge_spots(field, params)])
     far = np.hypot(c[:, 0] - ball[0], c[:, 1] - ball[1]) >= params.min_ball_dist_m
-    return c[~in_def & far]
+    return c[far]
+
+
+def defense_edge_spots(field: FieldGeometry, params: SpotParams) -> np.ndarray:
+    """(edge_spots + 4, 2) spots ``edge_margin_m`` outside the opponent defence area:
+    ``edge_spots`` evenly along its front line (its corners included when more than one),
+    two on each side line (a third and two thirds of the way to the goal line)."""
+    m, n = params.edge_margin_m, params.edge_spots
+    x_front = field.half_length - field.defense_depth - m
+    hw = 0.5 * field.defense_width
+    ys = np.linspace(-hw, hw, n) if n > 1 else np.zeros(1)
+    front = np.column_stack([np.full(n, x_front), ys])
+    xs = field.half_length - field.defense_depth * np.array([2.0 / 3.0, 1.0 / 3.0])
+    sides = np.array([[x, s * (hw + m)] for s in (-1.0, 1.0) for x in xs])
+    return np.concatenate([front, sides])
 
 
 def lane_distances(ball: np.ndarray, spots: np.ndarray, robots: np.ndarray) -> np.ndarray:
@@ -157,4 +191,4 @@ def assign_spots(n: int, spots: np.ndarray, ball: np.ndarray, opponents: np.ndar
     return np.array(chosen).reshape(n, 2)
 
 
-__all__ = ["SpotParams", "candidate_grid", "lane_distances", "spot_values", "rate_spots", "assign_spots"]
+__all__ = ["SpotParams", "candidate_grid", "defense_edge_spots", "lane_distances", "spot_values", "rate_spots", "assign_spots"]
