@@ -52,3 +52,37 @@ def test_two_supporters_get_different_spots_out_of_each_others_lane():
                 assert np.hypot(*(spots[i] - spots[j])) >= 1.2
     d01 = lane_distances(ball, spots[1][None], spots[0][None])[0, 0]
     assert d01 >= 0.25
+
+
+def _marked_open_angle(spot: np.ndarray, ball: np.ndarray) -> float:
+    """Open goal angle (rad) of a supporter at ``spot`` (attackers' frame) marked on its line
+    to the goal (0.35 m goal-side, ball bias 0: the shot-blocking mark, kept out of its defence
+    area) with the goalie on the goal line: the marker works in its own team frame (x and y
+    negated)."""
+    from ssl_marl.plays.defense import mark_position
+    from ssl_marl.skills.navigation import NavParams, sanitize_target
+
+    m = -sanitize_target(mark_position(-spot, -ball, F, ball_bias=0.0), F, NavParams())
+    goalie = np.array([F.half_length - 0.1, 0.0])
+    return open_goal_interval(spot, np.array([goalie, m]), F, RP, BP)[0]
+
+
+def test_edge_spots_lie_on_the_defense_area_border_where_no_marker_stands_goal_side():
+    import pytest
+
+    from ssl_marl.plays.spot_rating import SpotParams, defense_edge_spots
+
+    params = SpotParams(edge_spots=5)
+    edge = defense_edge_spots(F, params)
+    assert edge.shape == (9, 2)
+    assert not any(F.in_defense_area(p, +1, 0.13) for p in edge)  # outside it by the margin ...
+    assert all(F.in_defense_area(p, +1, 0.15) for p in edge)      # ... and no further
+    ball = np.array([0.0, -1.5])
+    plain, with_edge = candidate_grid(F, ball), candidate_grid(F, ball, params)
+    assert len(with_edge) == len(plain) + 9
+    # a supporter on the border keeps an open shot when marked; one a grid step back does not
+    front = np.array([F.half_length - F.defense_depth - params.edge_margin_m, 0.5])
+    assert _marked_open_angle(front, ball) > 0.1
+    assert _marked_open_angle(front - [0.5, 0.0], ball) < 0.02
+    with pytest.raises(ValueError, match="edge_spots"):
+        SpotParams(edge_spots=-1)
