@@ -17,13 +17,18 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                                           "every episode) and OUT/duration_hist.png.")
     k.add_argument("task", choices=("keepaway", "attack-3v2", "attack-drill"),
                    help="the decision task (attack-drill: the attacking plays' options)")
-    k.add_argument("--policy", choices=("learned", "handcoded", "random", "always-hold"), default="handcoded",
+    k.add_argument("--policy", choices=("learned", "handcoded", "random", "always-hold", "improved"),
+                   default="handcoded",
                    help="decision policy: learned (ssl_marl.decisions.learned, the shipped actor or --actor), "
                         "handcoded (the task's benchmark), random (uniform over legal options), always-hold "
-                        "(keepaway only) (default handcoded)")
+                        "(keepaway only), improved (handcoded, except at an episode's first decision, where a "
+                        "value actor's best option is played if it is predicted to score 0.1 more) "
+                        "(default handcoded)")
     k.add_argument("--actor", default=None, metavar="PATH",
-                   help="learned decision actor file (.pt, loaded with weights_only=True); only with --policy "
-                        "learned (default: ssl_marl/decisions/pretrained/TASK.pt)")
+                   help="decision actor file (.pt, loaded with weights_only=True); with --policy learned the "
+                        "policy's actor (default: ssl_marl/decisions/pretrained/TASK.pt), with --policy improved "
+                        "the value actor (python -m train.mappo_rollout_pi fit; default: "
+                        "ssl_marl/decisions/pretrained/TASK_value.pt)")
     k.add_argument("--episodes", type=positive_int("--episodes"), default=1000, help="episodes (default 1000)")
     k.add_argument("--seed", type=int, default=None,
                    help="evaluation seed: episode i uses SEED+i (default 40000 keepaway, 41000 attack-3v2, 43000 "

@@ -15,7 +15,9 @@ Registries (names used by ``ssl-marl eval-task`` and the trainers):
   ``ssl_marl.decisions.attack_drill:HandcodedAttackDrillPolicy``).
 * :data:`DECISION_POLICIES`: policy name -> factory ``(task, seed=0, actor=None) ->
   DecisionPolicy`` ("random", "always-hold" (keepaway only), "handcoded", "learned"
-  (``ssl_marl.decisions.learned``, the shipped actor or ``actor``)).
+  (``ssl_marl.decisions.learned``, the shipped actor or ``actor``), "improved" (the hand-coded
+  policy with a value actor at an episode's first decision, ``ImprovedDecisionPolicy``; the shipped
+  value actor ``pretrained/<task>_value.pt`` or ``actor``)).
 
 Entries are ``"module:attribute"`` strings imported on first use, so a task whose
 module is not in this checkout fails with a clear message when it is asked for, and
@@ -106,12 +108,21 @@ def _learned(task: str, seed: int = 0, actor: str | None = None) -> Any:
     return learned(actor, task=task)
 
 
+def _improved(task: str, seed: int = 0, actor: str | None = None) -> Any:
+    _check_task(task)
+    improved = load_spec("ssl_marl.decisions.learned:ImprovedDecisionPolicy", "policy 'improved'")
+    if actor is None:
+        actor = load_spec("ssl_marl.decisions.learned:pretrained_value_path", "policy 'improved'")(task)
+    return improved(_handcoded(task), actor, task=task)
+
+
 #: policy name -> factory(task, seed=0, actor=None) -> DecisionPolicy
 DECISION_POLICIES: dict[str, Callable[..., Any]] = {
     "learned": _learned,
     "handcoded": _handcoded,
     "random": _random,
     "always-hold": _always_hold,
+    "improved": _improved,
 }
 
 

@@ -12,6 +12,10 @@ observation scaled as ``(obs - obs_mean) / obs_std`` (with the agent's one-hot a
 ``agent_ids`` is set). :class:`LearnedDecisionPolicy` plays it greedily: the legal option
 (``info["action_mask"]``) with the highest logit.
 
+:class:`ImprovedDecisionPolicy` is the task's hand-coded policy with a *value* actor (the same
+network, fitted by ``python -m train.mappo_rollout_pi fit`` to predict each option's return when the
+hand-coded policy plays on) consulted at the first decisions of an episode only.
+
 Shipped actors: ``ssl_marl/decisions/pretrained/<task>.pt`` (:func:`pretrained_path`), made by
 ``python -m train mappo --task TASK ...`` then ``python -m train.mappo_export RUN_DIR ... --out PATH``.
 """
@@ -58,6 +62,18 @@ def pretrained_path(task: str) -> Path:
     if not path.is_file():
         cmd = _TRAIN_CMD.get(task, f"python -m train mappo --task {task} --seed 0 --out runs/mappo_{task}")
         raise FileNotFoundError(f"no shipped decision actor for task {task!r} ({path}); train and export one: {cmd}")
+    return path
+
+
+def pretrained_value_path(task: str) -> Path:
+    """The shipped value actor of ``task`` for :class:`ImprovedDecisionPolicy`
+    (``pretrained/<task with - as _>_value.pt``); FileNotFoundError saying how to make one."""
+    path = PRETRAINED_DIR / f"{task.replace('-', '_')}_value.pt"
+    if not path.is_file():
+        raise FileNotFoundError(f"no shipped value actor for task {task!r} ({path}); label and fit one: "
+                                f"python -m train.mappo_rollout_pi collect --task {task} --episodes 250 --seed 121000 "
+                                f"--out LABELS && python -m train.mappo_rollout_pi fit --task {task} --labels LABELS "
+                                f"--out {path}")
     return path
 
 
@@ -161,4 +177,59 @@ class LearnedDecisionPolicy:
         return int(np.argmax(np.where(mask, logits, -np.inf)))
 
 
-__all__ = ["DecisionActor", "LearnedDecisionPolicy", "load_decision_actor", "pretrained_path"]
+class ImprovedDecisionPolicy:
+    """The task's hand-coded policy, improved at its first decisions by a value actor.
+
+    At each of the first ``first_k`` decisions of an episode the value actor (``path_or_actor``:
+    outputs are predicted returns per option, as ``python -m train.mappo_rollout_pi fit`` trains
+    them) rates the legal options; where the best of them is predicted to beat the hand-coded
+    policy's choice by more than ``margin`` (return units: goals), it is played instead. Every
+    other decision is the hand-coded policy's. This is one step of policy iteration kept where
+    its labels hold: each label is an option's return with the hand-coded policy playing on, so
+    the improvement is sound for a deviation followed by the hand-coded policy; played at every
+    decision the actor keeps choosing the passes it rates above shots and the drill runs out of
+    time (docs/RESULTS.md, section 9, "Where the cost decision loses").
+
+    Args:
+        base: the hand-coded policy (its :meth:`act` runs at every decision, so its own state,
+            e.g. the keep clock, stays as if it played alone).
+        path_or_actor: value actor file or :class:`DecisionActor`; ``task``: checked as in
+            :class:`LearnedDecisionPolicy`.
+        first_k: decisions per episode, counted over all agents, at which the actor may deviate.
+        margin: predicted gain (return units) a deviation needs.
+    """
+
+    name = "improved"
+
+    def __init__(self, base: Any, path_or_actor: str | Path | DecisionActor, task: str | None = None,
+                 first_k: int = 1, margin: float = 0.1) -> None:
+        if first_k < 0 or not np.isfinite(margin):
+            raise ValueError(f"ImprovedDecisionPolicy: first_k must be >= 0 and margin finite, got {first_k}, {margin}")
+        self.base, self.value = base, LearnedDecisionPolicy(path_or_actor, task=task)
+        self.first_k, self.margin = int(first_k), float(margin)
+        self.decisions = 0
+        self.deviations = 0
+
+    def reset(self, env: Any) -> None:
+        self.base.reset(env)
+        self.value.reset(env)
+        self.decisions = 0
+
+    def act(self, env: Any, agent: str, obs: np.ndarray, info: dict) -> int:
+        choice = int(self.base.act(env, agent, obs, info))
+        i, self.decisions = self.decisions, self.decisions + 1
+        if i >= self.first_k:
+            return choice
+        idx = self.value.agent_ids.index(agent) if self.value.agent_ids else None
+        v = self.value.actor.logits(obs, idx)
+        mask = np.asarray(info.get("action_mask", np.ones_like(v)), bool)
+        v = np.where(mask, v, -np.inf)
+        best = int(np.argmax(v))
+        if v[best] > v[choice] + self.margin:
+            self.deviations += 1
+            return best
+        return choice
+
+
+__all__ = ["DecisionActor", "ImprovedDecisionPolicy", "LearnedDecisionPolicy", "load_decision_actor", "pretrained_path",
+           "pretrained_value_path"]

@@ -49,7 +49,7 @@ def _env_and_policy(task: str, policy: str, actor: str | None, realism: str, fie
     key = (task, policy, actor, realism, field, tracker)
     got = _CACHE.get(key)
     if got is None:
-        if policy == "learned":
+        if policy in ("learned", "improved"):
             import torch
 
             torch.set_num_threads(1)
@@ -152,13 +152,14 @@ def evaluate_task(task: str, policy: str, episodes: int = 1000, seed: int | None
 
     Args:
         task: "keepaway", "attack-3v2" or "attack-drill".
-        policy: "learned", "handcoded", "random" or "always-hold" (keepaway only).
+        policy: "learned", "handcoded", "random", "always-hold" (keepaway only) or "improved".
         episodes: number of episodes.
         seed: episode i uses seed + i (default: 40000 keepaway, 41000 attack-3v2, 43000 attack-drill).
         workers: worker processes (or Ray tasks in flight); results do not depend on it.
         realism: "none" or "realistic".
         field: "div_b" or "div_a".
-        actor: a learned decision actor file (policy "learned"; default the shipped one).
+        actor: a learned decision actor file (policy "learned"; default the shipped one) or a
+            value actor file (policy "improved"; default the shipped one).
         backend, address: see :mod:`ssl_marl.runners.pool`.
         tracker: "auto" (on unless realism is "none"), "on" or "off": the options'
             tactics, the fixed behaviours and the observations read
@@ -170,8 +171,8 @@ def evaluate_task(task: str, policy: str, episodes: int = 1000, seed: int | None
         raise ValueError(f"unknown decision task {task!r}; expected one of {tuple(TASK_SCORES)}")
     if policy not in DECISION_POLICIES:
         raise ValueError(f"unknown policy {policy!r}; expected one of {tuple(DECISION_POLICIES)}")
-    if actor is not None and policy != "learned":
-        raise ValueError(f"--actor is only used with --policy learned, not {policy!r}")
+    if actor is not None and policy not in ("learned", "improved"):
+        raise ValueError(f"--actor is only used with --policy learned or improved, not {policy!r}")
     if actor is not None and not Path(actor).is_file():
         raise FileNotFoundError(f"actor file {actor} does not exist")
     if not isinstance(episodes, int) or isinstance(episodes, bool) or episodes < 1:

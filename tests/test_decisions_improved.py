@@ -1,0 +1,72 @@
+"""The hand-coded decision improved by a value actor at an episode's first decisions."""
+
+import gymnasium
+import numpy as np
+import pytest
+import torch
+
+from ssl_marl.decisions.learned import DecisionActor, ImprovedDecisionPolicy
+
+
+class FixedPolicy:
+    """A benchmark stand-in: always ``option``; counts its calls and resets."""
+
+    def __init__(self, option: int) -> None:
+        self.option, self.calls, self.resets = option, 0, 0
+
+    def reset(self, env) -> None:
+        self.resets += 1
+
+    def act(self, env, agent, obs, info) -> int:
+        self.calls += 1
+        return self.option
+
+
+class TinyEnv:
+    """What the policies check on reset: one agent, 3 observation values, 4 options."""
+
+    possible_agents = ["a"]
+    option_names = None
+
+    def observation_space(self, agent):
+        return gymnasium.spaces.Box(-1.0, 1.0, (3,), np.float32)
+
+    def action_space(self, agent):
+        return gymnasium.spaces.Discrete(4)
+
+
+def value_actor(values) -> DecisionActor:
+    """A value actor that predicts ``values`` (one per option) whatever it observes."""
+    actor = DecisionActor(3, 4, ())
+    with torch.no_grad():
+        actor.net[0].weight.zero_()
+        actor.net[0].bias.copy_(torch.tensor(values, dtype=torch.float32))
+    return actor
+
+
+def play(policy, n: int, mask=(1, 1, 1, 1)) -> list[int]:
+    obs, info = np.zeros(3, np.float32), {"action_mask": np.array(mask, np.int8)}
+    return [policy.act(TinyEnv(), "a", obs, info) for _ in range(n)]
+
+
+def test_the_value_actor_decides_only_the_first_decisions_and_only_for_a_clear_gain():
+    base = FixedPolicy(0)
+    pol = ImprovedDecisionPolicy(base, value_actor([0.3, 0.6, 0.2, 0.9]), margin=0.1)
+    pol.reset(TinyEnv())
+    assert play(pol, 3) == [3, 0, 0]  # 0.9 beats the benchmark's 0.3 by more than 0.1, once
+    assert base.calls == 3 and pol.deviations == 1  # the benchmark decides every time (its own state)
+    pol.reset(TinyEnv())
+    assert base.resets == 2 and play(pol, 1, mask=(1, 1, 1, 0)) == [1]  # the best legal option
+    assert play(ImprovedDecisionPolicy(FixedPolicy(0), value_actor([0.3, 0.6, 0.2, 0.9]), margin=0.7), 2) == [0, 0]
+    assert play(ImprovedDecisionPolicy(FixedPolicy(2), value_actor([0.3, 0.6, 0.2, 0.9]), first_k=2), 3) == [3, 3, 2]
+    assert play(ImprovedDecisionPolicy(FixedPolicy(1), value_actor([0.3, 0.6, 0.2, 0.9]), first_k=0), 2) == [1, 1]
+
+
+def test_bad_settings_and_a_mismatched_actor_are_refused():
+    with pytest.raises(ValueError, match="margin"):
+        ImprovedDecisionPolicy(FixedPolicy(0), value_actor([0, 0, 0, 0]), margin=float("nan"))
+    with pytest.raises(ValueError, match="first_k"):
+        ImprovedDecisionPolicy(FixedPolicy(0), value_actor([0, 0, 0, 0]), first_k=-1)
+    pol = ImprovedDecisionPolicy(FixedPolicy(0), DecisionActor(5, 4, (4,)))
+    with pytest.raises(ValueError, match="observations of size 5"):
+        pol.reset(TinyEnv())
