@@ -70,3 +70,26 @@ def test_bad_settings_and_a_mismatched_actor_are_refused():
     pol = ImprovedDecisionPolicy(FixedPolicy(0), DecisionActor(5, 4, (4,)))
     with pytest.raises(ValueError, match="observations of size 5"):
         pol.reset(TinyEnv())
+
+
+def test_in_a_match_the_value_actor_decides_once_per_possession():
+    from types import SimpleNamespace
+
+    from ssl_marl.decisions.match_decider import DRILL_TASK, TASK, ImprovedAttackDecider, make_match_decider
+    from ssl_marl.runners.match import play_match
+
+    dec = make_match_decider("improved", task=DRILL_TASK)
+    assert isinstance(dec, ImprovedAttackDecider)
+    first = [dec._first_of_possession(SimpleNamespace(t=t, carrier=c)) for t, c in
+             [(0.0, 2), (0.1, 2), (0.2, 2), (1.0, 3), (1.1, 3)]]
+    assert first == [True, False, False, True, False]  # a request after a gap opens a possession
+    dec._passed_to = 4
+    assert dec._first_of_possession(SimpleNamespace(t=3.0, carrier=4)) is False  # our own pass arrived
+    with pytest.raises(ValueError, match="attacking plays"):
+        make_match_decider("improved", task=TASK)
+
+    dec = make_match_decider("improved", task=DRILL_TASK)
+    play_match("attack-learned", "attack-learned", robots=6, seconds=40, seed=5, render=None, progress=False,
+               blue_decision=dec)
+    decisions = sum(vars(dec.counters).values())
+    assert 1 <= dec.deviations < decisions / 4

@@ -40,7 +40,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         m.add_argument(f"--{side}-decision", default=None, metavar="DECISION",
                        help=f"{side} passing or attacking team's ball-carrier decision: handcoded (the cost "
                             "decision), learned (the shipped actor: Attack 3v2 for passing-* teams, the attack "
-                            "drill's for attack-* teams) or PATH to a decision actor checkpoint of that task; needs "
+                            "drill's for attack-* teams), improved (attack-* teams: the cost decision, except at "
+                            "the first decision of a possession in the attacking half, where the shipped attack-drill "
+                            "value actor's option is played if it predicts 0.1 goals more) or PATH to a decision "
+                            "actor checkpoint of that task; needs "
                             "a passing-* or attack-* team; wins over a team file's decision (default: the team's own: "
                             "the team file's, learned for *-learned-decision, else handcoded)")
     m.add_argument("--robots", type=robots, default=6, help="robots per team, 1-11 (default 6)")

@@ -16,11 +16,16 @@ the cost decision (the drill never trains them).
 redirect, dribble); it is an :class:`~ssl_marl.plays.attack_play.AttackDecider`, so the
 chosen pass reaches the passer and receiver roles as the cost decision's does.
 
+:class:`ImprovedAttackDecider` is the attacking plays' cost decision improved at the first
+decision of a possession by a value actor of the attack drill, as
+:class:`~ssl_marl.decisions.learned.ImprovedDecisionPolicy` plays the drill.
+
 :func:`make_match_decider` resolves the CLI's ``--blue-decision`` / ``--yellow-decision``
 values: ``handcoded`` (None: the play's default cost decision), ``learned`` (the shipped
 actor of the team's decision task: ``attack_3v2.pt`` for the passing plays,
-``attack_drill.pt`` for the attacking plays, in ``ssl_marl/decisions/pretrained/``) or an
-actor checkpoint path. A missing actor or one built for another observation size / option
+``attack_drill.pt`` for the attacking plays, in ``ssl_marl/decisions/pretrained/``),
+``improved`` (attacking plays only: :class:`ImprovedAttackDecider` with the shipped value
+actor ``attack_drill_value.pt``) or an actor checkpoint path. A missing actor or one built for another observation size / option
 count fails here, with the offending field named, before a match starts.
 """
 
@@ -36,7 +41,8 @@ from ..plays.attack_decision import AttackChoice, AttackParams
 from ..plays.attack_play import AttackDecider
 from ..plays.pass_decision import Choice, Decision
 from ..plays.pass_coordinator import CarrierRequest, CostDecider
-from .attack_drill_features import ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, option_play_decision, request_features
+from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, attack_decision_option,
+                                    option_play_decision, request_features)
 from .attack_features import (ATTACK_OBS_DIM, ATTACK_OPTIONS, OBS_BOUND, attack_action_mask,
                               attack_observation, option_decision)
 
@@ -46,7 +52,7 @@ DRILL_TASK = "attack-drill"
 #: task -> (observation size, option names) a match decider feeds its policy
 TASK_SPACES: dict[str, tuple[int, tuple[str, ...]]] = {TASK: (ATTACK_OBS_DIM, ATTACK_OPTIONS),
                                                        DRILL_TASK: (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS)}
-DECISION_CHOICES = ("handcoded", "learned")
+DECISION_CHOICES = ("handcoded", "learned", "improved")
 AGENT = "attacker_0"
 
 
@@ -144,6 +150,65 @@ class PolicyAttackDecider(AttackDecider):
         return d
 
 
+class ImprovedAttackDecider(AttackDecider):
+    """The attacking plays' cost decision, improved at the first decision of a possession by a
+    value actor of the attack drill (the drill's :class:`~ssl_marl.decisions.learned.ImprovedDecisionPolicy`
+    in a match).
+
+    The cost decision is taken at every request. At the first open-play request of a possession
+    with the ball in the half the drill is played in (x >= ``min_x_m``, team frame; the drill's
+    carrier starts at 0.5-2.5 m), the value actor rates the drill's legal options; where the best
+    is predicted to score more than ``margin`` above the cost decision's option, it is played
+    instead. A possession starts with a request after none for ``gap_s`` (the coordinator asks every
+    few ticks while a robot holds the ball), unless that carrier is the receiver of the team's last
+    planned pass (in the drill, too, only the episode's first decision is the actor's).
+
+    Attributes:
+        value: the value actor's policy wrapper (:class:`~ssl_marl.decisions.learned.LearnedDecisionPolicy`).
+        deviations: possessions at which the value actor's option was played.
+    """
+
+    def __init__(self, value_actor: str | Path, params: AttackParams | None = None, margin: float = 0.1,
+                 gap_s: float = 0.5, min_x_m: float = 0.0) -> None:
+        from .learned import LearnedDecisionPolicy
+
+        super().__init__(params)
+        self.value = LearnedDecisionPolicy(str(value_actor), task=DRILL_TASK)
+        self.spec_env = AttackSpecEnv(DRILL_TASK)
+        self.value.reset(self.spec_env)
+        self.margin, self.gap_s, self.min_x_m = float(margin), float(gap_s), float(min_x_m)
+        self.deviations = 0
+        self._last_t: float | None = None
+        self._passed_to: int | None = None
+
+    def _first_of_possession(self, request: CarrierRequest) -> bool:
+        t, gap = float(request.t), self._last_t is None or float(request.t) - self._last_t > self.gap_s
+        self._last_t = t
+        if not gap:
+            return False
+        own_pass, self._passed_to = self._passed_to == request.carrier, None
+        return not own_pass
+
+    def decide(self, request: CarrierRequest) -> Decision:
+        d = super().decide(request)
+        if request.restart or not request.on_ball:
+            return d
+        first = self._first_of_possession(request)
+        if first and float(request.ctx.ball[0]) >= self.min_x_m and self.last is not None:
+            passes, obs, mask = request_features(request, self.request_params(request))
+            ours = request.ctx.world
+            base = attack_decision_option(self.last, ours, request.ctx.team, request.carrier)
+            v = np.where(np.asarray(mask, bool), self.value.actor.logits(obs, None), -np.inf)
+            best = int(np.argmax(v))
+            if mask[base] and v[best] > v[base] + self.margin:
+                self.deviations += 1
+                d, option = option_play_decision(best, request.ctx.ball, request.ctx.field, passes)
+                self.option = option
+        if d.choice is Choice.PASS and self.option is not None:
+            self._passed_to = self.option.teammate
+        return d
+
+
 def default_actor_path(task: str = TASK) -> Path:
     """The shipped actor of decision task ``task`` (``learned.pretrained_path``);
     FileNotFoundError saying how to train one when it is absent."""
@@ -193,6 +258,15 @@ def make_match_decider(spec: Any, where: str = "decision", task: str = TASK) -> 
         raise ValueError(f"{where}: unknown decision task {task!r}; expected one of {tuple(TASK_SPACES)}")
     if spec is None or spec == "handcoded":
         return None
+    if spec == "improved":
+        if task != DRILL_TASK:
+            raise ValueError(f"{where}: 'improved' is the attacking plays' decision (attack-drill value actor); "
+                             f"this team plays the {task} decision")
+        from .learned import pretrained_value_path
+
+        path = pretrained_value_path(task)
+        check_actor_file(path, where, task)
+        return ImprovedAttackDecider(path)
     if not isinstance(spec, (str, Path)):
         if callable(getattr(spec, "decide", None)):
             return spec
@@ -205,5 +279,5 @@ def make_match_decider(spec: Any, where: str = "decision", task: str = TASK) -> 
     return PolicyAttackDecider(policy) if task == DRILL_TASK else PolicyCarrierDecider(policy)
 
 
-__all__ = ["PolicyCarrierDecider", "PolicyAttackDecider", "AttackSpecEnv", "ask_policy", "make_match_decider",
+__all__ = ["PolicyCarrierDecider", "PolicyAttackDecider", "ImprovedAttackDecider", "AttackSpecEnv", "ask_policy", "make_match_decider",
            "default_actor_path", "check_actor_file", "DECISION_CHOICES", "TASK", "DRILL_TASK", "TASK_SPACES"]
