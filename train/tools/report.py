@@ -307,7 +307,10 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "attack_drill_42000": lambda r: t.attack(r, [("hand-coded", "attack_drill_handcoded_42000"),
                                                  ("learned, shipped `attack_drill.pt`", "attack_drill_learned_42000"),
                                                  ("learned, retrained in the fixed drill (`mappo_attack_drill_v2_s0`, not shipped)",
-                                                  "attack_drill_learned_v2_42000")]),
+                                                  "attack_drill_learned_v2_42000"),
+                                                 ("improved: hand-coded, the value actor's option at the first decision "
+                                                  "(`attack_drill_value.pt`)", "attack_drill_improved_42000")]),
+    "attack_drill_first_decision": lambda r: t.probe_rows(r / "tuning" / "attack_drill_first_decision.json", "policy"),
     "attack_drill_aim": lambda r: t.probe_rows(r / "tuning" / "attack_drill_aim.json", "rule"),
     "attack_drill_rollout_values": lambda r: t.rollout_values([r / f for f in ROLLOUT_VALUES], "decision"),
     "attack_drill_rollout_choices": lambda r: t.rollout_values([r / f for f in ROLLOUT_VALUES], "choice"),
