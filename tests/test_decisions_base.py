@@ -105,7 +105,7 @@ def test_run_episode_and_registries():
     r2 = run_episode(env, RandomPolicy(5), seed=11)
     assert r1 == r2 and r1["decisions"] == 10 and r1["outcome"] == "time"
     assert set(DECISION_TASKS) >= {"keepaway", "attack-3v2"}
-    assert set(DECISION_POLICIES) == {"learned", "handcoded", "random", "always-hold"}
+    assert set(DECISION_POLICIES) == {"learned", "handcoded", "random", "always-hold", "improved"}
     with pytest.raises(ValueError, match="unknown decision policy"):
         make_decision_policy("nope", "keepaway")
     with pytest.raises(ValueError, match="unknown decision task"):

@@ -310,6 +310,10 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
                                                   "attack_drill_learned_v2_42000"),
                                                  ("improved: hand-coded, the value actor's option at the first decision "
                                                   "(`attack_drill_value.pt`)", "attack_drill_improved_42000")]),
+    "attack_drill_realistic_42000": lambda r: t.attack(r, [("hand-coded", "attack_drill_handcoded_realistic"),
+                                                           ("learned, shipped `attack_drill.pt`", "attack_drill_learned_realistic"),
+                                                           ("improved (`attack_drill_value.pt` at the first decision)",
+                                                            "attack_drill_improved_realistic")]),
     "attack_drill_first_decision": lambda r: t.probe_rows(r / "tuning" / "attack_drill_first_decision.json", "policy"),
     "attack_drill_aim": lambda r: t.probe_rows(r / "tuning" / "attack_drill_aim.json", "rule"),
     "attack_drill_rollout_values": lambda r: t.rollout_values([r / f for f in ROLLOUT_VALUES], "decision"),
