@@ -184,6 +184,12 @@ DECISION_SERIES_PRESS = ["match_attack_learned_decision_vs_attack_learned_600_95
 DECISION_PRESS_POOLED = [(label, ((blue, "blue"), (yellow, "yellow"))) for label, blue, yellow in zip(
     ("attack-learned, learned decision vs attack-learned (pressed passer, commit fcb21d2)",
      "the same, `--realism realistic`"), DECISION_SERIES_PRESS[::2], DECISION_SERIES_PRESS[1::2])]
+#: the retrained drill actor (blue only) and the improved decision (both colours) against the hand-coded decision
+DECISION_SERIES_98 = ["match_attack_drill_v2_decision_vs_attack_learned_600_98000",
+                      "match_attack_improved_decision_vs_attack_learned_600_98100",
+                      "match_attack_learned_vs_attack_improved_decision_600_98130"]
+DECISION_98_POOLED = [("attack-learned, improved decision vs attack-learned (commit e8e1dc0)",
+                       ((DECISION_SERIES_98[1], "blue"), (DECISION_SERIES_98[2], "yellow")))]
 #: the learned decision on Division A against the hand-coded one, and against the no-pass baseline (commit 319a5ae)
 DECISION_SERIES_97 = ["match_attack_learned_decision_vs_attack_learned_600_div_a_11v11_97000",
                       "match_attack_learned_vs_attack_learned_decision_600_div_a_11v11_97005",
@@ -255,6 +261,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_series_press": lambda r: m.series_600(r, DECISION_SERIES_PRESS),
     "decision_press_pooled": lambda r: m.pooled_sides(r, DECISION_PRESS_POOLED),
     "decision_series_97": lambda r: m.series_600(r, DECISION_SERIES_97),
+    "decision_series_98": lambda r: m.series_600(r, DECISION_SERIES_98),
+    "decision_98_pooled": lambda r: m.pooled_sides(r, DECISION_98_POOLED),
     "decision_97_pooled": lambda r: m.pooled_sides(r, DECISION_97_POOLED),
     "skills_97200": lambda r: m.series_600(r, SKILLS_97200),
     "skills_97200_pooled": lambda r: m.pooled_sides(r, SKILLS_97200_POOLED),
