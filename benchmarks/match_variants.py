@@ -130,7 +130,8 @@ def summarize(rows: list[dict], seconds: float) -> dict:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("variant", choices=sorted({*RULES, *FORMAT, *ATTACK, *SPOTS, *OPP_DEFENDERS}), help="the variant (module docstring)")
+    ap.add_argument("variant", choices=sorted({*RULES, *FORMAT, *ATTACK, *SPOTS, *OPP_DEFENDERS}),
+                    help="the variant (module docstring)")
     ap.add_argument("--blue", default="attack-learned", help="blue team kind (default attack-learned)")
     ap.add_argument("--yellow", default="baseline", help="yellow team kind (default baseline)")
     ap.add_argument("--seed", type=int, default=61500, help="first seed (tuning seeds; default 61500)")

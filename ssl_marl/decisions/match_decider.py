@@ -25,8 +25,9 @@ values: ``handcoded`` (None: the play's default cost decision), ``learned`` (the
 actor of the team's decision task: ``attack_3v2.pt`` for the passing plays,
 ``attack_drill.pt`` for the attacking plays, in ``ssl_marl/decisions/pretrained/``),
 ``improved`` (attacking plays only: :class:`ImprovedAttackDecider` with the shipped value
-actor ``attack_drill_value.pt``) or an actor checkpoint path. A missing actor or one built for another observation size / option
-count fails here, with the offending field named, before a match starts.
+actor ``attack_drill_value.pt``) or an actor checkpoint path. A missing actor or one built for
+another observation size / option count fails here, with the offending field named, before a
+match starts.
 """
 
 from __future__ import annotations
@@ -196,8 +197,7 @@ class ImprovedAttackDecider(AttackDecider):
         first = self._first_of_possession(request)
         if first and float(request.ctx.ball[0]) >= self.min_x_m and self.last is not None:
             passes, obs, mask = request_features(request, self.request_params(request))
-            ours = request.ctx.world
-            base = attack_decision_option(self.last, ours, request.ctx.team, request.carrier)
+            base = attack_decision_option(self.last, request.ctx.world, request.ctx.team, request.carrier)
             v = np.where(np.asarray(mask, bool), self.value.actor.logits(obs, None), -np.inf)
             best = int(np.argmax(v))
             if mask[base] and v[best] > v[base] + self.margin:

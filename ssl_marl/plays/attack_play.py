@@ -265,5 +265,6 @@ def attack_decider_of(plays) -> AttackDecider | None:
     return None
 
 
-__all__ = ["ATTACK_PASSING", "ATTACK_PARAMS", "ATTACK_SPOTS", "AttackCounters", "AttackDecider", "SpotPlanner", "AttackPrepare", "chip_passer_role",
+__all__ = ["ATTACK_PASSING", "ATTACK_PARAMS", "ATTACK_SPOTS", "AttackCounters", "AttackDecider", "SpotPlanner",
+           "AttackPrepare", "chip_passer_role",
            "redirect_receiver_role", "spot_support_role", "attack_roles", "attack_plays", "attack_decider_of"]

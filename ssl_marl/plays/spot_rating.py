@@ -191,4 +191,5 @@ def assign_spots(n: int, spots: np.ndarray, ball: np.ndarray, opponents: np.ndar
     return np.array(chosen).reshape(n, 2)
 
 
-__all__ = ["SpotParams", "candidate_grid", "defense_edge_spots", "lane_distances", "spot_values", "rate_spots", "assign_spots"]
+__all__ = ["SpotParams", "candidate_grid", "defense_edge_spots", "lane_distances", "spot_values", "rate_spots",
+           "assign_spots"]
