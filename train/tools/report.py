@@ -103,6 +103,9 @@ ATTACK_SKILL_SWAPS = ["match_attack_learned_vs_attack_baseline_600", "tuning/swa
                       "tuning/swap_aim_to_shoot_baseline",
                       "tuning/swap_pass_receive_baseline", "tuning/swap_go_to_ball_baseline",
                       "tuning/swap_go_to_ball_rolling"]
+#: the same swaps with the code of the pressed passer (commit e8e1dc0), new seeds 98200-98219
+ATTACK_SKILL_SWAPS_98 = ["tuning/swap98_none_all_learned", "tuning/swap98_go_to_ball_baseline",
+                         "tuning/swap98_pass_receive_baseline"]
 #: ``benchmarks/match_variants.py`` runs (label, file under results/tuning/match_variants/)
 MATCH_VARIANTS = [("plain format (play restarts at once)", "plain.json"),
                   ("free kicks, no STOP", "free-kick.json"),
@@ -284,6 +287,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "pass_options": lambda r: m.pass_options(r, ["pass_option_probe.json", "pass_option_probe_guard1.json"]),
     "set_piece_series": lambda r: m.set_piece_series(r, SET_PIECE_SERIES),
     "attack_skill_swaps": lambda r: m.series_600(r, ATTACK_SKILL_SWAPS),
+    "attack_skill_swaps_98": lambda r: m.series_600(r, ATTACK_SKILL_SWAPS_98),
     "go_to_ball_rolling_selection": lambda r: t.rolling_selection(r, {
         f: [f"tuning/go_to_ball_rolling_val5000_{f}.json", f"tuning/go_to_ball_rolling_val5000_{f}_2.json"]
         for f in ("div_b", "div_a")}),
