@@ -105,7 +105,8 @@ ATTACK_SKILL_SWAPS = ["match_attack_learned_vs_attack_baseline_600", "tuning/swa
                       "tuning/swap_go_to_ball_rolling"]
 #: the same swaps with the code of the pressed passer (commit e8e1dc0), new seeds 98200-98219
 ATTACK_SKILL_SWAPS_98 = ["tuning/swap98_none_all_learned", "tuning/swap98_go_to_ball_baseline",
-                         "tuning/swap98_pass_receive_baseline"]
+                         "tuning/swap98_pass_receive_baseline", "tuning/swap98_pass_baseline",
+                         "tuning/swap98_receive_baseline"]
 #: ``benchmarks/match_variants.py`` runs (label, file under results/tuning/match_variants/)
 MATCH_VARIANTS = [("plain format (play restarts at once)", "plain.json"),
                   ("free kicks, no STOP", "free-kick.json"),
