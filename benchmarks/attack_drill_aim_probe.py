@@ -79,14 +79,19 @@ def run(rule: str, episodes: int, seed: int, progress: bool) -> dict:
     return {"rule": rule, "episodes": episodes, "goal_rate": outcomes["goal"] / episodes, "outcomes": dict(outcomes)}
 
 
+def add_drill_options(ap: argparse.ArgumentParser, per: str) -> None:
+    """The drill probes' shared options: --episodes (per ``per``), --seed, --out, --quiet."""
+    ap.add_argument("--episodes", type=int, default=200, help=f"episodes per {per} (default 200)")
+    ap.add_argument("--seed", type=int, default=46000, help="episode i uses SEED + i (default 46000, tuning seeds)")
+    ap.add_argument("--out", required=True, help="JSON file to write")
+    ap.add_argument("--quiet", action="store_true", help="no progress bar")
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--rules", nargs="+", default=["snap", "edge", "centre:0.15:0.3"],
                     help="kick rules: snap, edge, centre:MIN:WINDOW (default: snap edge centre:0.15:0.3)")
-    ap.add_argument("--episodes", type=int, default=200, help="episodes per rule (default 200)")
-    ap.add_argument("--seed", type=int, default=46000, help="episode i uses SEED + i (default 46000, tuning seeds)")
-    ap.add_argument("--out", required=True, help="JSON file to write")
-    ap.add_argument("--quiet", action="store_true", help="no progress bar")
+    add_drill_options(ap, "rule")
     a = ap.parse_args(argv)
     for r in a.rules:
         kick_rule(r)  # bad rules fail before anything runs

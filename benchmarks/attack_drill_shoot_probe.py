@@ -24,7 +24,7 @@ from ssl_marl.runners.provenance import build_manifest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from benchmarks.attack_drill_aim_probe import drill_outcomes  # noqa: E402
+from benchmarks.attack_drill_aim_probe import add_drill_options, drill_outcomes  # noqa: E402
 
 
 def run(threshold: float, episodes: int, seed: int, progress: bool) -> dict:
@@ -40,10 +40,7 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--thresholds", nargs="+", type=float, default=[0.25, 0.35, 0.5],
                     help="shot values to try as shoot_threshold and shoot_fallback (default 0.25 0.35 0.5)")
-    ap.add_argument("--episodes", type=int, default=200, help="episodes per threshold (default 200)")
-    ap.add_argument("--seed", type=int, default=46000, help="episode i uses SEED + i (default 46000, tuning seeds)")
-    ap.add_argument("--out", required=True, help="JSON file to write")
-    ap.add_argument("--quiet", action="store_true", help="no progress bar")
+    add_drill_options(ap, "threshold")
     a = ap.parse_args(argv)
     bad = [t for t in a.thresholds if not (math.isfinite(t) and 0.0 <= t <= 1.0)]
     if bad or a.episodes < 1:

@@ -222,14 +222,20 @@ class ImprovedDecisionPolicy:
             return choice
         idx = self.value.agent_ids.index(agent) if self.value.agent_ids else None
         v = self.value.actor.logits(obs, idx)
-        mask = np.asarray(info.get("action_mask", np.ones_like(v)), bool)
-        v = np.where(mask, v, -np.inf)
-        best = int(np.argmax(v))
-        if v[best] > v[choice] + self.margin:
-            self.deviations += 1
-            return best
-        return choice
+        best = better_option(v, np.asarray(info.get("action_mask", np.ones_like(v)), bool), choice, self.margin)
+        if best is None:
+            return choice
+        self.deviations += 1
+        return best
 
 
-__all__ = ["DecisionActor", "ImprovedDecisionPolicy", "LearnedDecisionPolicy", "load_decision_actor", "pretrained_path",
+def better_option(values: np.ndarray, mask: np.ndarray, choice: int, margin: float) -> int | None:
+    """The legal option (``mask``) of the highest predicted value (``values``, one per option)
+    if it beats option ``choice`` by more than ``margin``, else None."""
+    v = np.where(np.asarray(mask, bool), values, -np.inf)
+    best = int(np.argmax(v))
+    return best if v[best] > v[choice] + margin else None
+
+
+__all__ = ["DecisionActor", "ImprovedDecisionPolicy", "better_option", "LearnedDecisionPolicy", "load_decision_actor", "pretrained_path",
            "pretrained_value_path"]

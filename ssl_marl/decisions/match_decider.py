@@ -191,6 +191,8 @@ class ImprovedAttackDecider(AttackDecider):
         return not own_pass
 
     def decide(self, request: CarrierRequest) -> Decision:
+        from .learned import better_option
+
         d = super().decide(request)
         if request.restart or not request.on_ball:
             return d
@@ -198,9 +200,8 @@ class ImprovedAttackDecider(AttackDecider):
         if first and float(request.ctx.ball[0]) >= self.min_x_m and self.last is not None:
             passes, obs, mask = request_features(request, self.request_params(request))
             base = attack_decision_option(self.last, request.ctx.world, request.ctx.team, request.carrier)
-            v = np.where(np.asarray(mask, bool), self.value.actor.logits(obs, None), -np.inf)
-            best = int(np.argmax(v))
-            if mask[base] and v[best] > v[base] + self.margin:
+            best = better_option(self.value.actor.logits(obs, None), mask, base, self.margin) if mask[base] else None
+            if best is not None:
                 self.deviations += 1
                 d, option = option_play_decision(best, request.ctx.ball, request.ctx.field, passes)
                 self.option = option
