@@ -14,7 +14,8 @@ from ssl_marl.skills.networks import Actor
 from ssl_marl.skills.pass_tasks import receive_baseline_demos, skill_task_action
 from ssl_marl.skills.passing import LearnedReceive, ReceiveBaseline
 from ssl_marl.skills.receive_task import ReceiveEnv
-from ssl_marl.skills.passing_features import (RECEIVE_RESIDUAL_SCALE, RECEIVE_SPEC, RECEIVE_SPEC_RESIDUAL,
+from ssl_marl.skills.passing_features import (RECEIVE_RESIDUAL_SCALE, RECEIVE_SPEC, RECEIVE_SPEC_PRESSED,
+                                              RECEIVE_SPEC_RESIDUAL,
                                               receive_residual_action, receive_residual_of)
 from ssl_marl.skills.registry import get_task
 
@@ -56,9 +57,10 @@ def test_residual_action_is_bounded_and_inverts():
     assert receive_residual_of(base, receive_residual_action(base, c)) == pytest.approx(c, abs=1e-6)
 
 
-def test_registry_entry_has_both_action_forms(tmp_path):
+def test_registry_entry_has_the_action_forms(tmp_path):
     t = get_task("receive")
-    assert dict(t.spec_versions) == {"direct": RECEIVE_SPEC, "residual": RECEIVE_SPEC_RESIDUAL}
+    assert dict(t.spec_versions) == {"direct": RECEIVE_SPEC, "residual": RECEIVE_SPEC_RESIDUAL,
+                                     "pressed": RECEIVE_SPEC_PRESSED}
     assert t.default_mapping == "direct" and ReceiveEnv().spec_version == RECEIVE_SPEC
     assert ReceiveEnv(action_form="residual").spec_version == RECEIVE_SPEC_RESIDUAL
     assert t.to_env_action(np.array([0.1, 0.2, 0.3]), "direct").shape == (5,)

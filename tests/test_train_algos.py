@@ -280,8 +280,8 @@ def test_select_reuse_evaluates_only_new_checkpoints(tmp_path, monkeypatch) -> N
 
     calls: list[str] = []
 
-    def fake_eval(task, path, episodes, seed, workers, progress, field):
-        assert field == "div_b"  # the actors' metadata names no field: the default one
+    def fake_eval(task, path, episodes, seed, workers, progress, field, task_options):
+        assert field == "div_b" and task_options == {}  # the actors' metadata names no field: the default one
         calls.append(Path(path).name)
         return {"success_rate": 0.5, "successes": episodes // 2, "time_to_success_s": {"mean": 1.0},
                 "failure_reasons": {}}

@@ -32,7 +32,24 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     add_backend(e, "the episodes")
     e.add_argument("--quiet", action="store_true", help="no progress bar")
     add_tracker_option(e)
+    e.add_argument("--task-option", action="append", default=[], metavar="KEY=VALUE", type=task_option,
+                   help="a keyword of the task's env, VALUE parsed as JSON (repeatable), e.g. "
+                        "'receive --task-option interceptors=1 --task-option hold_s=0.1' (the pass pressed by an "
+                        "interceptor, held 0.1 s as the passing plays count it)")
     e.set_defaults(handler=run)
+
+
+def task_option(text: str) -> tuple[str, object]:
+    """``KEY=VALUE`` -> (key, JSON value, or the text itself if it is not JSON)."""
+    import json
+
+    key, sep, value = text.partition("=")
+    if not sep or not key.isidentifier():
+        raise argparse.ArgumentTypeError(f"--task-option wants KEY=VALUE with KEY a name, got {text!r}")
+    try:
+        return key, json.loads(value)
+    except ValueError:
+        return key, value
 
 
 def run(args: argparse.Namespace) -> int:
@@ -44,7 +61,8 @@ def run(args: argparse.Namespace) -> int:
         prepare_output_dir(args.out, "--out")
     s = evaluate_skill(args.skill, args.policy, episodes=args.episodes, seed=args.seed, workers=workers(args),
                        out=args.out, realism=args.realism, field=args.field, progress=not args.quiet,
-                       realtime=args.realtime, backend=args.backend, address=args.address, tracker=args.tracker)
+                       realtime=args.realtime, backend=args.backend, address=args.address, tracker=args.tracker,
+                       task_options=dict(args.task_option))
     t = s["time_to_success_s"]
     lo, hi = s["success_ci95"]
     mean = "n/a" if t["mean"] is None else f"{t['mean']:.2f} +/- {t['std']:.2f} s"

@@ -83,9 +83,14 @@ def _run_episodes(args: tuple) -> list[dict]:
 def evaluate_skill(task: str, policy: str = "baseline", episodes: int = 1000, seed: int = 0, workers: int = 1,
                    out: str | Path | None = None, realism: str = "none", field: str = "div_b",
                    progress: bool = True, realtime: bool = False, backend: str = "local",
-                   address: str | None = None, tracker: Any = "auto") -> dict[str, Any]:
+                   address: str | None = None, tracker: Any = "auto",
+                   task_options: dict[str, Any] | None = None) -> dict[str, Any]:
     """Run the protocol; returns the summary dict (and writes ``out/results.json`` and
     ``out/time_hist.png`` when ``out`` is given).
+
+    ``task_options``: keyword arguments of the task's env beyond the protocol's own
+    (e.g. receive's ``{"interceptors": 1, "hold_s": 0.1}``: the pass pressed by an
+    interceptor); checked by building the env once (ValueError naming the option).
 
     ``workers`` processes (local) or Ray tasks in flight (``backend="ray"``, None: the
     cluster's CPUs; ``address``: the cluster, None = a local Ray instance). ``tracker``:
@@ -103,7 +108,8 @@ def evaluate_skill(task: str, policy: str = "baseline", episodes: int = 1000, se
         from ..skills.learned import load_policy
 
         meta = dict(load_policy(_skill_name(task), checkpoint)[1])
-    env_kwargs = {"field": field, "realism": realism, "realtime": realtime, "tracker": use_tracker}
+    env_kwargs = {"field": field, "realism": realism, "realtime": realtime, "tracker": use_tracker,
+                  **check_task_options(task, task_options)}
     jobs = [(task, kind, checkpoint, env_kwargs, seed, chunk) for chunk in chunk_indices(episodes, workers)]
     t0 = time.perf_counter()
     results = [r for chunk in run_pool(_run_episodes, jobs, workers, f"eval {task} ({policy})", progress, unit="ep",
@@ -132,6 +138,24 @@ def evaluate_skill(task: str, policy: str = "baseline", episodes: int = 1000, se
         write_time_histogram(times, out / "time_hist.png",
                              title=f"{task}, {policy}: time to success ({n_succ}/{episodes} succeeded)")
     return summary
+
+
+PROTOCOL_OPTIONS = ("field", "realism", "realtime", "tracker")  #: env options the protocol sets itself
+
+
+def check_task_options(task: str, options: dict[str, Any] | None) -> dict[str, Any]:
+    """``options`` (None: none) if the task's env accepts them, else ValueError naming
+    the offending option (one of the protocol's own, or one the env refuses)."""
+    options = dict(options or {})
+    clash = sorted(set(options) & set(PROTOCOL_OPTIONS))
+    if clash:
+        raise ValueError(f"task option(s) {clash} are set by the protocol's own flags ({PROTOCOL_OPTIONS})")
+    if options:
+        try:
+            _make_env(task, options).close()
+        except TypeError as e:
+            raise ValueError(f"task option(s) {sorted(options)} not accepted by the {task} task: {e}") from None
+    return options
 
 
 def _reference(task: str, kind: str) -> float | None:

@@ -30,6 +30,7 @@ from .baseline import GoToBallBaseline
 from .motion import velocity_command
 from .passing_features import (
     RECEIVE_ACTION_FORMS,
+    RECEIVE_RESIDUAL_FORMS,
     SLOW_BALL,
     ball_line_geometry,
     check_point,
@@ -39,6 +40,7 @@ from .passing_features import (
     pass_aim_error,
     pass_features,
     receive_features,
+    receive_pressed_features,
     receive_residual_action,
     receive_task_action,
 )
@@ -286,7 +288,8 @@ class LearnedReceive(ReceiveSkill):
     """Learned receive: the trained actor maps :func:`receive_features` to (vx, vy, omega),
     dribbler on. The checkpoint's spec picks the action form: ``receive/v1`` ("direct")
     the action itself, ``receive/v2`` ("residual") a correction of the hand-coded
-    receive's action in the same state
+    receive's action in the same state, ``receive/v3`` ("pressed") that correction from
+    the state with the opponent nearest the ball's path
     (:func:`~ssl_marl.skills.passing_features.receive_residual_action`). With ``policy``
     given directly, ``action_form`` says which."""
 
@@ -297,10 +300,12 @@ class LearnedReceive(ReceiveSkill):
             policy, meta = load_passing_policy("receive", checkpoint)
             action_form = next(k for k, v in RECEIVE_ACTION_FORMS.items() if v == meta["obs_spec"])
         self.policy, self.action_form = policy, check_receive_action_form(action_form)
-        self._base = ReceiveBaseline(field, self.rp, self.bp, hold_s) if self.action_form == "residual" else None
+        residual = self.action_form in RECEIVE_RESIDUAL_FORMS
+        self._base = ReceiveBaseline(field, self.rp, self.bp, hold_s) if residual else None
+        self._features = receive_pressed_features if self.action_form == "pressed" else receive_features
 
     def control(self, world: WorldState, robot: int) -> np.ndarray:
-        a3 = self.policy(receive_features(world, robot, self.rp, self.bp))
+        a3 = self.policy(self._features(world, robot, self.rp, self.bp))
         if self._base is not None:
             a3 = receive_residual_action(receive_task_action(self._base.control(world, robot)), a3)
         return expand_receive_action(a3)

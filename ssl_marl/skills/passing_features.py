@@ -49,6 +49,24 @@ receive action (3 values in [-1, 1]), two forms (the registry's action mappings)
       ``clip(base + RECEIVE_RESIDUAL_SCALE * a, -1, 1)``
       (:func:`receive_residual_action`); an actor that outputs 0 *is* the hand-coded
       receive.
+    * ``pressed`` (spec ``receive/v3``): the residual action on the 11 values above and 7
+      about the opponent nearest the ball's path (:func:`receive_pressed_features`):
+
+      ===  ==================  ===============================================
+      idx  name                meaning
+      ===  ==================  ===============================================
+      11-12 opp_x, opp_y       that opponent in the robot frame (m)
+      13-14 opp_vx, opp_vy     its velocity in the robot frame (m/s)
+      15   opp_line_offset     its signed distance from the ball's line of travel
+                               (m, sign as line_offset; 0 for a slow ball)
+      16   opp_gap             distance along the ball's direction from the ball
+                               to its dribbler face (m; as gap)
+      17   opp_present         1 if the robot sees an opponent, else 0 (then
+                               values 11-16 are 0)
+      ===  ==================  ===============================================
+
+      "Nearest the ball's path": the least distance to the segment from the ball to
+      the receiving robot (a robot that can cut the pass off ranks first).
 """
 
 from __future__ import annotations
@@ -65,8 +83,11 @@ from .features import rotate_to_robot, to_robot_frame
 PASS_SPEC = "pass/v1"
 RECEIVE_SPEC = "receive/v1"
 RECEIVE_SPEC_RESIDUAL = "receive/v2"  #: same state as v1; the action is a correction of the hand-coded receive
+RECEIVE_SPEC_PRESSED = "receive/v3"  #: v2's residual action on v1's state + the nearest opponent to the ball's path
 #: receive action forms (the registry's action-mapping names) -> spec strings
-RECEIVE_ACTION_FORMS = {"direct": RECEIVE_SPEC, "residual": RECEIVE_SPEC_RESIDUAL}
+RECEIVE_ACTION_FORMS = {"direct": RECEIVE_SPEC, "residual": RECEIVE_SPEC_RESIDUAL, "pressed": RECEIVE_SPEC_PRESSED}
+#: the action forms whose action is a correction of the hand-coded receive's
+RECEIVE_RESIDUAL_FORMS = ("residual", "pressed")
 #: largest correction (fraction of each velocity / turn-rate limit) a residual action adds
 RECEIVE_RESIDUAL_SCALE = 0.5
 PASS_SPEED_MIN = 1.0  #: m/s, the slowest kick the pass action can ask for
@@ -76,6 +97,8 @@ PASS_NAMES = ("target_x", "target_y", "target_vx", "target_vy", "target_dist", "
               "ball_x", "ball_y", "robot_omega")
 RECEIVE_NAMES = ("ball_x", "ball_y", "ball_vx", "ball_vy", "robot_vx", "robot_vy", "robot_omega", "line_offset",
                  "gap", "closing_speed", "on_dribbler")
+RECEIVE_PRESSED_NAMES = RECEIVE_NAMES + ("opp_x", "opp_y", "opp_vx", "opp_vy", "opp_line_offset", "opp_gap",
+                                         "opp_present")
 
 
 def _team(world: WorldState):
@@ -201,6 +224,48 @@ def receive_features(world: WorldState, robot: int, robot_params: RobotParams, b
     offset, gap, closing, _ = ball_line_geometry(world, robot, robot_params, ball_params)
     return np.array([ball[0], ball[1], bvel[0], bvel[1], rvel[0], rvel[1], ts.omega[robot], offset, gap, closing,
                      1.0 if bool(ts.ball_on_dribbler[robot]) else 0.0], dtype=np.float32)
+
+
+def path_threat(world: WorldState, robot: int) -> int | None:
+    """Index of the opponent nearest the segment from the ball to robot ``robot`` (team
+    frame; the one best placed to cut a pass to it off), or None without opponents."""
+    opp = world.opponents(_team_name(world))
+    if len(opp.pos) == 0:
+        return None
+    a, b = world.ball_pos, _team(world).pos[robot]
+    ab = b - a
+    t = np.clip(((opp.pos - a) @ ab) / max(float(ab @ ab), 1e-12), 0.0, 1.0)
+    d = np.hypot(*(opp.pos - (a + t[:, None] * ab)).T)
+    return int(np.argmin(d))
+
+
+def receive_pressed_features(world: WorldState, robot: int, robot_params: RobotParams, ball_params: BallParams
+                             ) -> np.ndarray:
+    """The 18 ``receive/v3`` state values (float32): :func:`receive_features` and the
+    opponent of :func:`path_threat` (module table)."""
+    base = receive_features(world, robot, robot_params, ball_params)
+    k = path_threat(world, robot)
+    if k is None:
+        return np.concatenate([base, np.zeros(7, np.float32)])
+    ts, opp = _team(world), world.opponents(_team_name(world))
+    pos, h = ts.pos[robot], float(ts.heading[robot])
+    rel = to_robot_frame(opp.pos[k], pos, h)
+    vel = rotate_to_robot(opp.vel[k], h)
+    d = opp.pos[k] - world.ball_pos
+    sp = float(np.hypot(*world.ball_vel))
+    reach = robot_params.front_distance + ball_params.radius
+    if sp < SLOW_BALL:
+        offset, gap = 0.0, float(np.hypot(*d)) - reach
+    else:
+        u = world.ball_vel / sp
+        offset, gap = float(u[0] * d[1] - u[1] * d[0]), float(d @ u) - reach
+    extra = np.array([rel[0], rel[1], vel[0], vel[1], offset, gap, 1.0], dtype=np.float32)
+    return np.concatenate([base, extra])
+
+
+def _team_name(world: WorldState) -> str:
+    _team(world)  # the team-frame check
+    return world.frame
 
 
 def expand_receive_action(action3: np.ndarray) -> np.ndarray:

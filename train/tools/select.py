@@ -5,7 +5,7 @@
 
 The trainer writes ``RUN_DIR/actors/actor-<samples>.pt`` at each checkpoint. Each is
 evaluated with the skill protocol (:func:`ssl_marl.runners.skill_eval.evaluate_skill`,
-ideal conditions) on ``--episodes`` episodes from ``--seed``, a validation seed that
+ideal conditions, the task options it was trained under: :func:`training_task_options`) on ``--episodes`` episodes from ``--seed``, a validation seed that
 is neither a training seed nor a reporting seed (this project reports skills on seed
 10000 and trains on 0 and its evaluation seed 1000). The best actor (highest success,
 then lowest mean time to success, then fewer samples) is named in
@@ -48,13 +48,44 @@ def training_fields(meta: dict[str, Any]) -> list[str]:
     return list(dict.fromkeys(fields))
 
 
+def training_task_options(meta: dict[str, Any]) -> dict[str, Any]:
+    """The task conditions an actor was trained under, from its metadata's ``env_kwargs``
+    (e.g. receive's interceptors and hold time), without the action and reward forms and
+    the protocol's own options: the validation runs the task it was trained on."""
+    hp = meta.get("hyperparameters") if isinstance(meta.get("hyperparameters"), dict) else {}
+    return _task_options(hp.get("env_kwargs") or {})
+
+
+def _task_options(kwargs: dict[str, Any]) -> dict[str, Any]:
+    skip = {"action_form", "reward_form", "field", "realism", "realtime", "tracker", "render_mode"}
+    return {k: v for k, v in kwargs.items() if k not in skip}
+
+
+def training_variants(meta: dict[str, Any], fields: list[str] | None = None) -> list[tuple[str, str, dict[str, Any]]]:
+    """(label, field, task options) of each condition an actor was trained under: one per
+    field of :func:`training_fields` (or of ``fields``) times each distinct set of task
+    options of ``env_kwargs`` / ``env_variants``. The label is the field, followed by
+    the options where any differ between variants (``"div_b interceptors=1 hold_s=0.1"``)."""
+    hp = meta.get("hyperparameters") if isinstance(meta.get("hyperparameters"), dict) else {}
+    base = hp.get("env_kwargs") or {}
+    opts = [_task_options({**base, **v}) for v in hp.get("env_variants") or [] if isinstance(v, dict)]
+    opts = [o for k, o in enumerate(opts) if o not in opts[:k]] or [_task_options(base)]
+    out = []
+    for fld in fields or training_fields(meta):
+        for o in opts:
+            label = fld if len(opts) == 1 else " ".join([fld] + [f"{k}={json.dumps(v)}" for k, v in sorted(o.items())])
+            out.append((label, fld, o))
+    return out
+
+
 def select(run: str | Path, episodes: int = 500, seed: int = 5000, workers: int = 1, min_samples: int = 0,
            progress: bool = True, reuse: bool = False, fields: list[str] | None = None) -> dict[str, Any]:
-    """Evaluate each exported actor of ``run`` on ``episodes`` validation episodes per field
-    (``fields``; None: the fields it was trained on, :func:`training_fields`) and name the
-    best in ``RUN/selection.json``. With several fields an actor's ``success_rate`` is its
-    lowest over the fields (it is shipped for all of them) and ``mean_time_s`` the mean of
-    the fields' means; each field's figures are kept under ``by_field``."""
+    """Evaluate each exported actor of ``run`` on ``episodes`` validation episodes per
+    training condition (:func:`training_variants`: each field, ``fields`` or the fields it
+    was trained on, times each set of task options it was trained under) and name the best
+    in ``RUN/selection.json``. With several conditions an actor's ``success_rate`` is its
+    lowest over them (it is shipped for all of them) and ``mean_time_s`` the mean of their
+    means; each condition's figures are kept under ``by_field``, keyed by its label."""
     run = Path(run)
     actors = sorted((run / "actors").glob("actor-*.pt"))
     if not actors:
@@ -70,13 +101,13 @@ def select(run: str | Path, episodes: int = 500, seed: int = 5000, workers: int 
             continue
         task = str(meta["skill"]).replace("_", "-")
         by_field = {}
-        for fld in fields or training_fields(meta):
+        for label, fld, options in training_variants(meta, fields):
             res = evaluate_skill(task, str(path), episodes=episodes, seed=seed, workers=workers, progress=progress,
-                                 field=fld)
-            by_field[fld] = {"success_rate": res["success_rate"], "successes": res["successes"],
+                                 field=fld, task_options=options)
+            by_field[label] = {"success_rate": res["success_rate"], "successes": res["successes"],
                              "mean_time_s": res["time_to_success_s"].get("mean"),
                              "failure_reasons": res["failure_reasons"]}
-            print(f"{path.name} ({fld}): {res['successes']}/{episodes} = {res['success_rate']:.3f}, "
+            print(f"{path.name} ({label}): {res['successes']}/{episodes} = {res['success_rate']:.3f}, "
                   f"time {res['time_to_success_s'].get('mean')}", flush=True)
         figs = list(by_field.values())
         times = [f["mean_time_s"] for f in figs]

@@ -1,10 +1,12 @@
 """receive: intercept a moving ball and bring it under control on the dribbler, held
 for 0.5 s.
 
-Two action forms (registry action mappings, same 11-value state): ``direct``
+Three forms (registry action mappings): ``direct``
 (``receive/v1``: the actor's (vx, vy, omega) is the action) and ``residual``
 (``receive/v2``: the actor's output is a bounded correction added to the hand-coded
-receive's action, so an untrained actor starts at the hand-coded behaviour). The
+receive's action, so an untrained actor starts at the hand-coded behaviour), and
+``pressed`` (``receive/v3``: the residual action on 18 values, the 11 and the opponent
+nearest the ball's path, trained with interceptors pressing the pass). The
 shipped actor, when there is one, is residual (docs/RESULTS.md, "Passing skills")."""
 
 from __future__ import annotations
@@ -12,13 +14,18 @@ from __future__ import annotations
 import functools
 
 from ..passing import ReceiveBaseline
-from ..passing_features import (RECEIVE_ACTION_FORMS, RECEIVE_NAMES, expand_receive_action, receive_features,
-                                receive_task_action)
+from ..passing_features import (RECEIVE_ACTION_FORMS, RECEIVE_NAMES, RECEIVE_PRESSED_NAMES, RECEIVE_RESIDUAL_FORMS,
+                                expand_receive_action, receive_features, receive_task_action)
 from ..registry import PRETRAINED_DIR, SkillDef, SkillTaskDef, direct_env_action, register
 
 _ACTOR = PRETRAINED_DIR / "receive.pt"
-_to_env = functools.partial(direct_env_action, expand_receive_action,
+_direct = functools.partial(direct_env_action, expand_receive_action,
                             "receive", "receive/v2", "LearnedReceive", "ReceiveEnv")
+
+
+def _to_env(action3, mapping: str | None = None):
+    """The direct form's (5,) env action; the residual forms are refused (they need the world state)."""
+    return _direct(action3, "residual" if mapping in RECEIVE_RESIDUAL_FORMS else mapping)
 
 
 def _drive(env, skill):
@@ -46,6 +53,7 @@ SKILL = register(SkillDef(
         # "direct" first: the task env's default (what eval-skill drives); training uses
         # action_form="residual" (train/configs/receive.json)
         spec_versions=dict(RECEIVE_ACTION_FORMS),
+        form_names={"pressed": (RECEIVE_PRESSED_NAMES, ("vx", "vy", "omega"))},
         demo_fn="ssl_marl.skills.pass_tasks:receive_baseline_demos",
         train_config="receive",
         drive=_drive,
