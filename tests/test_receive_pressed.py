@@ -17,8 +17,9 @@ from ssl_marl.skills.checkpoint import save_actor
 from ssl_marl.skills.networks import Actor
 from ssl_marl.skills.pass_tasks import skill_task_action
 from ssl_marl.skills.passing import LearnedReceive, ReceiveBaseline
-from ssl_marl.skills.passing_features import (RECEIVE_PRESSED_NAMES, RECEIVE_SPEC_PRESSED, path_threat,
-                                              receive_features, receive_pressed_features)
+from ssl_marl.skills.passing_features import (RECEIVE_PRESS_GATE_M, RECEIVE_PRESSED_NAMES, RECEIVE_SPEC_PRESSED,
+                                              path_threat, receive_features, receive_press_active,
+                                              receive_pressed_features)
 from ssl_marl.skills.receive_task import ReceiveEnv, first_reach
 from ssl_marl.skills.registry import get_task
 
@@ -143,3 +144,37 @@ def test_selection_validates_under_the_training_task_options():
                                        ("div_b hold_s=0.5 interceptors=0", "div_b", {"interceptors": 0, "hold_s": 0.5})]
     both = {"hyperparameters": {"env_kwargs": {"field": "div_b"}, "env_variants": [{"field": "div_a"}, {}]}}
     assert training_variants(both) == [("div_a", "div_a", {}), ("div_b", "div_b", {})]  # fields alone: as before
+
+
+def test_the_pressed_correction_applies_only_under_press():
+    w = _world([(-0.5, 0.8)])
+    f = receive_pressed_features(w, 0, RP, BP)
+    assert receive_press_active(f)
+    for idx, value in ((17, 0.0), (10, 1.0), (15, RECEIVE_PRESS_GATE_M + 0.1), (16, f[8] + 1.5)):
+        g = f.copy()
+        g[idx] = value  # no opponent / ball controlled / opponent far off the line / far behind the robot
+        assert not receive_press_active(g)
+    assert not receive_press_active(receive_pressed_features(_world([]), 0, RP, BP))
+
+
+def test_a_v3_actor_is_the_hand_coded_receive_outside_the_press(tmp_path):
+    actor = Actor(18, 3, (16, 16))
+    with torch.no_grad():
+        actor.head.bias.fill_(1.0)  # a large correction everywhere
+    path = save_actor(tmp_path / "pressed.pt", actor, {"skill": "receive", "obs_spec": RECEIVE_SPEC_PRESSED})
+    skill = make_skill("receive", "learned", FIELD, RP, BP, checkpoint=path)
+    base = ReceiveBaseline(FIELD, RP, BP)
+    plain = _world([])
+    assert np.array_equal(skill.act(plain, 0), base.act(plain, 0))
+    pressed = _world([(-0.5, 0.8)])
+    assert not np.allclose(skill.act(pressed, 0), base.act(pressed, 0))
+    env = ReceiveEnv(action_form="pressed")  # the task env gates the same way: no opponent, no correction
+    direct = ReceiveEnv()
+    o, _ = env.reset(seed=3)
+    direct.reset(seed=3)
+    for _ in range(30):
+        _, _, term, trunc, _ = env.step(np.ones(3, np.float32))
+        _, _, term_d, trunc_d, _ = direct.step(base.act(direct.seen(), 0)[:3])
+        assert np.array_equal(env.truth().blue.pos, direct.truth().blue.pos)
+        if term or trunc:
+            break

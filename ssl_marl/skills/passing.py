@@ -40,6 +40,7 @@ from .passing_features import (
     pass_aim_error,
     pass_features,
     receive_features,
+    receive_press_active,
     receive_pressed_features,
     receive_residual_action,
     receive_task_action,
@@ -305,7 +306,10 @@ class LearnedReceive(ReceiveSkill):
         self._features = receive_pressed_features if self.action_form == "pressed" else receive_features
 
     def control(self, world: WorldState, robot: int) -> np.ndarray:
-        a3 = self.policy(self._features(world, robot, self.rp, self.bp))
+        x = self._features(world, robot, self.rp, self.bp)
+        if self.action_form == "pressed" and not receive_press_active(x):
+            return self._base.control(world, robot)  # outside the press: the hand-coded receive
+        a3 = self.policy(x)
         if self._base is not None:
             a3 = receive_residual_action(receive_task_action(self._base.control(world, robot)), a3)
         return expand_receive_action(a3)

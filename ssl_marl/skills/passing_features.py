@@ -66,7 +66,9 @@ receive action (3 values in [-1, 1]), two forms (the registry's action mappings)
       ===  ==================  ===============================================
 
       "Nearest the ball's path": the least distance to the segment from the ball to
-      the receiving robot (a robot that can cut the pass off ranks first).
+      the receiving robot (a robot that can cut the pass off ranks first). The correction
+      applies only where :func:`receive_press_active` (an opponent near the ball's line,
+      the ball not yet controlled); elsewhere the action is the hand-coded receive's.
 """
 
 from __future__ import annotations
@@ -88,6 +90,9 @@ RECEIVE_SPEC_PRESSED = "receive/v3"  #: v2's residual action on v1's state + the
 RECEIVE_ACTION_FORMS = {"direct": RECEIVE_SPEC, "residual": RECEIVE_SPEC_RESIDUAL, "pressed": RECEIVE_SPEC_PRESSED}
 #: the action forms whose action is a correction of the hand-coded receive's
 RECEIVE_RESIDUAL_FORMS = ("residual", "pressed")
+#: m: a ``receive/v3`` correction applies while the path's nearest opponent is at most this far
+#: from the ball's line (the interceptors of the pressed task start at most 3 m from it)
+RECEIVE_PRESS_GATE_M = 3.0
 #: largest correction (fraction of each velocity / turn-rate limit) a residual action adds
 RECEIVE_RESIDUAL_SCALE = 0.5
 PASS_SPEED_MIN = 1.0  #: m/s, the slowest kick the pass action can ask for
@@ -261,6 +266,16 @@ def receive_pressed_features(world: WorldState, robot: int, robot_params: RobotP
         offset, gap = float(u[0] * d[1] - u[1] * d[0]), float(d @ u) - reach
     extra = np.array([rel[0], rel[1], vel[0], vel[1], offset, gap, 1.0], dtype=np.float32)
     return np.concatenate([base, extra])
+
+
+def receive_press_active(features: np.ndarray) -> bool:
+    """True where a ``receive/v3`` correction applies, from its 18 state values: an
+    opponent is seen, at most :data:`RECEIVE_PRESS_GATE_M` from the ball's line and not
+    more than 1 m further along it than the robot, and the ball is not on the dribbler.
+    Elsewhere the pressed receive is the hand-coded one (the plain task, a ball already
+    under control)."""
+    f = np.asarray(features, dtype=np.float64)
+    return bool(f[17] > 0.5 and f[10] < 0.5 and abs(f[15]) <= RECEIVE_PRESS_GATE_M and f[16] <= f[8] + 1.0)
 
 
 def _team_name(world: WorldState) -> str:

@@ -34,6 +34,7 @@ from .passing_features import (
     expand_receive_action,
     receive_features,
     receive_outcome_reward,
+    receive_press_active,
     receive_pressed_features,
     receive_residual_action,
     receive_residual_of,
@@ -323,6 +324,9 @@ class ReceiveTask(SkillTask):
 
     def env_action(self, action: np.ndarray) -> np.ndarray:
         a = np.clip(action, -1.0, 1.0)
+        if self.action_form == "pressed" and not receive_press_active(
+                receive_pressed_features(self._seen, 0, self.robot_params, self.ball_params)):
+            a = np.zeros(3, np.float32)  # outside the press the pressed receive is the hand-coded one
         if self.action_form in RECEIVE_RESIDUAL_FORMS:
             a = receive_residual_action(self.base_action(self._seen), a)
         return expand_receive_action(a)

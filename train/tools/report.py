@@ -207,6 +207,12 @@ DECISION_97_POOLED = [("attack-learned, learned decision vs attack-learned, 11v1
                        ((DECISION_SERIES_97[2], "blue"), (DECISION_SERIES_97[3], "yellow"),
                         (DECISION_SERIES_97[4], "blue"), (DECISION_SERIES_97[5], "yellow")))]
 #: the attacking team with learned skills against itself with hand-coded skills, both colours (commit e395ab2)
+RECEIVE_PRESSED = ["receive_pressed_baseline", "receive_pressed_learned_v2", "receive_pressed_learned",
+                   "receive_pressed_baseline_realistic", "receive_pressed_learned_realistic"]
+RECEIVE_PRESSED_RUNS = ["receive_pressed_s0", "receive_pressed_bc1_s0", "receive_pressed_bc01_s0", "receive_pressed_gated_s0",
+                        "receive_pressed_gated_s1"]
+SKILLS_99100 = ["match_attack_learned_vs_attack_baseline_600_99100", "match_attack_baseline_vs_attack_learned_600_99130"]
+SKILLS_99100_POOLED = [("attack-learned vs attack-baseline, pressed receive", ((SKILLS_99100[0], "blue"), (SKILLS_99100[1], "yellow")))]
 SKILLS_97200 = ["match_attack_learned_vs_attack_baseline_600_97200", "match_attack_baseline_vs_attack_learned_600_97230"]
 SKILLS_97200_POOLED = [("attack-learned vs attack-baseline (commit e395ab2)",
                         ((SKILLS_97200[0], "blue"), (SKILLS_97200[1], "yellow")))]
@@ -268,6 +274,12 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_series_98": lambda r: m.series_600(r, DECISION_SERIES_98),
     "decision_98_pooled": lambda r: m.pooled_sides(r, DECISION_98_POOLED),
     "decision_97_pooled": lambda r: m.pooled_sides(r, DECISION_97_POOLED),
+    "receive_pressed": lambda r: t.skills(r, RECEIVE_PRESSED),
+    "receive_pressed_selection": lambda r: t.selection(r, RECEIVE_PRESSED_RUNS),
+    "receive_mixed_selection_s0": lambda r: t.selection_by_field(r, "receive_pressed_mixed_s0"),
+    "receive_mixed_selection_s1": lambda r: t.selection_by_field(r, "receive_pressed_mixed_s1"),
+    "skills_99100": lambda r: m.series_600(r, SKILLS_99100),
+    "skills_99100_pooled": lambda r: m.pooled_sides(r, SKILLS_99100_POOLED),
     "skills_97200": lambda r: m.series_600(r, SKILLS_97200),
     "skills_97200_pooled": lambda r: m.pooled_sides(r, SKILLS_97200_POOLED),
     "attack_targets": lambda r: m.series_600(r, ATTACK_TARGETS),
