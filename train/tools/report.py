@@ -207,12 +207,13 @@ DECISION_97_POOLED = [("attack-learned, learned decision vs attack-learned, 11v1
                        ((DECISION_SERIES_97[2], "blue"), (DECISION_SERIES_97[3], "yellow"),
                         (DECISION_SERIES_97[4], "blue"), (DECISION_SERIES_97[5], "yellow")))]
 #: the attacking team with learned skills against itself with hand-coded skills, both colours (commit e395ab2)
-RECEIVE_PRESSED = ["receive_pressed_baseline", "receive_pressed_learned_v2", "receive_pressed_learned",
-                   "receive_pressed_baseline_realistic", "receive_pressed_learned_realistic"]
+RECEIVE_PRESSED = ["receive_pressed_baseline", "receive_pressed_learned", "receive_pressed_gated",
+                   "receive_pressed_baseline_realistic", "receive_pressed_gated_realistic", "receive_gated_plain"]
 RECEIVE_PRESSED_RUNS = ["receive_pressed_s0", "receive_pressed_bc1_s0", "receive_pressed_bc01_s0", "receive_pressed_gated_s0",
                         "receive_pressed_gated_s1"]
-SKILLS_99100 = ["match_attack_learned_vs_attack_baseline_600_99100", "match_attack_baseline_vs_attack_learned_600_99130"]
-SKILLS_99100_POOLED = [("attack-learned vs attack-baseline, pressed receive", ((SKILLS_99100[0], "blue"), (SKILLS_99100[1], "yellow")))]
+SKILLS_99100 = ["match_pressed_receive_vs_attack_baseline_600_99100", "match_attack_baseline_vs_pressed_receive_600_99130"]
+SKILLS_99100_POOLED = [("attack-learned with the pressed receive vs attack-baseline (commit 15af20f)",
+                        ((SKILLS_99100[0], "blue"), (SKILLS_99100[1], "yellow")))]
 SKILLS_97200 = ["match_attack_learned_vs_attack_baseline_600_97200", "match_attack_baseline_vs_attack_learned_600_97230"]
 SKILLS_97200_POOLED = [("attack-learned vs attack-baseline (commit e395ab2)",
                         ((SKILLS_97200[0], "blue"), (SKILLS_97200[1], "yellow")))]
