@@ -150,9 +150,9 @@ def test_the_pressed_correction_applies_only_under_press():
     w = _world([(-0.5, 0.8)])
     f = receive_pressed_features(w, 0, RP, BP)
     assert receive_press_active(f)
-    for idx, value in ((17, 0.0), (10, 1.0), (15, RECEIVE_PRESS_GATE_M + 0.1), (16, f[8] + 1.5)):
+    for idx, value in ((17, 0.0), (10, 1.0), (15, RECEIVE_PRESS_GATE_M + 0.1), (16, f[8]), (16, f[8] + 1.5)):
         g = f.copy()
-        g[idx] = value  # no opponent / ball controlled / opponent far off the line / far behind the robot
+        g[idx] = value  # no opponent / ball controlled / far off the line / beside the robot / behind it
         assert not receive_press_active(g)
     assert not receive_press_active(receive_pressed_features(_world([]), 0, RP, BP))
 

@@ -93,6 +93,10 @@ RECEIVE_RESIDUAL_FORMS = ("residual", "pressed")
 #: m: a ``receive/v3`` correction applies while the path's nearest opponent is at most this far
 #: from the ball's line (the interceptors of the pressed task start at most 3 m from it)
 RECEIVE_PRESS_GATE_M = 3.0
+#: m: ... and at least this far ahead of the robot along the ball's path, between the ball and the
+#: robot (the pressed task's interceptors start at most 0.9 of the way from the ball to the robot;
+#: a marker beside or behind the receiver does not switch the correction on)
+RECEIVE_PRESS_AHEAD_M = 0.3
 #: largest correction (fraction of each velocity / turn-rate limit) a residual action adds
 RECEIVE_RESIDUAL_SCALE = 0.5
 PASS_SPEED_MIN = 1.0  #: m/s, the slowest kick the pass action can ask for
@@ -270,12 +274,14 @@ def receive_pressed_features(world: WorldState, robot: int, robot_params: RobotP
 
 def receive_press_active(features: np.ndarray) -> bool:
     """True where a ``receive/v3`` correction applies, from its 18 state values: an
-    opponent is seen, at most :data:`RECEIVE_PRESS_GATE_M` from the ball's line and not
-    more than 1 m further along it than the robot, and the ball is not on the dribbler.
-    Elsewhere the pressed receive is the hand-coded one (the plain task, a ball already
-    under control)."""
+    opponent is seen, at most :data:`RECEIVE_PRESS_GATE_M` from the ball's line and at
+    least :data:`RECEIVE_PRESS_AHEAD_M` closer to the ball along it than the robot (a
+    robot that can cut the pass off), and the ball is not on the dribbler. Elsewhere the
+    pressed receive is the hand-coded one (the plain task, a ball already under control,
+    a marker beside or behind the receiver)."""
     f = np.asarray(features, dtype=np.float64)
-    return bool(f[17] > 0.5 and f[10] < 0.5 and abs(f[15]) <= RECEIVE_PRESS_GATE_M and f[16] <= f[8] + 1.0)
+    return bool(f[17] > 0.5 and f[10] < 0.5 and abs(f[15]) <= RECEIVE_PRESS_GATE_M
+                and f[16] <= f[8] - RECEIVE_PRESS_AHEAD_M)
 
 
 def _team_name(world: WorldState) -> str:
