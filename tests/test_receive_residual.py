@@ -129,16 +129,16 @@ def test_trainer_anneals_the_cloning_weight(tmp_path):
     tr.eval_env.close()
 
 
-def test_shipped_receive_is_residual_and_receives():
+def test_shipped_receive_is_pressed_and_receives():
     from ssl_marl.skills.passing import load_passing_policy
     from ssl_marl.skills.registry import get_skill
 
     assert get_skill("receive").actor is not None and get_skill("receive").actor.exists()
     _, meta = load_passing_policy("receive")
-    assert meta["skill"] == "receive" and meta["obs_spec"] == RECEIVE_SPEC_RESIDUAL
+    assert meta["skill"] == "receive" and meta["obs_spec"] == RECEIVE_SPEC_PRESSED
     env = ReceiveEnv()
     skill = make_skill("receive", "learned", env.field, env.robot_params, env.ball_params)
-    assert isinstance(skill, LearnedReceive) and skill.action_form == "residual"
+    assert isinstance(skill, LearnedReceive) and skill.action_form == "pressed"
     env.reset(seed=4, options=SCENE)
     skill.reset()
     while True:
