@@ -208,12 +208,17 @@ DECISION_97_POOLED = [("attack-learned, learned decision vs attack-learned, 11v1
                         (DECISION_SERIES_97[4], "blue"), (DECISION_SERIES_97[5], "yellow")))]
 #: the attacking team with learned skills against itself with hand-coded skills, both colours (commit e395ab2)
 RECEIVE_PRESSED = ["receive_pressed_baseline", "receive_pressed_learned", "receive_pressed_gated",
-                   "receive_pressed_baseline_realistic", "receive_pressed_gated_realistic", "receive_gated_plain"]
+                   "receive_pressed_baseline_realistic", "receive_pressed_gated_realistic", "receive_gated_plain",
+                   "receive_pressed_lane", "receive_pressed_lane_realistic"]
 RECEIVE_PRESSED_RUNS = ["receive_pressed_s0", "receive_pressed_bc1_s0", "receive_pressed_bc01_s0", "receive_pressed_gated_s0",
                         "receive_pressed_gated_s1"]
 SKILLS_99100 = ["match_pressed_receive_vs_attack_baseline_600_99100", "match_attack_baseline_vs_pressed_receive_600_99130"]
-SKILLS_99100_POOLED = [("attack-learned with the pressed receive vs attack-baseline (commit 15af20f)",
+SKILLS_99100_POOLED = [("attack-learned with the pressed receive, first gate, vs attack-baseline (commit 15af20f)",
                         ((SKILLS_99100[0], "blue"), (SKILLS_99100[1], "yellow")))]
+SKILLS_99100_LANE = ["match_pressed_receive_lane_vs_attack_baseline_600_99100",
+                     "match_attack_baseline_vs_pressed_receive_lane_600_99130"]
+SKILLS_99100_LANE_POOLED = [("attack-learned with the pressed receive, lane gate, vs attack-baseline (commit 466a0c5)",
+                             ((SKILLS_99100_LANE[0], "blue"), (SKILLS_99100_LANE[1], "yellow")))]
 SKILLS_97200 = ["match_attack_learned_vs_attack_baseline_600_97200", "match_attack_baseline_vs_attack_learned_600_97230"]
 SKILLS_97200_POOLED = [("attack-learned vs attack-baseline (commit e395ab2)",
                         ((SKILLS_97200[0], "blue"), (SKILLS_97200[1], "yellow")))]
@@ -281,6 +286,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "receive_mixed_selection_s1": lambda r: t.selection_by_field(r, "receive_pressed_mixed_s1"),
     "skills_99100": lambda r: m.series_600(r, SKILLS_99100),
     "skills_99100_pooled": lambda r: m.pooled_sides(r, SKILLS_99100_POOLED),
+    "skills_99100_lane": lambda r: m.series_600(r, SKILLS_99100_LANE),
+    "skills_99100_lane_pooled": lambda r: m.pooled_sides(r, SKILLS_99100_LANE_POOLED),
     "skills_97200": lambda r: m.series_600(r, SKILLS_97200),
     "skills_97200_pooled": lambda r: m.pooled_sides(r, SKILLS_97200_POOLED),
     "attack_targets": lambda r: m.series_600(r, ATTACK_TARGETS),
