@@ -84,6 +84,17 @@ def test_interceptors_start_where_the_receiver_meets_the_path_first_and_can_win_
     assert "success" in outcomes and "intercepted" in outcomes  # a contest, not a formality
 
 
+def test_interceptors_are_placed_for_a_given_scene():
+    env = ReceiveEnv(**PRESSED)
+    scene = {"robot_pose": (1.0, 0.0, math.pi), "ball_pos": (-2.0, 0.0), "ball_vel": (3.0, 0.0)}
+    env.reset(seed=2, options=scene)
+    w = env.truth()
+    mine = first_reach(w.blue.pos[0], w.ball_pos, w.ball_vel, RP, BP, env.field)
+    assert first_reach(w.yellow.pos[0], w.ball_pos, w.ball_vel, RP, BP, env.field, margin_s=0.0,
+                       max_closing=math.inf) > mine
+    assert -2.0 < w.yellow.pos[0][0] < 1.0  # beside the segment from the ball to the robot
+
+
 def test_bad_interceptor_options_raise():
     for bad in (-1, 5, 1.0, "1"):
         with pytest.raises(ValueError, match="interceptors"):

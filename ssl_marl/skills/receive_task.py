@@ -60,8 +60,8 @@ def passing_world(n_blue: int, field: str = "div_b", realism: Any = "none", real
     opponent slots in the engine's own observations; ``tracker``
     (:func:`~ssl_marl.envs.tracking.resolve_tracker`, default off) puts the vision
     tracker around it."""
-    env = SSLParallelEnv(n_blue=n_blue, n_yellow=n_yellow, field=field, realism=realism, realtime=realtime, referee=False,
-                         max_time_s=1e9, render_mode=render_mode, obs_max_teammates=0, obs_max_opponents=0,
+    env = SSLParallelEnv(n_blue=n_blue, n_yellow=n_yellow, field=field, realism=realism, realtime=realtime,
+                         referee=False, max_time_s=1e9, render_mode=render_mode, obs_max_teammates=0, obs_max_opponents=0,
                          **env_kwargs)
     return with_tracker(env, tracker)
 
@@ -237,8 +237,7 @@ class ReceiveTask(SkillTask):
         #: the hand-coded receive that a residual action corrects (only its stateless control() is used)
         self._base = ReceiveBaseline(field, robot, ball, hold_s=self.hold_s)
 
-    def _sample_spawn(self, rng: np.random.Generator
-                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray, dict[str, np.ndarray]]:
+    def _sample_spawn(self, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray, np.ndarray, dict]:
         f, rp, bp = self.field, self.robot_params, self.ball_params
         for _ in range(10_000):
             self.spawn_draws += 1
@@ -279,8 +278,8 @@ class ReceiveTask(SkillTask):
         for k in range(self.interceptors):
             for _ in range(20):
                 side = rng.choice([-1.0, 1.0])
-                p = f.clamp_to_field(ball + rng.uniform(0.3, 0.9) * d + side * rng.uniform(*self.interceptor_offset) * n,
-                                     0.2)
+                along = rng.uniform(0.3, 0.9)
+                p = f.clamp_to_field(ball + along * d + side * rng.uniform(*self.interceptor_offset) * n, 0.2)
                 if first_reach(p, ball, vel, rp, bp, f, margin_s=0.0, max_closing=math.inf) > \
                         mine + self.interceptor_lead_m:
                     break
@@ -305,6 +304,11 @@ class ReceiveTask(SkillTask):
         for name, p in (("ball_pos", ball), ("robot_pose", pose[:2])):
             if not bool(self.field.in_field(p)):
                 raise ValueError(f"ReceiveEnv.reset: {name} {np.asarray(p).tolist()} lies outside the field")
+        if self.interceptors and options:  # place the interceptors for the scene as given
+            others = self._interceptor_poses(rng, pose[:2], ball, vel)
+            if others is None:
+                raise ValueError("ReceiveEnv.reset: no place for an interceptor from which the receiver still "
+                                 "meets the ball's path first in this scene (robot_pose / ball_pos / ball_vel)")
         return Start(pose, ball, vel, others=others)
 
     def begin(self) -> None:
