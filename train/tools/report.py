@@ -218,12 +218,16 @@ SKILLS_99100_POOLED = [("attack-learned with the pressed receive, first gate, vs
 SKILLS_99100_LANE = ["match_pressed_receive_lane_vs_attack_baseline_600_99100",
                      "match_attack_baseline_vs_pressed_receive_lane_600_99130"]
 SKILLS_99110 = ["match_attack_learned_vs_attack_baseline_600_99110", "match_attack_baseline_vs_attack_learned_600_99140"]
+SKILLS_99120 = ["match_attack_learned_vs_attack_baseline_600_99120", "match_attack_baseline_vs_attack_learned_600_99150"]
 SKILLS_99100_LANE_POOLED = [("attack-learned with the pressed receive, lane gate, vs attack-baseline (commit 466a0c5)",
                              ((SKILLS_99100_LANE[0], "blue"), (SKILLS_99100_LANE[1], "yellow"))),
                             ("attack-learned (shipped pressed receive) vs attack-baseline (commit 17b2cca)",
                              ((SKILLS_99110[0], "blue"), (SKILLS_99110[1], "yellow"))),
-                            ("both", ((SKILLS_99100_LANE[0], "blue"), (SKILLS_99100_LANE[1], "yellow"),
-                                      (SKILLS_99110[0], "blue"), (SKILLS_99110[1], "yellow")))]
+                            ("attack-learned (shipped pressed receive) vs attack-baseline (commit ca1bd94)",
+                             ((SKILLS_99120[0], "blue"), (SKILLS_99120[1], "yellow"))),
+                            ("all 60", ((SKILLS_99100_LANE[0], "blue"), (SKILLS_99100_LANE[1], "yellow"),
+                                        (SKILLS_99110[0], "blue"), (SKILLS_99110[1], "yellow"),
+                                        (SKILLS_99120[0], "blue"), (SKILLS_99120[1], "yellow")))]
 SKILLS_97200 = ["match_attack_learned_vs_attack_baseline_600_97200", "match_attack_baseline_vs_attack_learned_600_97230"]
 SKILLS_97200_POOLED = [("attack-learned vs attack-baseline (commit e395ab2)",
                         ((SKILLS_97200[0], "blue"), (SKILLS_97200[1], "yellow")))]
@@ -291,7 +295,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "receive_mixed_selection_s1": lambda r: t.selection_by_field(r, "receive_pressed_mixed_s1"),
     "skills_99100": lambda r: m.series_600(r, SKILLS_99100),
     "skills_99100_pooled": lambda r: m.pooled_sides(r, SKILLS_99100_POOLED),
-    "skills_99100_lane": lambda r: m.series_600(r, SKILLS_99100_LANE + SKILLS_99110),
+    "skills_99100_lane": lambda r: m.series_600(r, SKILLS_99100_LANE + SKILLS_99110 + SKILLS_99120),
     "skills_99100_lane_pooled": lambda r: m.pooled_sides(r, SKILLS_99100_LANE_POOLED),
     "skills_97200": lambda r: m.series_600(r, SKILLS_97200),
     "skills_97200_pooled": lambda r: m.pooled_sides(r, SKILLS_97200_POOLED),
