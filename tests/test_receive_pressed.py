@@ -2,6 +2,7 @@
 ball's path, the task's interceptors and its "intercepted" failure, a v3 actor in the
 registry, and evaluation / selection under the task options an actor was trained with."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -36,8 +37,6 @@ def _world(opponents):
     n = len(opponents)
     yellow = make_team_state(np.asarray(opponents, float).reshape(n, 2), np.zeros(n), np.zeros((n, 2)), np.zeros(n),
                              np.zeros(n, bool), np.zeros(n, bool))
-    import dataclasses
-
     return dataclasses.replace(w, yellow=yellow)
 
 

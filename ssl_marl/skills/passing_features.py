@@ -41,7 +41,7 @@ receive state (``receive/v1``, 11 values)
     10   on_dribbler         1 if the ball is on the dribbler, else 0
     ===  ==================  ====================================================
 
-receive action (3 values in [-1, 1]), two forms (the registry's action mappings)
+receive action (3 values in [-1, 1]), three forms (the registry's action mappings)
     * ``direct`` (spec ``receive/v1``): ``(vx, vy, omega)`` in the robot frame as
       fractions of the robot's limits, dribbler on (as go-to-ball).
     * ``residual`` (spec ``receive/v2``, same 11 state values): a correction added to the
@@ -67,8 +67,9 @@ receive action (3 values in [-1, 1]), two forms (the registry's action mappings)
 
       "Nearest the ball's path": the least distance to the segment from the ball to
       the receiving robot (a robot that can cut the pass off ranks first). The correction
-      applies only where :func:`receive_press_active` (an opponent near the ball's line,
-      the ball not yet controlled); elsewhere the action is the hand-coded receive's.
+      applies only where :func:`receive_press_active` (that opponent near the ball's line
+      and between the ball and the robot, the ball not yet controlled); elsewhere the
+      action is the hand-coded receive's.
 """
 
 from __future__ import annotations
@@ -208,18 +209,22 @@ def ball_line_geometry(world: WorldState, robot: int, robot_params: RobotParams,
     :data:`SLOW_BALL`, then offset = 0 and gap = the distance to the face along the
     robot-ball line). See the module table for the meaning of the three numbers."""
     ts = _team(world)
-    pos = ts.pos[robot]
-    v = world.ball_vel
-    sp = float(np.hypot(*v))
-    reach = robot_params.front_distance + ball_params.radius
-    d = pos - world.ball_pos
+    offset, gap, u = line_offset_gap(ts.pos[robot], world, robot_params.front_distance + ball_params.radius)
+    closing = float(np.hypot(*world.ball_vel)) - float(ts.vel[robot] @ u) if np.any(u) else 0.0
+    return offset, gap, closing, u
+
+
+def line_offset_gap(point: np.ndarray, world: WorldState, reach: float) -> tuple[float, float, np.ndarray]:
+    """(line offset, gap, u) of a robot centred at ``point`` whose dribbler face is
+    ``reach`` (m) from its centre, against the ball's line of travel (module table, state
+    7-8; ``u`` the ball's unit direction, zeros for a ball slower than :data:`SLOW_BALL`,
+    then the offset is 0 and the gap the distance to the face along the robot-ball line)."""
+    d = np.asarray(point, float) - world.ball_pos
+    sp = float(np.hypot(*world.ball_vel))
     if sp < SLOW_BALL:
-        return 0.0, float(np.hypot(*d)) - reach, 0.0, np.zeros(2)
-    u = v / sp
-    along = float(d @ u)
-    offset = float(u[0] * d[1] - u[1] * d[0])
-    closing = sp - float(ts.vel[robot] @ u)
-    return offset, along - reach, closing, u
+        return 0.0, float(np.hypot(*d)) - reach, np.zeros(2)
+    u = world.ball_vel / sp
+    return float(u[0] * d[1] - u[1] * d[0]), float(d @ u) - reach, u
 
 
 def receive_features(world: WorldState, robot: int, robot_params: RobotParams, ball_params: BallParams
@@ -238,10 +243,11 @@ def receive_features(world: WorldState, robot: int, robot_params: RobotParams, b
 def path_threat(world: WorldState, robot: int) -> int | None:
     """Index of the opponent nearest the segment from the ball to robot ``robot`` (team
     frame; the one best placed to cut a pass to it off), or None without opponents."""
-    opp = world.opponents(_team_name(world))
+    ts = _team(world)
+    opp = world.opponents(world.frame)
     if len(opp.pos) == 0:
         return None
-    a, b = world.ball_pos, _team(world).pos[robot]
+    a, b = world.ball_pos, ts.pos[robot]
     ab = b - a
     t = np.clip(((opp.pos - a) @ ab) / max(float(ab @ ab), 1e-12), 0.0, 1.0)
     d = np.hypot(*(opp.pos - (a + t[:, None] * ab)).T)
@@ -256,18 +262,11 @@ def receive_pressed_features(world: WorldState, robot: int, robot_params: RobotP
     k = path_threat(world, robot)
     if k is None:
         return np.concatenate([base, np.zeros(7, np.float32)])
-    ts, opp = _team(world), world.opponents(_team_name(world))
+    ts, opp = _team(world), world.opponents(world.frame)
     pos, h = ts.pos[robot], float(ts.heading[robot])
     rel = to_robot_frame(opp.pos[k], pos, h)
     vel = rotate_to_robot(opp.vel[k], h)
-    d = opp.pos[k] - world.ball_pos
-    sp = float(np.hypot(*world.ball_vel))
-    reach = robot_params.front_distance + ball_params.radius
-    if sp < SLOW_BALL:
-        offset, gap = 0.0, float(np.hypot(*d)) - reach
-    else:
-        u = world.ball_vel / sp
-        offset, gap = float(u[0] * d[1] - u[1] * d[0]), float(d @ u) - reach
+    offset, gap, _ = line_offset_gap(opp.pos[k], world, robot_params.front_distance + ball_params.radius)
     extra = np.array([rel[0], rel[1], vel[0], vel[1], offset, gap, 1.0], dtype=np.float32)
     return np.concatenate([base, extra])
 
@@ -282,11 +281,6 @@ def receive_press_active(features: np.ndarray) -> bool:
     f = np.asarray(features, dtype=np.float64)
     return bool(f[17] > 0.5 and f[10] < 0.5 and abs(f[15]) <= RECEIVE_PRESS_GATE_M
                 and f[16] <= f[8] - RECEIVE_PRESS_AHEAD_M)
-
-
-def _team_name(world: WorldState) -> str:
-    _team(world)  # the team-frame check
-    return world.frame
 
 
 def expand_receive_action(action3: np.ndarray) -> np.ndarray:

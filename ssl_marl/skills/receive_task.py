@@ -223,6 +223,8 @@ class ReceiveTask(SkillTask):
         self.action_space = gymnasium.spaces.Box(-1.0, 1.0, (3,), np.float32)
         self._hold_t0: float | None = None
         self._seen: WorldState | None = None
+        self._robot = 0
+        self._pressed = True  #: this step's pressed correction applies (receive_press_active)
         self.spawn_draws = 0  #: spawns drawn since construction (rejection-sampling statistics)
         self.spawn_accepted = 0
         self.spawn_off_field = 0  #: draws rejected because the ball would start outside the field
@@ -315,7 +317,10 @@ class ReceiveTask(SkillTask):
         self._hold_t0 = None
 
     def begin_step(self, seen: WorldState, robot: int) -> None:
-        self._seen = seen
+        self._seen, self._robot = seen, robot
+        if self.action_form == "pressed":
+            self._pressed = receive_press_active(receive_pressed_features(seen, robot, self.robot_params,
+                                                                          self.ball_params))
 
     def base_action(self, seen: WorldState, robot: int = 0) -> np.ndarray:
         """The hand-coded receive's (vx, vy, omega) in the state ``seen``."""
@@ -328,11 +333,10 @@ class ReceiveTask(SkillTask):
 
     def env_action(self, action: np.ndarray) -> np.ndarray:
         a = np.clip(action, -1.0, 1.0)
-        if self.action_form == "pressed" and not receive_press_active(
-                receive_pressed_features(self._seen, 0, self.robot_params, self.ball_params)):
+        if self.action_form == "pressed" and not self._pressed:
             a = np.zeros(3, np.float32)  # outside the press the pressed receive is the hand-coded one
         if self.action_form in RECEIVE_RESIDUAL_FORMS:
-            a = receive_residual_action(self.base_action(self._seen), a)
+            a = receive_residual_action(self.base_action(self._seen, self._robot), a)
         return expand_receive_action(a)
 
     def judge(self, truth: WorldState, robot: int, events: list[dict], t: float) -> Judgement:

@@ -194,16 +194,16 @@ class SkillDef:
         return self.learned_class()(field, robot, ball, checkpoint=checkpoint, **kwargs)
 
 
-def direct_env_action(expand: Callable[[Any], np.ndarray], skill: str, residual_spec: str, learned: str,
-                      env: str, action3: Any, mapping: str | None = None) -> np.ndarray:
-    """``to_env_action`` of a skill task with a ``direct`` and a ``residual`` action form
-    (bind the first five arguments with :func:`functools.partial`): ``expand(action3)``
-    for a direct action; a residual action is a correction of the hand-coded skill's
-    action and needs the world state, so it is refused (ValueError naming ``learned`` and
-    ``env``, which apply it)."""
-    if mapping == "residual":
-        raise ValueError(f"a residual {skill} action ({residual_spec}) is a correction of the hand-coded {skill}'s "
-                         f"action and needs the world state: use {learned} or {env}(action_form='residual')")
+def direct_env_action(expand: Callable[[Any], np.ndarray], skill: str, residual_specs: Mapping[str, str],
+                      learned: str, env: str, action3: Any, mapping: str | None = None) -> np.ndarray:
+    """``to_env_action`` of a skill task with a ``direct`` action form and residual ones
+    (``residual_specs``: action-mapping name -> spec; bind the first five arguments with
+    :func:`functools.partial`): ``expand(action3)`` for a direct action; a residual action
+    is a correction of the hand-coded skill's action and needs the world state, so it is
+    refused (ValueError naming ``learned`` and ``env``, which apply it)."""
+    if mapping in residual_specs:
+        raise ValueError(f"a residual {skill} action ({residual_specs[mapping]}) is a correction of the hand-coded "
+                         f"{skill}'s action and needs the world state: use {learned} or {env}(action_form={mapping!r})")
     return expand(action3)
 
 

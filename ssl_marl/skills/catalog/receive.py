@@ -7,7 +7,8 @@ Three forms (registry action mappings): ``direct``
 receive's action, so an untrained actor starts at the hand-coded behaviour), and
 ``pressed`` (``receive/v3``: the residual action on 18 values, the 11 and the opponent
 nearest the ball's path, trained with interceptors pressing the pass). The
-shipped actor, when there is one, is residual (docs/RESULTS.md, "Passing skills")."""
+shipped actor, when there is one, is the pressed one (docs/RESULTS.md, "Receive under
+pressure")."""
 
 from __future__ import annotations
 
@@ -19,13 +20,9 @@ from ..passing_features import (RECEIVE_ACTION_FORMS, RECEIVE_NAMES, RECEIVE_PRE
 from ..registry import PRETRAINED_DIR, SkillDef, SkillTaskDef, direct_env_action, register
 
 _ACTOR = PRETRAINED_DIR / "receive.pt"
-_direct = functools.partial(direct_env_action, expand_receive_action,
-                            "receive", "receive/v2", "LearnedReceive", "ReceiveEnv")
-
-
-def _to_env(action3, mapping: str | None = None):
-    """The direct form's (5,) env action; the residual forms are refused (they need the world state)."""
-    return _direct(action3, "residual" if mapping in RECEIVE_RESIDUAL_FORMS else mapping)
+_to_env = functools.partial(direct_env_action, expand_receive_action, "receive",
+                            {form: RECEIVE_ACTION_FORMS[form] for form in RECEIVE_RESIDUAL_FORMS},
+                            "LearnedReceive", "ReceiveEnv")
 
 
 def _drive(env, skill):

@@ -19,7 +19,7 @@ from ..registry import PRETRAINED_DIR, SkillDef, SkillTaskDef, direct_env_action
 
 _ACTOR = PRETRAINED_DIR / "redirect.pt"
 _direct_or_residual = functools.partial(direct_env_action, expand_redirect_action,
-                                        "redirect", "redirect/v2", "LearnedRedirect", "RedirectEnv")
+                                        "redirect", {"residual": "redirect/v2"}, "LearnedRedirect", "RedirectEnv")
 
 
 def _to_env(action3, mapping: str | None = None):
