@@ -225,6 +225,9 @@ SKILLS_99100_LANE_POOLED = [("attack-learned with the pressed receive, lane gate
                              ((SKILLS_99110[0], "blue"), (SKILLS_99110[1], "yellow"))),
                             ("attack-learned (shipped pressed receive) vs attack-baseline (commit ca1bd94)",
                              ((SKILLS_99120[0], "blue"), (SKILLS_99120[1], "yellow"))),
+                            ("the 40 with the shipped receive (seeds never used in tuning)",
+                             ((SKILLS_99110[0], "blue"), (SKILLS_99110[1], "yellow"),
+                              (SKILLS_99120[0], "blue"), (SKILLS_99120[1], "yellow"))),
                             ("all 60", ((SKILLS_99100_LANE[0], "blue"), (SKILLS_99100_LANE[1], "yellow"),
                                         (SKILLS_99110[0], "blue"), (SKILLS_99110[1], "yellow"),
                                         (SKILLS_99120[0], "blue"), (SKILLS_99120[1], "yellow")))]
