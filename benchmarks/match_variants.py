@@ -20,6 +20,8 @@ match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
   an open-play setup turns the plan urgent: the passer kicks once it faces the receive point);
 * ``receiver-guard``: the plain format with the decisions' ``receiver_guard_m`` at 1 m (a
   pass's last metre is the receiver's where it gets there before the opponents);
+* ``pass-0.5`` / ``pass-0.65``: the plain format with the decisions' ``min_pass_success`` at
+  0.5 / 0.65 (default 0.35: a pass rated less likely to arrive is not considered);
 * ``redirect-4.5``: the plain format with passes into a redirect kicked, and rated, to arrive
   at 4.5 m/s (``AttackParams.redirect_arrive_speed``, default 2.5; ``ATTACK_PARAMS``);
 * ``ssl`` / ``ssl-receiver-guard``: the SSL format (``--format ssl``: halves, STOP, free kicks,
@@ -67,7 +69,8 @@ PASSING = {"keep-2s": {"max_keep_s": 2.0}, "keep-inf": {"max_keep_s": math.inf},
            "contested-kick": {"contested_kick": True},
            "press-0.6": {"contested_kick": True, "press_urgent_m": 0.6}}
 #: ``ATTACK_PASSING.decision`` and ``.restart_decision`` fields of each variant
-DECISION = {"receiver-guard": {"receiver_guard_m": 1.0}, "ssl-receiver-guard": {"receiver_guard_m": 1.0}}
+DECISION = {"receiver-guard": {"receiver_guard_m": 1.0}, "ssl-receiver-guard": {"receiver_guard_m": 1.0},
+            "pass-0.5": {"min_pass_success": 0.5}, "pass-0.65": {"min_pass_success": 0.65}}
 #: ``ATTACK_PARAMS`` fields of each variant
 ATTACK = {"redirect-4.5": {"redirect_arrive_speed": 4.5}}
 #: ``ATTACK_SPOTS`` fields of each variant
@@ -130,7 +133,7 @@ def summarize(rows: list[dict], seconds: float) -> dict:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("variant", choices=sorted({*RULES, *FORMAT, *ATTACK, *SPOTS, *OPP_DEFENDERS}),
+    ap.add_argument("variant", choices=sorted({*RULES, *FORMAT, *DECISION, *ATTACK, *SPOTS, *OPP_DEFENDERS}),
                     help="the variant (module docstring)")
     ap.add_argument("--blue", default="attack-learned", help="blue team kind (default attack-learned)")
     ap.add_argument("--yellow", default="baseline", help="yellow team kind (default baseline)")
