@@ -65,6 +65,28 @@ def test_exported_actor_matches_pytorch(skill, tmp_path, capsys):
     assert json.loads(props["ssl_marl.obs_normalisation"])["kind"] == "none"
     assert len(json.loads(props["ssl_marl.obs_names"])) == obs.shape[1]
     assert json.loads(props["ssl_marl.metadata"])["skill"] == skill
+    form = json.loads(props["ssl_marl.action_form"])
+    residual = meta["obs_spec"] in ("receive/v2", "receive/v3", "redirect/v2")
+    assert form["kind"] == ("residual" if residual else "aim" if meta["obs_spec"] == "redirect/v3" else "direct")
+
+
+def test_the_pressed_receive_form_in_the_metadata_is_the_skill_s_rule():
+    """A deployment rebuilds the pressed receive from the metadata alone: its gate, read
+    over the named input columns, is ``receive_press_active``; its combination rule is
+    ``receive_residual_action``."""
+    from ssl_marl.skills.onnx_export import action_form_of
+    from ssl_marl.skills.passing_features import (RECEIVE_PRESSED_NAMES, receive_press_active,
+                                                  receive_residual_action)
+
+    form = action_form_of("receive/v3")
+    obs = _observations(ENV_IDS["receive"], 600, action_form="pressed", interceptors=1, hold_s=0.1)
+    gate = [bool(eval(form["gate"]["rule"], {"abs": abs}, dict(zip(RECEIVE_PRESSED_NAMES, map(float, x)))))
+            for x in obs]
+    assert gate == [receive_press_active(x) for x in obs] and 0 < sum(gate) < len(gate)
+    rng = np.random.default_rng(3)
+    base, out = rng.uniform(-1, 1, (200, 3)), rng.uniform(-2, 2, (200, 3))
+    rebuilt = np.clip(base + form["scale"] * np.clip(out, -1, 1), -1, 1)
+    np.testing.assert_allclose(rebuilt, [receive_residual_action(b, o) for b, o in zip(base, out)], atol=1e-12)
 
 
 def test_export_refuses_a_wrong_suffix_before_loading(tmp_path, capsys):

@@ -74,6 +74,16 @@ def test_manifest_records_provenance(tmp_path):
     assert git_state(tmp_path) == {"commit": UNRECORDED, "dirty": UNRECORDED}
 
 
+def test_git_state_of_a_copied_tree_takes_the_named_commit(tmp_path, monkeypatch):
+    """A tree without git metadata records the commit its sender names, marked as named."""
+    from ssl_marl.runners.provenance import COMMIT_ENV
+
+    monkeypatch.delenv(COMMIT_ENV, raising=False)
+    assert git_state(tmp_path) == {"commit": UNRECORDED, "dirty": UNRECORDED}
+    monkeypatch.setenv(COMMIT_ENV, "ab" * 20)
+    assert git_state(tmp_path) == {"commit": "ab" * 20, "dirty": UNRECORDED, "source": COMMIT_ENV}
+
+
 def test_compare_episodes_reads_both_layouts(tmp_path):
     cmp = _compare_module()
     rows = [dict(r, wall_time_s=float(i)) for i, r in enumerate(ROWS)]

@@ -30,6 +30,9 @@ MANIFEST_FORMAT = 1
 PACKAGE_DIR = Path(__file__).resolve().parents[1]
 REPO_DIR = PACKAGE_DIR.parent
 ACTOR_FOLDERS = ("ssl_marl/skills/pretrained", "ssl_marl/decisions/pretrained")
+#: environment variable naming the commit of a source tree copied without its git metadata
+#: (a tree sent to another machine); read only where git gives no commit
+COMMIT_ENV = "SSL_MARL_GIT_COMMIT"
 
 
 def sha256_file(path: str | os.PathLike) -> str:
@@ -42,8 +45,11 @@ def sha256_file(path: str | os.PathLike) -> str:
 
 
 def git_state(repo: Path = REPO_DIR) -> dict[str, Any]:
-    """``{"commit": HEAD's hash, "dirty": True when tracked files differ from HEAD}``;
-    ``UNRECORDED`` for both outside a git checkout or without git."""
+    """``{"commit": HEAD's hash, "dirty": True when tracked files differ from HEAD}``.
+
+    Outside a git checkout or without git: the commit named by the environment variable
+    :data:`COMMIT_ENV` (the tree's sender vouches for it; ``dirty`` then ``UNRECORDED``, and
+    ``"source"`` names the variable), else ``UNRECORDED`` for both."""
     def git(*args: str) -> str:
         return subprocess.run(["git", "-C", str(repo), *args], check=True, capture_output=True,
                               text=True, timeout=30).stdout.strip()
@@ -51,6 +57,9 @@ def git_state(repo: Path = REPO_DIR) -> dict[str, Any]:
         commit = git("rev-parse", "HEAD")
         dirty = bool(git("status", "--porcelain", "--untracked-files=no"))
     except (OSError, subprocess.SubprocessError):
+        named = os.environ.get(COMMIT_ENV, "").strip()
+        if named:
+            return {"commit": named, "dirty": UNRECORDED, "source": COMMIT_ENV}
         return {"commit": UNRECORDED, "dirty": UNRECORDED}
     return {"commit": commit, "dirty": dirty}
 

@@ -15,6 +15,11 @@ build the input and read the output is stored as string ``metadata_props``:
   are fed raw (metres, m/s, rad/s, sin/cos); no mean/std is applied;
 * ``ssl_marl.action_names`` / ``ssl_marl.action_low`` / ``ssl_marl.action_high``:
   what each output column means and the env's action bounds;
+* ``ssl_marl.action_form``: JSON saying how the output becomes the robot's command
+  (:func:`action_form_of`): ``{"kind": "direct"}`` for most specs; for a residual spec
+  (``receive/v2``, ``receive/v3``, ``redirect/v2``) the hand-coded controller it corrects,
+  the rule that combines them and, for ``receive/v3``, the gate outside which the
+  hand-coded action alone is sent; for ``redirect/v3`` the aim point it chooses;
 * ``ssl_marl.metadata``: the checkpoint's full metadata as JSON (skill, seed,
   samples, hyper-parameters, git commit).
 
@@ -54,6 +59,41 @@ def _task_names(skill: str, spec: str) -> tuple[tuple[str, ...] | None, tuple[st
         return tuple(task.feature_names), tuple(task.action_names)
 
 
+def action_form_of(spec: str) -> dict[str, Any]:
+    """How a network of observation spec ``spec`` acts: ``{"kind": "direct"}`` (its output is
+    the task action), or the residual / aim form a deployment must rebuild around it (the
+    hand-coded controller, the combination rule with its scale, the press gate), read from
+    the constants the skills themselves use."""
+    from .passing_features import (RECEIVE_PRESS_AHEAD_M, RECEIVE_PRESS_GATE_M, RECEIVE_RESIDUAL_SCALE,
+                                   RECEIVE_SPEC_PRESSED, RECEIVE_SPEC_RESIDUAL)
+    from .redirect import REDIRECT_AIM_POST_MARGIN, REDIRECT_RESIDUAL_SCALE, REDIRECT_SPEC_AIM, REDIRECT_SPEC_RESIDUAL
+
+    def residual(base: str, scale: float) -> dict[str, Any]:
+        return {"kind": "residual", "base": base, "scale": scale,
+                "combine": f"action = clip(base + {scale} * clip(output, -1, 1), -1, 1), per column",
+                "note": "base is the hand-coded controller's (vx, vy, omega) in the same state and frame; "
+                        "an output of 0 is the hand-coded controller"}
+
+    if spec == RECEIVE_SPEC_RESIDUAL:
+        return residual("ssl_marl.skills.passing.ReceiveBaseline (the hand-coded receive)", RECEIVE_RESIDUAL_SCALE)
+    if spec == RECEIVE_SPEC_PRESSED:
+        return {**residual("ssl_marl.skills.passing.ReceiveBaseline (the hand-coded receive)", RECEIVE_RESIDUAL_SCALE),
+                "gate": {"rule": f"opp_present > 0.5 and on_dribbler < 0.5 and abs(opp_line_offset) <= "
+                                 f"{RECEIVE_PRESS_GATE_M} and opp_gap <= gap - {RECEIVE_PRESS_AHEAD_M}",
+                         "names": "the input columns of ssl_marl.obs_names",
+                         "outside": "the base action alone (the network is not run)",
+                         "function": "ssl_marl.skills.passing_features.receive_press_active"}}
+    if spec == REDIRECT_SPEC_RESIDUAL:
+        return residual("ssl_marl.skills.redirect.RedirectBaseline (the hand-coded redirect)",
+                        REDIRECT_RESIDUAL_SCALE)
+    if spec == REDIRECT_SPEC_AIM:
+        return {"kind": "aim", "base": "ssl_marl.skills.redirect.RedirectBaseline's contact planner",
+                "combine": f"output[0] in [-1, 1] is the aim point's y along the goal mouth: -1 / +1 = "
+                           f"{REDIRECT_AIM_POST_MARGIN} m inside the right / left post "
+                           "(ssl_marl.skills.redirect.redirect_aim_point)"}
+    return {"kind": "direct"}
+
+
 def onnx_metadata(meta: dict[str, Any]) -> dict[str, str]:
     """The ``metadata_props`` (str -> str) written for a checkpoint's metadata."""
     skill = str(meta.get("skill"))
@@ -70,6 +110,7 @@ def onnx_metadata(meta: dict[str, Any]) -> dict[str, str]:
         "ssl_marl.input": json.dumps({"name": INPUT_NAME, "shape": ["batch", obs_dim], "dtype": "float32"}),
         "ssl_marl.output": json.dumps({"name": OUTPUT_NAME, "shape": ["batch", act_dim], "dtype": "float32",
                                        "range": [-1.0, 1.0]}),
+        "ssl_marl.action_form": json.dumps(action_form_of(str(meta.get("obs_spec")))),
         "ssl_marl.metadata": json.dumps(meta, sort_keys=True),
     }
     if names is not None and len(names) == obs_dim:
