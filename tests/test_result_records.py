@@ -75,13 +75,17 @@ def test_manifest_records_provenance(tmp_path):
 
 
 def test_git_state_of_a_copied_tree_takes_the_named_commit(tmp_path, monkeypatch):
-    """A tree without git metadata records the commit its sender names, marked as named."""
+    """A copied tree records the commit its sender names, marked as named, beside its own answer."""
     from ssl_marl.runners.provenance import COMMIT_ENV
 
     monkeypatch.delenv(COMMIT_ENV, raising=False)
     assert git_state(tmp_path) == {"commit": UNRECORDED, "dirty": UNRECORDED}
     monkeypatch.setenv(COMMIT_ENV, "ab" * 20)
-    assert git_state(tmp_path) == {"commit": "ab" * 20, "dirty": UNRECORDED, "source": COMMIT_ENV}
+    own = {"commit": UNRECORDED, "dirty": UNRECORDED}
+    assert git_state(tmp_path) == {"commit": "ab" * 20, "dirty": UNRECORDED, "source": COMMIT_ENV, "checkout": own}
+    here = git_state()  # this checkout (or no git): a name equal to its own commit changes nothing
+    monkeypatch.setenv(COMMIT_ENV, str(here["commit"]))
+    assert git_state() == here
 
 
 def test_compare_episodes_reads_both_layouts(tmp_path):

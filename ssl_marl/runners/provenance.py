@@ -47,21 +47,23 @@ def sha256_file(path: str | os.PathLike) -> str:
 def git_state(repo: Path = REPO_DIR) -> dict[str, Any]:
     """``{"commit": HEAD's hash, "dirty": True when tracked files differ from HEAD}``.
 
-    Outside a git checkout or without git: the commit named by the environment variable
-    :data:`COMMIT_ENV` (the tree's sender vouches for it; ``dirty`` then ``UNRECORDED``, and
-    ``"source"`` names the variable), else ``UNRECORDED`` for both."""
+    Where the environment variable :data:`COMMIT_ENV` names another commit (a tree copied to
+    another machine, whose own git metadata, if any, is not the tree's; the sender vouches for
+    the name): that commit, ``dirty`` ``UNRECORDED``, ``"source"`` naming the variable and the
+    checkout's own answer under ``"checkout"``. Outside a git checkout or without git and no
+    name given: ``UNRECORDED`` for both."""
     def git(*args: str) -> str:
         return subprocess.run(["git", "-C", str(repo), *args], check=True, capture_output=True,
                               text=True, timeout=30).stdout.strip()
+    named = os.environ.get(COMMIT_ENV, "").strip()
     try:
-        commit = git("rev-parse", "HEAD")
-        dirty = bool(git("status", "--porcelain", "--untracked-files=no"))
+        own: dict[str, Any] = {"commit": git("rev-parse", "HEAD"),
+                               "dirty": bool(git("status", "--porcelain", "--untracked-files=no"))}
     except (OSError, subprocess.SubprocessError):
-        named = os.environ.get(COMMIT_ENV, "").strip()
-        if named:
-            return {"commit": named, "dirty": UNRECORDED, "source": COMMIT_ENV}
-        return {"commit": UNRECORDED, "dirty": UNRECORDED}
-    return {"commit": commit, "dirty": dirty}
+        own = {"commit": UNRECORDED, "dirty": UNRECORDED}
+    if named and named != own["commit"]:
+        return {"commit": named, "dirty": UNRECORDED, "source": COMMIT_ENV, "checkout": own}
+    return own
 
 
 def shipped_actors(repo: Path = REPO_DIR) -> dict[str, str]:

@@ -209,12 +209,16 @@ DECISION_97_POOLED = [("attack-learned, learned decision vs attack-learned, 11v1
 #: the attacking team with learned skills against itself with hand-coded skills, both colours (commit e395ab2)
 RECEIVE_PRESSED = ["receive_pressed_baseline", "receive_pressed_learned", "receive_pressed_gated",
                    "receive_pressed_baseline_realistic", "receive_pressed_gated_realistic", "receive_gated_plain",
-                   "receive_pressed_lane", "receive_pressed_lane_realistic"]
+                   "receive_pressed_lane", "receive_pressed_lane_realistic", "receive_pressed_lane2",
+                   "receive_pressed_lane2_realistic", "receive_lane2_plain", "receive_lane2_plain_div_a"]
 RECEIVE_PRESSED_RUNS = ["receive_pressed_s0", "receive_pressed_bc1_s0", "receive_pressed_bc01_s0", "receive_pressed_gated_s0",
-                        "receive_pressed_gated_s1"]
+                        "receive_pressed_gated_s1", "receive_pressed_lane_s0"]
 SKILLS_99100 = ["match_pressed_receive_vs_attack_baseline_600_99100", "match_attack_baseline_vs_pressed_receive_600_99130"]
 SKILLS_99100_POOLED = [("attack-learned with the pressed receive, first gate, vs attack-baseline (commit 15af20f)",
                         ((SKILLS_99100[0], "blue"), (SKILLS_99100[1], "yellow")))]
+SKILLS_99200 = ["match_attack_learned_vs_attack_baseline_600_99200", "match_attack_baseline_vs_attack_learned_600_99230"]
+SKILLS_99200_POOLED = [("attack-learned (receive retrained under the lane gate) vs attack-baseline (commit 845ac88)",
+                        ((SKILLS_99200[0], "blue"), (SKILLS_99200[1], "yellow")))]
 SKILLS_99100_LANE = ["match_pressed_receive_lane_vs_attack_baseline_600_99100",
                      "match_attack_baseline_vs_pressed_receive_lane_600_99130"]
 SKILLS_99110 = ["match_attack_learned_vs_attack_baseline_600_99110", "match_attack_baseline_vs_attack_learned_600_99140"]
@@ -300,6 +304,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "skills_99100_pooled": lambda r: m.pooled_sides(r, SKILLS_99100_POOLED),
     "skills_99100_lane": lambda r: m.series_600(r, SKILLS_99100_LANE + SKILLS_99110 + SKILLS_99120),
     "skills_99100_lane_pooled": lambda r: m.pooled_sides(r, SKILLS_99100_LANE_POOLED),
+    "skills_99200": lambda r: m.series_600(r, SKILLS_99200),
+    "skills_99200_pooled": lambda r: m.pooled_sides(r, SKILLS_99200_POOLED),
     "skills_97200": lambda r: m.series_600(r, SKILLS_97200),
     "skills_97200_pooled": lambda r: m.pooled_sides(r, SKILLS_97200_POOLED),
     "attack_targets": lambda r: m.series_600(r, ATTACK_TARGETS),
