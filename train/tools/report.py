@@ -135,6 +135,13 @@ MATCH_VARIANTS = [("plain format (play restarts at once)", "plain.json"),
                    ("press/press-0.6-61500.json", "press/press-0.6-61510.json"))]
 #: the same matches against a weakened baseline defence and with the supports' edge spots
 #: (``benchmarks/match_variants.py``; the first row's files are the pressed-passer rows above)
+MATCH_VARIANTS_SELFPLAY_PASS = [("self-play, plain format", "selfplay_pass/plain-61700.json"),
+                                ("both teams consider only passes rated >= 0.5 (`pass-0.5`)",
+                                 "selfplay_pass/pass-0.5-61700.json"),
+                                ("both teams consider only passes rated >= 0.65 (`pass-0.65`)",
+                                 "selfplay_pass/pass-0.65-61700.json"),
+                                ("both teams with the 1 m receiver guard (`receiver-guard`)",
+                                 "selfplay_pass/receiver-guard-61700.json")]
 MATCH_VARIANTS_DEFENCE = [("the attacking team as it plays (pressed passer; seeds 61500-61509 as above)",
                            "press/press-0.6-61500.json"),
                           ("the opponent's plays keep one defender on the ball-goal line (`opp-one-defender`)",
@@ -319,6 +326,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
                                                    "colour_mirror_attack_learned.json"]),
     "match_variants": lambda r: m.match_variants(r, MATCH_VARIANTS),
     "match_variants_defence": lambda r: m.match_variants(r, MATCH_VARIANTS_DEFENCE),
+    "match_variants_selfplay_pass": lambda r: m.match_variants(r, MATCH_VARIANTS_SELFPLAY_PASS),
     "shot_outcomes": lambda r: m.shot_outcomes(r / "tuning" / "shot_outcome_probe.json"),
     "pass_losses": lambda r: m.pass_losses([r / "tuning" / "pass_loss_probe_d8f659c.json",
                                             r / "tuning" / "pass_loss_probe_any_speed.json",
