@@ -89,6 +89,18 @@ ATTACK_TARGETS_FAIR_POOLED = [
 ATTACK_TARGETS_PRESS = [n.replace("_94", "_95") for n in ATTACK_TARGETS_FAIR]
 ATTACK_TARGETS_PRESS_POOLED = [(label, tuple((n.replace("_94", "_95"), side) for n, side in parts))
                                for label, parts in ATTACK_TARGETS_FAIR_POOLED]
+#: the targets again with the pressed receive retrained under its gate (commit 845ac88, seeds 99300-99379)
+_SEEDS_99 = {"_94000": "_99300", "_94010": "_99310", "_94100": "_99320", "_94110": "_99330", "_94200": "_99340",
+             "_94300": "_99360", "_94305": "_99365", "_94400": "_99370", "_94405": "_99375"}
+
+
+def _seeds_99(name: str) -> str:
+    return name[:-6] + _SEEDS_99[name[-6:]]
+
+
+ATTACK_TARGETS_99 = [_seeds_99(n) for n in ATTACK_TARGETS_FAIR]
+ATTACK_TARGETS_99_POOLED = [(label, tuple((_seeds_99(n), side) for n, side in parts))
+                            for label, parts in ATTACK_TARGETS_FAIR_POOLED]
 #: self-play series of one team, pooled: blue's surplus over yellow (a colour bias shows here)
 COLOUR_BALANCE = [("attacking team, the robot order decides a contested ball",
                    ("match_attack_learned_selfplay_600", "match_attack_learned_selfplay_600_85000",
@@ -195,6 +207,11 @@ DECISION_SERIES_PRESS = ["match_attack_learned_decision_vs_attack_learned_600_95
 DECISION_PRESS_POOLED = [(label, ((blue, "blue"), (yellow, "yellow"))) for label, blue, yellow in zip(
     ("attack-learned, learned decision vs attack-learned (pressed passer, commit fcb21d2)",
      "the same, `--realism realistic`"), DECISION_SERIES_PRESS[::2], DECISION_SERIES_PRESS[1::2])]
+#: the learned decision against the hand-coded one with the receive retrained under its gate (commit 845ac88)
+DECISION_SERIES_99 = ["match_attack_learned_decision_vs_attack_learned_600_99400",
+                      "match_attack_learned_vs_attack_learned_decision_600_99430"]
+DECISION_99_POOLED = [("attack-learned, learned decision vs attack-learned (commit 845ac88)",
+                       ((DECISION_SERIES_99[0], "blue"), (DECISION_SERIES_99[1], "yellow")))]
 #: the retrained drill actor (blue only) and the improved decision (both colours) against the hand-coded decision
 DECISION_SERIES_98 = ["match_attack_drill_v2_decision_vs_attack_learned_600_98000",
                       "match_attack_improved_decision_vs_attack_learned_600_98100",
@@ -321,6 +338,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "attack_targets_fair_pooled": lambda r: m.pooled_attack(r, ATTACK_TARGETS_FAIR_POOLED),
     "attack_targets_press": lambda r: m.series_600(r, ATTACK_TARGETS_PRESS),
     "attack_targets_press_pooled": lambda r: m.pooled_attack(r, ATTACK_TARGETS_PRESS_POOLED),
+    "attack_targets_99": lambda r: m.series_600(r, ATTACK_TARGETS_99),
+    "attack_targets_99_pooled": lambda r: m.pooled_attack(r, ATTACK_TARGETS_99_POOLED),
     "colour_balance": lambda r: m.colour_balance(r, COLOUR_BALANCE),
     "colour_mirror": lambda r: m.colour_mirror(r, ["colour_mirror_attack_baseline.json",
                                                    "colour_mirror_attack_learned.json"]),
