@@ -30,8 +30,8 @@ MANIFEST_FORMAT = 1
 PACKAGE_DIR = Path(__file__).resolve().parents[1]
 REPO_DIR = PACKAGE_DIR.parent
 ACTOR_FOLDERS = ("ssl_marl/skills/pretrained", "ssl_marl/decisions/pretrained")
-#: environment variable naming the commit of a source tree copied without its git metadata
-#: (a tree sent to another machine); read only where git gives no commit
+#: environment variable naming the commit of a source tree sent to another machine (whose own git
+#: metadata, if any, need not be the tree's); when set, it is the commit a manifest records
 COMMIT_ENV = "SSL_MARL_GIT_COMMIT"
 
 

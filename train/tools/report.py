@@ -316,6 +316,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_series_fair2": lambda r: m.series_600(r, DECISION_SERIES_FAIR2),
     "decision_series_press": lambda r: m.series_600(r, DECISION_SERIES_PRESS),
     "decision_press_pooled": lambda r: m.pooled_sides(r, DECISION_PRESS_POOLED),
+    "decision_series_99": lambda r: m.series_600(r, DECISION_SERIES_99),
+    "decision_99_pooled": lambda r: m.pooled_sides(r, DECISION_99_POOLED),
     "decision_series_97": lambda r: m.series_600(r, DECISION_SERIES_97),
     "decision_series_98": lambda r: m.series_600(r, DECISION_SERIES_98),
     "decision_98_pooled": lambda r: m.pooled_sides(r, DECISION_98_POOLED),
