@@ -64,8 +64,8 @@ def action_form_of(spec: str) -> dict[str, Any]:
     the task action), or the residual / aim form a deployment must rebuild around it (the
     hand-coded controller, the combination rule with its scale, the press gate), read from
     the constants the skills themselves use."""
-    from .passing_features import (RECEIVE_PRESS_AHEAD_M, RECEIVE_PRESS_GATE_M, RECEIVE_RESIDUAL_SCALE,
-                                   RECEIVE_SPEC_PRESSED, RECEIVE_SPEC_RESIDUAL)
+    from .passing_features import (RECEIVE_PRESS_RULE, RECEIVE_RESIDUAL_SCALE, RECEIVE_SPEC_PRESSED,
+                                   RECEIVE_SPEC_RESIDUAL)
     from .redirect import REDIRECT_AIM_POST_MARGIN, REDIRECT_RESIDUAL_SCALE, REDIRECT_SPEC_AIM, REDIRECT_SPEC_RESIDUAL
 
     def residual(base: str, scale: float) -> dict[str, Any]:
@@ -74,13 +74,12 @@ def action_form_of(spec: str) -> dict[str, Any]:
                 "note": "base is the hand-coded controller's (vx, vy, omega) in the same state and frame; "
                         "an output of 0 is the hand-coded controller"}
 
+    receive = residual("ssl_marl.skills.passing.ReceiveBaseline (the hand-coded receive)", RECEIVE_RESIDUAL_SCALE)
     if spec == RECEIVE_SPEC_RESIDUAL:
-        return residual("ssl_marl.skills.passing.ReceiveBaseline (the hand-coded receive)", RECEIVE_RESIDUAL_SCALE)
+        return receive
     if spec == RECEIVE_SPEC_PRESSED:
-        return {**residual("ssl_marl.skills.passing.ReceiveBaseline (the hand-coded receive)", RECEIVE_RESIDUAL_SCALE),
-                "gate": {"rule": f"opp_present > 0.5 and on_dribbler < 0.5 and abs(opp_line_offset) <= "
-                                 f"{RECEIVE_PRESS_GATE_M} and opp_gap <= gap - {RECEIVE_PRESS_AHEAD_M}",
-                         "names": "the input columns of ssl_marl.obs_names",
+        return {**receive,
+                "gate": {"rule": RECEIVE_PRESS_RULE, "names": "the input columns of ssl_marl.obs_names",
                          "outside": "the base action alone (the network is not run)",
                          "function": "ssl_marl.skills.passing_features.receive_press_active"}}
     if spec == REDIRECT_SPEC_RESIDUAL:

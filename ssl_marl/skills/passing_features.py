@@ -98,6 +98,9 @@ RECEIVE_PRESS_GATE_M = 3.0
 #: robot (the pressed task's interceptors start at most 0.9 of the way from the ball to the robot;
 #: a marker beside or behind the receiver does not switch the correction on)
 RECEIVE_PRESS_AHEAD_M = 0.3
+#: :func:`receive_press_active` written over the ``receive/v3`` state names (an exported model's metadata)
+RECEIVE_PRESS_RULE = (f"opp_present > 0.5 and on_dribbler < 0.5 and abs(opp_line_offset) <= {RECEIVE_PRESS_GATE_M}"
+                      f" and opp_gap <= gap - {RECEIVE_PRESS_AHEAD_M}")
 #: largest correction (fraction of each velocity / turn-rate limit) a residual action adds
 RECEIVE_RESIDUAL_SCALE = 0.5
 PASS_SPEED_MIN = 1.0  #: m/s, the slowest kick the pass action can ask for
@@ -277,7 +280,8 @@ def receive_press_active(features: np.ndarray) -> bool:
     least :data:`RECEIVE_PRESS_AHEAD_M` closer to the ball along it than the robot (a
     robot that can cut the pass off), and the ball is not on the dribbler. Elsewhere the
     pressed receive is the hand-coded one (the plain task, a ball already under control,
-    a marker beside or behind the receiver)."""
+    a marker beside or behind the receiver). :data:`RECEIVE_PRESS_RULE` is the same rule
+    over the state names."""
     f = np.asarray(features, dtype=np.float64)
     return bool(f[17] > 0.5 and f[10] < 0.5 and abs(f[15]) <= RECEIVE_PRESS_GATE_M
                 and f[16] <= f[8] - RECEIVE_PRESS_AHEAD_M)
