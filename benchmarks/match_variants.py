@@ -18,6 +18,13 @@ match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
   ball during a pass setup turns the plan urgent instead of dropping it);
 * ``press-0.6``: that and ``press_urgent_m`` 0.6 (an opponent within 0.6 m of the ball during
   an open-play setup turns the plan urgent: the passer kicks once it faces the receive point);
+* ``aim-reach``: the plain format with the carrier's shots aimed at the line the opponents
+  reach last (``PassingParams.aim_reach``; :mod:`ssl_marl.plays.shot_lines`) instead of the
+  widest open part of the goal mouth;
+* ``reach-shot``: the plain format with the carrier's decision shooting also when, within
+  3.5 m of the goal centre, the best shot line has a margin of at least 0.05 s
+  (``AttackParams.reach_shot_s``; :mod:`ssl_marl.plays.shot_lines`), whatever the open goal
+  interval (the shot itself as before);
 * ``receiver-guard``: the plain format with the decisions' ``receiver_guard_m`` at 1 m (a
   pass's last metre is the receiver's where it gets there before the opponents);
 * ``pass-0.5`` / ``pass-0.65``: the plain format with the decisions' ``min_pass_success`` at
@@ -61,18 +68,19 @@ RULES = {"plain": {}, "free-kick": {"ssl_restarts": True, "stop_s": 0.0},
          "free-kick-stop": {"ssl_restarts": True, "stop_s": 1.0},
          "free-kick-stop-fouls": {"ssl_restarts": True, "stop_s": 1.0, "fouls": True},
          "keep-2s": {}, "keep-inf": {}, "keep-pass": {}, "receiver-guard": {},
-         "contested-kick": {}, "press-0.6": {}}
+         "contested-kick": {}, "press-0.6": {}, "aim-reach": {}, "reach-shot": {}}
 #: the match format of each variant (:func:`ssl_marl.runners.match.format_options`; default plain)
 FORMAT = {"ssl": "ssl", "ssl-receiver-guard": "ssl"}
 #: ``ATTACK_PASSING`` fields of each variant
 PASSING = {"keep-2s": {"max_keep_s": 2.0}, "keep-inf": {"max_keep_s": math.inf}, "keep-pass": {"keep_expiry": "pass"},
            "contested-kick": {"contested_kick": True},
-           "press-0.6": {"contested_kick": True, "press_urgent_m": 0.6}}
+           "press-0.6": {"contested_kick": True, "press_urgent_m": 0.6},
+           "aim-reach": {"aim_reach": True}}
 #: ``ATTACK_PASSING.decision`` and ``.restart_decision`` fields of each variant
 DECISION = {"receiver-guard": {"receiver_guard_m": 1.0}, "ssl-receiver-guard": {"receiver_guard_m": 1.0},
             "pass-0.5": {"min_pass_success": 0.5}, "pass-0.65": {"min_pass_success": 0.65}}
 #: ``ATTACK_PARAMS`` fields of each variant
-ATTACK = {"redirect-4.5": {"redirect_arrive_speed": 4.5}}
+ATTACK = {"redirect-4.5": {"redirect_arrive_speed": 4.5}, "reach-shot": {"reach_shot_s": 0.05}}
 #: ``ATTACK_SPOTS`` fields of each variant
 SPOTS = {"edge-spots": {"edge_spots": 5}}
 #: defenders the standard plays keep in each variant (the rest of their roles unchanged)

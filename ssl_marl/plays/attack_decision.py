@@ -62,6 +62,7 @@ from ..physics.ball_flight import flight_height
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..skills.chip_pass import lane_chip
+from .shot_lines import best_shot_line
 from .pass_decision import (Choice, DecisionParams, choose, evaluate_passes, keep_value, margin_success,
                             open_goal_interval, opponent_reach_time, pass_candidates, receive_value, shot_value,
                             teammates_except)
@@ -89,6 +90,11 @@ class AttackParams:
         min_redirect_shot: a redirect needs at least this receiver shot value.
         redirect_arrive_speed: a pass into a redirect is kicked, and its success rated, to
             arrive this fast (m/s; a firm ball for the kicker to meet).
+        reach_shot_s: SHOOT also when, within ``reach_shot_max_m`` of the goal centre, the
+            best shot line (:func:`~ssl_marl.plays.shot_lines.best_shot_line`: the line the
+            goalie and defenders reach last) has a margin of at least this (s), whatever the
+            open goal interval; None: off (the shot value alone).
+        reach_shot_max_m: see ``reach_shot_s`` (m).
     """
 
     decision: DecisionParams = field(default_factory=DecisionParams)
@@ -99,12 +105,20 @@ class AttackParams:
     w_redirect: float = 1.0
     min_redirect_shot: float = 0.2
     redirect_arrive_speed: float = 2.5
+    reach_shot_s: float | None = None
+    reach_shot_max_m: float = 3.5
 
     def __post_init__(self) -> None:
         if not 0.0 <= self.redirect_full < self.redirect_zero:
             raise ValueError("AttackParams.redirect_full must be >= 0 and smaller than redirect_zero")
         if not (isinstance(self.chip_samples, int) and self.chip_samples >= 2):
             raise ValueError(f"AttackParams.chip_samples must be an integer >= 2, got {self.chip_samples!r}")
+        r = self.reach_shot_s
+        if r is not None and not (isinstance(r, (int, float)) and math.isfinite(r)):
+            raise ValueError(f"AttackParams.reach_shot_s must be None or a finite margin (s), got {r!r}")
+        m = self.reach_shot_max_m
+        if not (isinstance(m, (int, float)) and math.isfinite(m) and m > 0):
+            raise ValueError(f"AttackParams.reach_shot_max_m must be a positive finite distance (m), got {m!r}")
 
 
 @dataclass(frozen=True)
@@ -251,6 +265,15 @@ def evaluate_attack_passes(p: np.ndarray, carrier: int, teammates: np.ndarray, o
     return options + evaluate_redirects(p, flat, mates, opp, field_geom, rp, bp, params)
 
 
+def reach_shot(p: np.ndarray, mates: np.ndarray, carrier: int, opp: np.ndarray, field_geom: FieldGeometry,
+               rp: RobotParams, bp: BallParams, params: AttackParams) -> bool:
+    """``params.reach_shot_s``'s rule: the best shot line from ``p`` has at least that margin (s)."""
+    if params.reach_shot_s is None or float(np.hypot(*(field_geom.goal_center(+1) - p))) > params.reach_shot_max_m:
+        return False
+    _, margin = best_shot_line(p, opp, np.delete(mates, carrier, axis=0), field_geom, rp, bp, params.decision)
+    return margin >= params.reach_shot_s
+
+
 def decide_attack(p: np.ndarray, carrier: int, teammates: np.ndarray, opponents: np.ndarray,
                   field_geom: FieldGeometry, rp: RobotParams | None = None, bp: BallParams | None = None,
                   params: AttackParams | None = None, candidates: tuple[int, ...] | None = None,
@@ -268,7 +291,7 @@ def decide_attack(p: np.ndarray, carrier: int, teammates: np.ndarray, opponents:
         raise ValueError(f"decide_attack: carrier index {carrier} outside the {len(mates)} teammates")
     shot = shot_value(p, opp, np.delete(mates, carrier, axis=0), field_geom, rp, bp, dp)
     keep = keep_value(p, opp, rp, bp, dp)
-    if shot >= dp.shoot_threshold:
+    if shot >= dp.shoot_threshold or reach_shot(p, mates, carrier, opp, field_geom, rp, bp, params):
         return AttackDecision(AttackChoice.SHOOT, shot, keep)
     cands = candidates if candidates is not None else tuple(k for k in range(len(mates)) if k != carrier)
     options = evaluate_attack_passes(p, carrier, mates, opp, field_geom, rp, bp, params, cands, heading)
@@ -280,4 +303,4 @@ def decide_attack(p: np.ndarray, carrier: int, teammates: np.ndarray, opponents:
 
 __all__ = ["AttackChoice", "AttackParams", "AttackOption", "AttackDecision", "chip_margin",
            "evaluate_chips", "redirect_factor", "redirect_geometry", "evaluate_redirects",
-           "evaluate_attack_passes", "decide_attack"]
+           "evaluate_attack_passes", "reach_shot", "decide_attack"]

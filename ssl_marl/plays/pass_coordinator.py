@@ -113,6 +113,8 @@ class PassingParams:
         control_s: the ball on the receiver's dribbler this long completes the pass (s).
         snap_shot: the attacker kicks as soon as its heading lies between the posts
             (:class:`~ssl_marl.plays.shoot.ShootParams`, ``snap_shot``).
+        aim_reach: the attacker aims its shots at the line the opponents reach last
+            (:class:`~ssl_marl.plays.shoot.ShootParams`, ``aim_reach``).
         decide_at_restart: at the referee's kickoff or free kick for us (``ctx.set_piece``:
             the opponents keep 0.5 m until it is taken; the restart play's
             ``prepare(restart=True)``) decide before anyone holds the ball: the
@@ -153,6 +155,7 @@ class PassingParams:
     settle_s: float = 0.5
     control_s: float = 0.1
     snap_shot: bool = True
+    aim_reach: bool = False
     contested_kick: bool = False
     decide_at_restart: bool = False
     max_restart_setup_s: float = 5.0

@@ -93,7 +93,8 @@ def passing_attacker_role(coord: PassCoordinator, priority: int = 90, aim_open_g
     def update(t: Tactic, ctx: PlayContext, a: Assignment) -> None:
         t.set_params(hold_fire=coord.hold_fire(), drive_forward_s=coord.params.settle_s,
                      keep_target=coord.keep_target(), keep_speed=coord.keep_speed(),
-                     snap_shot=coord.params.snap_shot, aim_open_goal=aim_open_goal)
+                     snap_shot=coord.params.snap_shot, aim_open_goal=aim_open_goal,
+                     aim_reach=coord.params.aim_reach)
 
     return RoleDef("attacker", priority, Attacker, target, update=update)
 

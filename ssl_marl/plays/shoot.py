@@ -41,8 +41,13 @@ from ..skills.base import SkillStatus, make_action
 from ..skills.baseline import DriveForward
 from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance, heading_between_posts
 from ..skills.navigation import NavigateToPoint, NavParams, defense_rect, facing_towards, push_out_of_rect
-from .pass_decision import open_goal_interval
+from .pass_decision import DecisionParams, open_goal_interval
+from .shot_lines import SHOT_REACTION_S, goal_line_targets, heading_goal_point, shot_line_margins
 from .tactic_base import NEAR_BALL_M, Tactic, skill_status
+
+
+#: the interception model of :attr:`ShootParams.aim_reach`'s shot lines (a shot at the kicker's cap)
+_SHOT_RATING = DecisionParams()
 
 
 class ShootState(enum.Enum):
@@ -107,6 +112,16 @@ class ShootParams:
             False = the skill (and ``snap_shot``) alone.
         open_aim_window, open_aim_min, open_aim_timeout_s: see ``aim_open_goal``.
         open_aim_turn_rate: turn rate while aiming with the ball (rad/s).
+        aim_reach: in AIM_TO_SHOOT, aim at the shot line the opponents reach last
+            (:mod:`~ssl_marl.plays.shot_lines`: ``reach_targets`` points across the goal
+            mouth rated by their path margin, opponents reacting after
+            ``reach_reaction_s``; teammates in the line block it) and kick at full
+            strength once the line along the heading is rated within
+            ``reach_tolerance_s`` of the best one, or at least ``reach_good_s``; turns
+            towards the best line otherwise; after ``open_aim_timeout_s`` the
+            ``snap_shot`` rule (or the skill) decides. Takes precedence over
+            ``aim_open_goal``. False = off.
+        reach_reaction_s, reach_tolerance_s, reach_good_s, reach_targets: see ``aim_reach``.
     """
 
     near_ball_m: float = NEAR_BALL_M
@@ -131,6 +146,11 @@ class ShootParams:
     open_aim_min: float = 0.15
     open_aim_timeout_s: float = 0.8
     open_aim_turn_rate: float = 4.0
+    aim_reach: bool = False
+    reach_reaction_s: float = SHOT_REACTION_S
+    reach_tolerance_s: float = 0.03
+    reach_good_s: float = 0.15
+    reach_targets: int = 21
 
 
 @dataclass(frozen=True)
@@ -240,6 +260,9 @@ class GoToBallAndShoot(Tactic):
             self.nav.facing = facing_towards(pos, world.ball_pos)
         if self.state is ShootState.KEEP:
             return self.keep_action(world, robot)
+        if self.state is ShootState.AIM_TO_SHOOT and self.params.aim_reach \
+                and self._time_in_state < self.params.open_aim_timeout_s:
+            return self.reach_aim_action(world, robot)
         if self.state is ShootState.AIM_TO_SHOOT and self.params.aim_open_goal \
                 and self._time_in_state < self.params.open_aim_timeout_s:
             action = self.open_goal_action(world, robot)
@@ -268,6 +291,32 @@ class GoToBallAndShoot(Tactic):
         err = float(wrap_angle(aim - float(ts.heading[robot])))
         if abs(err) <= p.open_aim_window * open_angle / 2.0 and bool(ts.kick_ready[robot]):
             return make_action(dribble=True, kick=1.0)
+        omega = float(np.clip(6.0 * err, -p.open_aim_turn_rate, p.open_aim_turn_rate))
+        return make_action(omega=omega / self.rp.max_omega, dribble=True)
+
+    def reach_aim_action(self, world: WorldState, robot: int) -> np.ndarray:
+        """``aim_reach`` (see :class:`ShootParams`): a full-strength kick when the line along
+        the heading is rated (nearly) as well as the best shot line, else a turn towards
+        the best line with the dribbler on."""
+        p = self.params
+        ts = world.team(world.frame)
+        ball = world.ball_pos
+        heading = float(ts.heading[robot])
+        targets = goal_line_targets(self.field, p.reach_targets)
+        own = heading_goal_point(ball, heading, self.field)
+        if own is not None:
+            targets = np.concatenate([targets, own[None, :]])
+        mates = np.delete(ts.pos, robot, axis=0)
+        margins = shot_line_margins(ball, targets, world.opponents(world.frame).pos, mates, self.rp, self.bp,
+                                    _SHOT_RATING, p.reach_reaction_s)
+        best = int(np.argmax(margins[:p.reach_targets]))
+        m_best = float(margins[best])
+        if own is not None and bool(ts.kick_ready[robot]):
+            m_own = float(margins[-1])
+            if m_own >= p.reach_good_s or (np.isfinite(m_own) and m_own >= m_best - p.reach_tolerance_s):
+                return make_action(dribble=True, kick=1.0)
+        aim = math.atan2(float(targets[best, 1] - ball[1]), float(targets[best, 0] - ball[0]))
+        err = float(wrap_angle(aim - heading))
         omega = float(np.clip(6.0 * err, -p.open_aim_turn_rate, p.open_aim_turn_rate))
         return make_action(omega=omega / self.rp.max_omega, dribble=True)
 
