@@ -18,6 +18,8 @@ from ssl_marl.plays.support import Support, SupportState, open_space_scores
 from ssl_marl.skills.base import SkillStatus
 from ssl_marl.skills.baseline import AimToShootBaseline, GoToBallBaseline
 
+from attacker_helpers import act_at_aim  # noqa: E402  (tests/ is on the path)
+
 F = FieldGeometry.div_b()
 RP, BP = RobotParams(), BallParams()
 DT = 1.0 / 60.0
@@ -449,28 +451,10 @@ def test_goalie_and_defender_share_one_clearing_behaviour():
     assert isinstance(g.clearing, BallClearing) and isinstance(d.clearing, BallClearing)
 
 
-class _NeverKicks:
-    """An aim-to-shoot stand-in that turns nowhere and never kicks."""
-
-    status = SkillStatus.RUNNING
-
-    def reset(self):
-        pass
-
-    def act(self, world, robot):
-        from ssl_marl.skills.base import make_action
-        return make_action(dribble=True)
-
-
 def _aiming_attacker(robot, snap_shot):
     tac = Attacker(F, snap_shot=snap_shot)
-    tac.aim_to_shoot = _NeverKicks()
-    tac.act(scene(robot, gap=0.0), 0)
-    for k in range(1, 70):
-        a = tac.act(scene(robot, gap=0.0, t=k * DT), 0)
-        if tac.state is S.AIM_TO_SHOOT:
-            return tac, a
-    raise AssertionError("never reached AIM_TO_SHOOT")
+    a, _ = act_at_aim(tac, lambda t: scene(robot, gap=0.0, t=t))
+    return tac, a
 
 
 def _open_goal_attacker(heading, goalie_y):
@@ -481,14 +465,7 @@ def _open_goal_attacker(heading, goalie_y):
         robot = (2.0, 0.0, heading)
         return make_world(blue=[robot], yellow=[goalie], ball=ball_in_front(*robot, gap=0.0), t=t, frame="blue")
 
-    tac = Attacker(F, snap_shot=True, aim_open_goal=True)
-    tac.aim_to_shoot = _NeverKicks()
-    tac.act(world(0.0), 0)
-    for k in range(1, 70):
-        a = tac.act(world(k * DT), 0)
-        if tac.state is S.AIM_TO_SHOOT:
-            return a, world(k * DT)
-    raise AssertionError("never reached AIM_TO_SHOOT")
+    return act_at_aim(Attacker(F, snap_shot=True, aim_open_goal=True), world)
 
 
 def test_open_goal_aim_kicks_into_the_gap_not_at_the_goalie():

@@ -10,13 +10,14 @@ from ssl_marl.physics import FieldGeometry
 from ssl_marl.physics.params import BallParams, RobotParams
 from ssl_marl.plays.pass_decision import DecisionParams
 from ssl_marl.plays.scene import ball_in_front, make_world
-from ssl_marl.plays.shoot import Attacker, ShootState
+from ssl_marl.plays.shoot import Attacker
 from ssl_marl.plays.shot_lines import (best_shot_line, blocked_by, goal_line_targets, heading_goal_point,
                                        shot_line_margins)
 
+from attacker_helpers import act_at_aim  # noqa: E402  (tests/ is on the path)
+
 F = FieldGeometry.div_b()
 RP, BP = RobotParams(), BallParams()
-DT = 1.0 / 60.0
 
 
 def test_goal_line_targets_span_the_mouth_inside_the_posts():
@@ -71,25 +72,11 @@ def _reach_attacker(heading, opponents):
     """Attacker at (2, 0) with the ball on its dribbler facing ``heading``, yellow ``opponents``."""
     robot = (2.0, 0.0, heading)
 
-    class NeverKicks:
-        def reset(self):
-            pass
-
-        def act(self, world, robot):
-            return np.zeros(5, np.float32)
-
     def world(t):
         return make_world(blue=[robot], yellow=list(opponents), ball=ball_in_front(*robot, gap=0.0), t=t,
                           frame="blue")
 
-    tac = Attacker(F, snap_shot=True, aim_reach=True)
-    tac.aim_to_shoot = NeverKicks()
-    tac.act(world(0.0), 0)
-    for k in range(1, 70):
-        a = tac.act(world(k * DT), 0)
-        if tac.state is ShootState.AIM_TO_SHOOT:
-            return a, world(k * DT)
-    raise AssertionError("never reached AIM_TO_SHOOT")
+    return act_at_aim(Attacker(F, snap_shot=True, aim_reach=True), world)
 
 
 def test_reach_aim_turns_away_from_the_wall_and_kicks_along_a_corner():

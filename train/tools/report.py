@@ -154,6 +154,11 @@ MATCH_VARIANTS_SELFPLAY_PASS = [("self-play, plain format", "selfplay_pass/plain
                                  "selfplay_pass/pass-0.65-61700.json"),
                                 ("both teams with the 1 m receiver guard (`receiver-guard`)",
                                  "selfplay_pass/receiver-guard-61700.json")]
+#: shots aimed, and decided, by the shot lines' reach times (``benchmarks/match_variants.py``, this code's plain row)
+MATCH_VARIANTS_SHOTS = [("the attacking team as it plays (plain format)", "shots/plain-61500.json"),
+                        ("shots aimed at the line the defence reaches last (`aim-reach`)", "shots/aim-reach-61500.json"),
+                        ("the decision also shoots when a line's margin is >= 0.05 s within 3.5 m (`reach-shot`; stopped "
+                         "after 6 matches)", "shots/reach-shot-61500.json")]
 MATCH_VARIANTS_DEFENCE = [("the attacking team as it plays (pressed passer; seeds 61500-61509 as above)",
                            "press/press-0.6-61500.json"),
                           ("the opponent's plays keep one defender on the ball-goal line (`opp-one-defender`)",
@@ -348,6 +353,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "match_variants": lambda r: m.match_variants(r, MATCH_VARIANTS),
     "match_variants_defence": lambda r: m.match_variants(r, MATCH_VARIANTS_DEFENCE),
     "match_variants_selfplay_pass": lambda r: m.match_variants(r, MATCH_VARIANTS_SELFPLAY_PASS),
+    "match_variants_shots": lambda r: m.match_variants(r, MATCH_VARIANTS_SHOTS),
+    "wall_probe": lambda r: m.wall_probe(r / "tuning" / "wall_probe.json"),
     "shot_outcomes": lambda r: m.shot_outcomes(r / "tuning" / "shot_outcome_probe.json"),
     "pass_losses": lambda r: m.pass_losses([r / "tuning" / "pass_loss_probe_d8f659c.json",
                                             r / "tuning" / "pass_loss_probe_any_speed.json",

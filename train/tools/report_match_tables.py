@@ -236,6 +236,20 @@ def shot_outcomes(path: Path) -> Lines:
     return rows
 
 
+def wall_probe(path: Path) -> Lines:
+    """``benchmarks/wall_probe.py``: what a goalie and 0-3 defenders on the ball-goal line leave
+    open of the goal, over the scoring zone's ball positions."""
+    d = json.loads(path.read_text())
+    rows = _head("field", "defence", "ball positions", "best shot line's margin, median (s)",
+                 "best line >= 0 s / >= 0.05 s / >= 0.1 s", "open goal angle, median (rad)", "open >= 0.05 rad")
+    for r in d["rows"]:
+        z = r["scoring_zone"]
+        shares = " / ".join(f"{100 * z[f'share_margin_ge_{t}s']:.0f} %" for t in ("0", "0.05", "0.1"))
+        rows.append(f"| {r['field']} | goalie + {r['defenders']} | {z['positions']} | {z['median_best_margin_s']:+.3f} | "
+                    f"{shares} | {z['median_open_angle_rad']:.3f} | {100 * z['share_open_ge_0.05rad']:.0f} % |")
+    return rows
+
+
 def pass_losses(paths: Iterable[Path]) -> Lines:
     """``benchmarks/pass_loss_probe.py`` records: the passes the referee's statistics counted
     (under the record's ``pass_max_arrive_speed``), by the tactic the kicker ran and by how
