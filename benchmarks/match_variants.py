@@ -1,7 +1,7 @@
 """Tuning probe: the attacking team's matches under variants of the restarts and of the carrier's keep rule.
 
 Plays ``--matches`` 600 s matches of ``--blue`` (default attack-learned) against ``--yellow``
-(default baseline), 6v6 Division B, no realism, seeds ``--seed`` + i, as ``ssl-marl
+(default baseline), 6v6 Division B (``--robots``, ``--field``), no realism, seeds ``--seed`` + i, as ``ssl-marl
 match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
 
 * ``plain``: the plain format (play restarts at once after an out; the default of ``ssl-marl match``);
@@ -29,6 +29,8 @@ match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
   pass's last metre is the receiver's where it gets there before the opponents);
 * ``pass-0.5`` / ``pass-0.65``: the plain format with the decisions' ``min_pass_success`` at
   0.5 / 0.65 (default 0.35: a pass rated less likely to arrive is not considered);
+* ``pass-8m``: the plain format with passes up to 8 m long (the decisions' ``max_pass_m``, default
+  6 m; on Division A's 12 m field the supports' spots often lie farther than 6 m from the ball);
 * ``redirect-4.5``: the plain format with passes into a redirect kicked, and rated, to arrive
   at 4.5 m/s (``AttackParams.redirect_arrive_speed``, default 2.5; ``ATTACK_PARAMS``);
 * ``ssl`` / ``ssl-receiver-guard``: the SSL format (``--format ssl``: halves, STOP, free kicks,
@@ -78,7 +80,8 @@ PASSING = {"keep-2s": {"max_keep_s": 2.0}, "keep-inf": {"max_keep_s": math.inf},
            "aim-reach": {"aim_reach": True}}
 #: ``ATTACK_PASSING.decision`` and ``.restart_decision`` fields of each variant
 DECISION = {"receiver-guard": {"receiver_guard_m": 1.0}, "ssl-receiver-guard": {"receiver_guard_m": 1.0},
-            "pass-0.5": {"min_pass_success": 0.5}, "pass-0.65": {"min_pass_success": 0.65}}
+            "pass-0.5": {"min_pass_success": 0.5}, "pass-0.65": {"min_pass_success": 0.65},
+            "pass-8m": {"max_pass_m": 8.0}}
 #: ``ATTACK_PARAMS`` fields of each variant
 ATTACK = {"redirect-4.5": {"redirect_arrive_speed": 4.5}, "reach-shot": {"reach_shot_s": 0.05}}
 #: ``ATTACK_SPOTS`` fields of each variant
@@ -148,6 +151,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--seed", type=int, default=61500, help="first seed (tuning seeds; default 61500)")
     ap.add_argument("--matches", type=int, default=10, help="matches (default 10)")
     ap.add_argument("--seconds", type=float, default=600.0, help="match length, s (default 600)")
+    ap.add_argument("--robots", type=int, default=6, help="robots per team (default 6)")
+    ap.add_argument("--field", choices=("div_a", "div_b"), default="div_b", help="field (default div_b)")
     ap.add_argument("--out", required=True, help="JSON output (rewritten after every match)")
     args = ap.parse_args(argv)
     from ssl_marl.io import atomic_write_json
@@ -165,12 +170,13 @@ def main(argv: list[str] | None = None) -> int:
                                      "attack": ATTACK.get(args.variant, {}),
                                      "spots": SPOTS.get(args.variant, {}),
                                      "standard_plays_defenders": OPP_DEFENDERS.get(args.variant),
-                                     "blue": args.blue, "yellow": args.yellow, "seconds": args.seconds},
+                                     "blue": args.blue, "yellow": args.yellow, "seconds": args.seconds,
+                                     "robots": args.robots, "field": args.field},
                               seeds={"seed": args.seed, "matches": args.matches})
     rows = []
     for i in range(args.matches):
         t0 = time.time()
-        r = play_match(args.blue, args.yellow, robots=6, seconds=args.seconds, seed=args.seed + i, render=None,
+        r = play_match(args.blue, args.yellow, robots=args.robots, field=args.field, seconds=args.seconds, seed=args.seed + i, render=None,
                        progress=False, env_kwargs=dict(env))
         rows.append({"seed": args.seed + i, "score": r.score, "blue": dict(r.stats["blue"]),
                      "referee": r.stats.get("referee", {}), "wall_s": round(time.time() - t0, 1)})
