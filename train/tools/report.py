@@ -159,6 +159,9 @@ MATCH_VARIANTS_SHOTS = [("the attacking team as it plays (plain format)", "shots
                         ("shots aimed at the line the defence reaches last (`aim-reach`)", "shots/aim-reach-61500.json"),
                         ("the decision also shoots when a line's margin is >= 0.05 s within 3.5 m (`reach-shot`; stopped "
                          "after 6 matches)", "shots/reach-shot-61500.json")]
+#: 11v11 Division A: passes up to 8 m (``benchmarks/match_variants.py --robots 11 --field div_a``)
+MATCH_VARIANTS_DIV_A = [("11v11 Division A, the attacking team as it plays (passes up to 6 m)", "div_a/plain-62010.json"),
+                        ("11v11 Division A, passes up to 8 m (`pass-8m`)", "div_a/pass-8m-62010.json")]
 MATCH_VARIANTS_DEFENCE = [("the attacking team as it plays (pressed passer; seeds 61500-61509 as above)",
                            "press/press-0.6-61500.json"),
                           ("the opponent's plays keep one defender on the ball-goal line (`opp-one-defender`)",
@@ -354,6 +357,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "match_variants_defence": lambda r: m.match_variants(r, MATCH_VARIANTS_DEFENCE),
     "match_variants_selfplay_pass": lambda r: m.match_variants(r, MATCH_VARIANTS_SELFPLAY_PASS),
     "match_variants_shots": lambda r: m.match_variants(r, MATCH_VARIANTS_SHOTS),
+    "match_variants_div_a": lambda r: m.match_variants(r, MATCH_VARIANTS_DIV_A),
     "wall_probe": lambda r: m.wall_probe(r / "tuning" / "wall_probe.json"),
     "shot_outcomes": lambda r: m.shot_outcomes(r / "tuning" / "shot_outcome_probe.json"),
     "pass_losses": lambda r: m.pass_losses([r / "tuning" / "pass_loss_probe_d8f659c.json",
