@@ -220,6 +220,11 @@ DECISION_SERIES_99 = ["match_attack_learned_decision_vs_attack_learned_600_99400
                       "match_attack_learned_vs_attack_learned_decision_600_99430"]
 DECISION_99_POOLED = [("attack-learned, learned decision vs attack-learned (commit 845ac88)",
                        ((DECISION_SERIES_99[0], "blue"), (DECISION_SERIES_99[1], "yellow")))]
+#: the same under ``--realism realistic`` with commit f0ad2a0 (the play code of 74a0018; seeds 100200-100219)
+DECISION_SERIES_REAL_100 = ["match_attack_learned_decision_vs_attack_learned_600_realistic_100200",
+                            "match_attack_learned_vs_attack_learned_decision_600_realistic_100210"]
+DECISION_REAL_100_POOLED = [("attack-learned, learned decision vs attack-learned, `--realism realistic` (commit f0ad2a0)",
+                             ((DECISION_SERIES_REAL_100[0], "blue"), (DECISION_SERIES_REAL_100[1], "yellow")))]
 #: the retrained drill actor (blue only) and the improved decision (both colours) against the hand-coded decision
 DECISION_SERIES_98 = ["match_attack_drill_v2_decision_vs_attack_learned_600_98000",
                       "match_attack_improved_decision_vs_attack_learned_600_98100",
@@ -326,6 +331,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_press_pooled": lambda r: m.pooled_sides(r, DECISION_PRESS_POOLED),
     "decision_series_99": lambda r: m.series_600(r, DECISION_SERIES_99),
     "decision_99_pooled": lambda r: m.pooled_sides(r, DECISION_99_POOLED),
+    "decision_series_real_100": lambda r: m.series_600(r, DECISION_SERIES_REAL_100),
+    "decision_real_100_pooled": lambda r: m.pooled_sides(r, DECISION_REAL_100_POOLED),
     "decision_series_97": lambda r: m.series_600(r, DECISION_SERIES_97),
     "decision_series_98": lambda r: m.series_600(r, DECISION_SERIES_98),
     "decision_98_pooled": lambda r: m.pooled_sides(r, DECISION_98_POOLED),
