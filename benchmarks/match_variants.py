@@ -176,8 +176,8 @@ def main(argv: list[str] | None = None) -> int:
     rows = []
     for i in range(args.matches):
         t0 = time.time()
-        r = play_match(args.blue, args.yellow, robots=args.robots, field=args.field, seconds=args.seconds, seed=args.seed + i, render=None,
-                       progress=False, env_kwargs=dict(env))
+        r = play_match(args.blue, args.yellow, robots=args.robots, field=args.field, seconds=args.seconds,
+                       seed=args.seed + i, render=None, progress=False, env_kwargs=dict(env))
         rows.append({"seed": args.seed + i, "score": r.score, "blue": dict(r.stats["blue"]),
                      "referee": r.stats.get("referee", {}), "wall_s": round(time.time() - t0, 1)})
         print(args.variant, args.seed + i, r.score, flush=True)

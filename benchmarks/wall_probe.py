@@ -44,7 +44,7 @@ def probe(field_name: str, defenders: int, reaction_s: float, step_m: float) -> 
     from ssl_marl.plays.pass_decision import DecisionParams, open_goal_interval
     from ssl_marl.plays.shot_lines import goal_line_targets, shot_line_margins
 
-    field = FieldGeometry.div_a() if field_name == "div_a" else FieldGeometry.div_b()
+    field = FieldGeometry.from_name(field_name)
     rp, bp, dp = RobotParams(), BallParams(), DecisionParams()
     targets = goal_line_targets(field, 21)
     xs = np.arange(step_m / 2, field.half_length - field.defense_depth - 0.1, step_m)
@@ -86,8 +86,8 @@ def main(argv: list[str] | None = None) -> None:
     rows = [probe(f, n, reaction, args.step) for f in args.field for n in args.defenders]
     for r in rows:
         z = r["scoring_zone"]
-        print(f"{r['field']} goalie + {r['defenders']}: zone median best margin {z['median_best_margin_s']:+.3f} s, "
-              f">= 0.05 s {100 * z['share_margin_ge_0.05s']:.0f} %, open >= 0.05 rad {100 * z['share_open_ge_0.05rad']:.0f} %")
+        print(f"{r['field']} goalie + {r['defenders']}: zone median best margin "
+              f"{z['median_best_margin_s']:+.3f} s, >= 0.05 s {100 * z['share_margin_ge_0.05s']:.0f} %, open >= 0.05 rad {100 * z['share_open_ge_0.05rad']:.0f} %")
     manifest = build_manifest({"probe": "wall", "reaction_s": reaction, "grid_step_m": args.step},
                               {"seed": None})
     atomic_write_json(args.out, {"rows": rows, "manifest": manifest})

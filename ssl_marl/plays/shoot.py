@@ -291,8 +291,7 @@ class GoToBallAndShoot(Tactic):
         err = float(wrap_angle(aim - float(ts.heading[robot])))
         if abs(err) <= p.open_aim_window * open_angle / 2.0 and bool(ts.kick_ready[robot]):
             return make_action(dribble=True, kick=1.0)
-        omega = float(np.clip(6.0 * err, -p.open_aim_turn_rate, p.open_aim_turn_rate))
-        return make_action(omega=omega / self.rp.max_omega, dribble=True)
+        return self.aim_turn(err)
 
     def reach_aim_action(self, world: WorldState, robot: int) -> np.ndarray:
         """``aim_reach`` (see :class:`ShootParams`): a full-strength kick when the line along
@@ -316,7 +315,12 @@ class GoToBallAndShoot(Tactic):
             if m_own >= p.reach_good_s or (np.isfinite(m_own) and m_own >= m_best - p.reach_tolerance_s):
                 return make_action(dribble=True, kick=1.0)
         aim = math.atan2(float(targets[best, 1] - ball[1]), float(targets[best, 0] - ball[0]))
-        err = float(wrap_angle(aim - heading))
+        return self.aim_turn(float(wrap_angle(aim - heading)))
+
+    def aim_turn(self, err: float) -> np.ndarray:
+        """Turn with the ball (dribbler on) to close a heading error ``err`` (rad), at most
+        ``open_aim_turn_rate``."""
+        p = self.params
         omega = float(np.clip(6.0 * err, -p.open_aim_turn_rate, p.open_aim_turn_rate))
         return make_action(omega=omega / self.rp.max_omega, dribble=True)
 
