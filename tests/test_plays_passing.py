@@ -504,6 +504,27 @@ def test_an_expired_keep_shoots_or_makes_the_best_eligible_pass(expiry, passes):
         PassingParams(keep_expiry="dribble")
 
 
+@pytest.mark.parametrize("max_m, shoots", [(None, True), (4.0, True), (2.0, False)])
+def test_an_expired_keep_shoots_only_within_keep_shot_max_m_of_the_goal(max_m, shoots):
+    from ssl_marl.plays.pass_coordinator import PassCoordinator, PassingParams
+    from ssl_marl.plays.pass_decision import Decision
+
+    class KeepDecider:  # keeps with a worthless shot and no pass
+        def decide(self, request):
+            return Decision(Choice.KEEP, 0.0, 0.3, (), None)
+
+    c = PassCoordinator(PassingParams(max_keep_s=0.5, keep_shot_max_m=max_m), decider=KeepDecider())
+    w = make_world(**BLOCKED, t=1.0, frame="blue")
+    d_goal = float(np.hypot(*(w.ball_pos - F.goal_center(+1))))
+    assert 2.0 < d_goal < 4.0  # the ball is about 2.9 m from the goal centre
+    for k in range(0, 60, 3):  # a decision every 3 ticks for 1 s
+        c.prepare(_ctx(make_world(**BLOCKED, t=1.0 + k / 60, frame="blue"), {"attacker": _status(ShootState.KEEP)},
+                       {"attacker": 1}))
+    assert (c.decision.choice is Choice.SHOOT) is shoots and c.hold_fire() is not shoots
+    with pytest.raises(ValueError, match="keep_shot_max_m"):
+        PassingParams(keep_shot_max_m=float("nan"))
+
+
 def test_coordinator_follows_the_handshake_to_completion_and_aborts_on_failure():
     from ssl_marl.plays.pass_coordinator import PassCoordinator, PassPhase, PassPlan
 

@@ -104,6 +104,10 @@ class PassingParams:
         keep_expiry: what an expired KEEP turns into: "shoot" (a shot whatever its value)
             or "pass" (the decision's best eligible pass, success >= ``min_pass_success``,
             when the shot is worth less than ``shoot_fallback``; else the shot).
+        keep_shot_max_m: an expired KEEP turns into a shot (or pass) only with the ball
+            within this distance of the opponent goal centre (m); farther out the carrier
+            keeps dribbling until the decision itself shoots or passes (a pressed carrier
+            still shoots: ``min_keep``); None: at any distance.
         max_setup_s: a pass not kicked within this is dropped (s).
         max_flight_s: a pass not controlled this long after the kick is dropped (s).
         abort_margin_s: during setup, drop the pass if its path margin falls below this (s).
@@ -148,6 +152,7 @@ class PassingParams:
     decide_every: int = 3
     max_keep_s: float = 0.8
     keep_expiry: str = "shoot"
+    keep_shot_max_m: float | None = None
     max_setup_s: float = 2.5
     max_flight_s: float = 4.0
     abort_margin_s: float = -0.05
@@ -166,9 +171,10 @@ class PassingParams:
     def __post_init__(self) -> None:
         if self.keep_expiry not in KEEP_EXPIRY:
             raise ValueError(f"PassingParams.keep_expiry must be one of {KEEP_EXPIRY}, got {self.keep_expiry!r}")
-        m = self.press_urgent_m
-        if m is not None and not (isinstance(m, (int, float)) and math.isfinite(m) and m > 0):
-            raise ValueError(f"PassingParams.press_urgent_m must be None or a positive finite distance (m), got {m!r}")
+        for name in ("press_urgent_m", "keep_shot_max_m"):
+            m = getattr(self, name)
+            if m is not None and not (isinstance(m, (int, float)) and math.isfinite(m) and m > 0):
+                raise ValueError(f"PassingParams.{name} must be None or a positive finite distance (m), got {m!r}")
 
 
 @dataclass
@@ -383,6 +389,11 @@ class PassCoordinator:
             return
         self._request(ctx, t, carrier, restart)
 
+    def _keep_may_expire(self, ctx: PlayContext) -> bool:
+        """``keep_shot_max_m``'s rule: the ball is near enough to the opponent goal (team frame)."""
+        m = self.params.keep_shot_max_m
+        return m is None or float(np.hypot(*(np.asarray(ctx.ball, float) - ctx.field.goal_center(+1)))) <= m
+
     def _restart_kicker(self, ctx: PlayContext) -> int | None:
         """The set piece's kicker: the ``attacker`` role's robot, else our field robot
         nearest the ball (None without field robots)."""
@@ -414,7 +425,7 @@ class PassCoordinator:
         elif d.choice is Choice.KEEP:
             if self._keep_since is None:
                 self._keep_since = t
-            if t - self._keep_since > p.max_keep_s:
+            if t - self._keep_since > p.max_keep_s and self._keep_may_expire(ctx):
                 to_pass = (p.keep_expiry == "pass" and d.best_pass is not None
                            and d.shot < params.shoot_fallback)
                 d = dataclasses.replace(d, choice=Choice.PASS if to_pass else Choice.SHOOT)
