@@ -17,6 +17,9 @@ match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
 * ``keep-near-4`` / ``keep-near-6``: the plain format with ``keep_shot_max_m`` 4 / 6 m (an
   expired keep turns into a shot only with the ball within that distance of the opponent goal
   centre; farther out the carrier keeps dribbling until its decision shoots or passes);
+* ``tap-0.7`` / ``ssl-tap-0.7``: the plain / SSL format with ``keep_tap_m`` 0.7 (the attacker taps
+  the ball ahead during a keep once it lies 0.7 m from where its touch began, so that it does not
+  dribble further than SSL's 1 m);
 * ``contested-kick``: the plain format with ``contested_kick`` (an opponent's dribbler on the
   ball during a pass setup turns the plan urgent instead of dropping it);
 * ``press-0.6``: that and ``press_urgent_m`` 0.6 (an opponent within 0.6 m of the ball during
@@ -72,13 +75,14 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 RULES = {"plain": {}, "free-kick": {"ssl_restarts": True, "stop_s": 0.0},
          "free-kick-stop": {"ssl_restarts": True, "stop_s": 1.0},
          "free-kick-stop-fouls": {"ssl_restarts": True, "stop_s": 1.0, "fouls": True},
-         "keep-2s": {}, "keep-inf": {}, "keep-pass": {}, "keep-near-4": {}, "keep-near-6": {}, "receiver-guard": {},
+         "keep-2s": {}, "keep-inf": {}, "keep-pass": {}, "keep-near-4": {}, "keep-near-6": {}, "tap-0.7": {}, "receiver-guard": {},
          "contested-kick": {}, "press-0.6": {}, "aim-reach": {}, "reach-shot": {}}
 #: the match format of each variant (:func:`ssl_marl.runners.match.format_options`; default plain)
-FORMAT = {"ssl": "ssl", "ssl-receiver-guard": "ssl"}
+FORMAT = {"ssl": "ssl", "ssl-receiver-guard": "ssl", "ssl-tap-0.7": "ssl"}
 #: ``ATTACK_PASSING`` fields of each variant
 PASSING = {"keep-2s": {"max_keep_s": 2.0}, "keep-inf": {"max_keep_s": math.inf}, "keep-pass": {"keep_expiry": "pass"},
            "keep-near-4": {"keep_shot_max_m": 4.0}, "keep-near-6": {"keep_shot_max_m": 6.0},
+           "tap-0.7": {"keep_tap_m": 0.7}, "ssl-tap-0.7": {"keep_tap_m": 0.7},
            "contested-kick": {"contested_kick": True},
            "press-0.6": {"contested_kick": True, "press_urgent_m": 0.6},
            "aim-reach": {"aim_reach": True}}

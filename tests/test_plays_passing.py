@@ -241,6 +241,36 @@ def test_attacker_keep_state_holds_fire_and_returns_to_aiming():
                                ShootParams()) is S.AIM_TO_SHOOT
 
 
+@pytest.mark.parametrize("tap_m", [None, 0.7])
+def test_attacker_keep_taps_the_ball_ahead_within_the_dribbling_limit(tap_m):
+    """A robot keeping the ball creeps towards the goal for 8 s: without ``keep_tap_m`` the
+    referee's touch watch sees it dribble more than 1 m in one touch (excessive dribbling);
+    with it the robot taps the ball ahead, goes to it again, and carries it as far
+    without a foul."""
+    from ssl_marl.envs import parallel_env
+    from ssl_marl.envs.game_control import TouchWatch
+
+    env = parallel_env(n_blue=1, n_yellow=0, field="div_b", max_time_s=10.0, no_progress_s=None)
+    pose = (-3.0, 0.0, 0.0)
+    env.reset(seed=3, options={"robots": {"blue_0": list(pose)}, "ball": {"pos": list(ball_in_front(*pose))}})
+    tac = Attacker(env.field, env.config.robot, env.config.ball, skills="baseline", dt=env.config.dt,
+                   hold_fire=True, keep_speed=0.5, keep_tap_m=tap_m)
+    watch = TouchWatch(1, 0, env.config.robot.radius, env.config.ball.radius)
+    fouls, kicks = [], 0
+    for _ in range(480):
+        a = tac.act(env.vision_state("blue"), 0)
+        kicks += int(a[4] > 0)
+        env.step({"blue_0": a})
+        ws = env.world_state()
+        foul = watch.update(ws, watch.touching(ws, [0] if a[4] > 0 else []), env.field, True)
+        fouls += [foul[0]] if foul else []
+    assert env.world_state().ball_pos[0] > -1.5  # carried at least 1.4 m up the field
+    if tap_m is None:
+        assert "excessive_dribbling" in fouls and kicks == 0
+    else:
+        assert "excessive_dribbling" not in fouls and kicks >= 2
+
+
 # ------------------------------------------------------------------ stats
 def _kick_world(kicker_xy, ball_vel, mates, opp=(), on_blue=None, on_yellow=None, t=0.0):
     blue = [(*kicker_xy, 0.0)] + [(*m, 0.0) for m in mates]

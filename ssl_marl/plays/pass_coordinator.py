@@ -108,6 +108,9 @@ class PassingParams:
             within this distance of the opponent goal centre (m); farther out the carrier
             keeps dribbling until the decision itself shoots or passes (a pressed carrier
             still shoots: ``min_keep``); None: at any distance.
+        keep_tap_m: the attacker taps the ball ahead during a keep once it lies this far
+            from where its touch began (:class:`~ssl_marl.plays.shoot.ShootParams`,
+            ``keep_tap_m``: SSL's dribbling limit is 1 m); None: off.
         max_setup_s: a pass not kicked within this is dropped (s).
         max_flight_s: a pass not controlled this long after the kick is dropped (s).
         abort_margin_s: during setup, drop the pass if its path margin falls below this (s).
@@ -153,6 +156,7 @@ class PassingParams:
     max_keep_s: float = 0.8
     keep_expiry: str = "shoot"
     keep_shot_max_m: float | None = None
+    keep_tap_m: float | None = None
     max_setup_s: float = 2.5
     max_flight_s: float = 4.0
     abort_margin_s: float = -0.05
@@ -171,7 +175,7 @@ class PassingParams:
     def __post_init__(self) -> None:
         if self.keep_expiry not in KEEP_EXPIRY:
             raise ValueError(f"PassingParams.keep_expiry must be one of {KEEP_EXPIRY}, got {self.keep_expiry!r}")
-        for name in ("press_urgent_m", "keep_shot_max_m"):
+        for name in ("press_urgent_m", "keep_shot_max_m", "keep_tap_m"):
             m = getattr(self, name)
             if m is not None and not (isinstance(m, (int, float)) and math.isfinite(m) and m > 0):
                 raise ValueError(f"PassingParams.{name} must be None or a positive finite distance (m), got {m!r}")

@@ -94,7 +94,7 @@ def passing_attacker_role(coord: PassCoordinator, priority: int = 90, aim_open_g
         t.set_params(hold_fire=coord.hold_fire(), drive_forward_s=coord.params.settle_s,
                      keep_target=coord.keep_target(), keep_speed=coord.keep_speed(),
                      snap_shot=coord.params.snap_shot, aim_open_goal=aim_open_goal,
-                     aim_reach=coord.params.aim_reach)
+                     aim_reach=coord.params.aim_reach, keep_tap_m=coord.params.keep_tap_m)
 
     return RoleDef("attacker", priority, Attacker, target, update=update)
 

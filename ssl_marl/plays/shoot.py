@@ -36,6 +36,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..envs.game_control import TOUCH_MARGIN
 from ..physics.state import WorldState, wrap_angle
 from ..skills.base import SkillStatus, make_action
 from ..skills.baseline import DriveForward
@@ -91,6 +92,15 @@ class ShootParams:
         keep_speed: KEEP's forward creep (m/s; scaled to 0 as free space ahead shrinks).
         keep_target: (x, y) point (m, team frame) KEEP turns and creeps towards; None =
             the opponent goal centre (a decider's "dribble toward a point" sets it).
+        keep_tap_m: KEEP taps the ball ahead (dribbler off, a kick of strength
+            ``keep_tap_kick``) once it lies this far (m) from where this robot's touch of
+            it began, facing the keep target with at least ``keep_tap_free_m`` of field
+            ahead, and stops creeping while it may not; the robot then goes to the ball
+            again, which starts a new touch. SSL calls excessive dribbling beyond 1 m
+            (:data:`~ssl_marl.envs.game_control.MAX_DRIBBLE_M`, measured the same way);
+            None = off (KEEP dribbles as far as it is kept).
+        keep_tap_kick, keep_tap_free_m: see ``keep_tap_m`` (kick strength in (0, 1]: a
+            ball speed of that fraction of ``kick_speed_max``; m).
         snap_shot: in AIM_TO_SHOOT, kick at full strength as soon as the heading lies
             between the posts (the hand-coded skill's first-opportunity rule, applied by
             the tactic whatever the skill; False = the skill alone decides when to kick).
@@ -140,6 +150,9 @@ class ShootParams:
     keep_turn_rate: float = 3.0
     keep_speed: float = 0.3
     keep_target: tuple[float, float] | None = None
+    keep_tap_m: float | None = None
+    keep_tap_kick: float = 0.15
+    keep_tap_free_m: float = 1.0
     snap_shot: bool = False
     aim_open_goal: bool = False
     open_aim_window: float = 0.3
@@ -184,6 +197,7 @@ class GoToBallAndShoot(Tactic):
 
     def __init__(self, field, robot=None, ball=None, skills="baseline", dt: float = 1.0 / 60.0, **params) -> None:
         self.go_to_ball = None
+        self._touch_from: np.ndarray | None = None
         super().__init__(field, robot, ball, skills, dt, **params)
         self.go_to_ball = self._skill("go_to_ball")
         self.aim_to_shoot = self._skill("aim_to_shoot")
@@ -199,6 +213,7 @@ class GoToBallAndShoot(Tactic):
 
     def observe(self, world: WorldState, robot: int) -> ShootInputs:
         ball = world.ball_pos
+        self._track_touch(world, robot)
         return ShootInputs(d_db=dribbler_ball_distance(world, robot, self.rp, self.bp),
                            skill_status=(skill_status(self._current_skill()) if self.state is not ShootState.KEEP
                                          else SkillStatus.RUNNING), kicked=self._kicked,
@@ -324,9 +339,28 @@ class GoToBallAndShoot(Tactic):
         omega = float(np.clip(6.0 * err, -p.open_aim_turn_rate, p.open_aim_turn_rate))
         return make_action(omega=omega / self.rp.max_omega, dribble=True)
 
+    def _track_touch(self, world: WorldState, robot: int) -> None:
+        """Where this robot's current touch of the ball began (the referee's touch:
+        :meth:`~ssl_marl.envs.game_control.TouchWatch.touching`; None while it does not
+        touch the ball)."""
+        ts = world.team(world.frame)
+        reach = self.rp.radius + self.bp.radius + TOUCH_MARGIN
+        touching = bool(ts.ball_on_dribbler[robot]) or (
+            float(np.hypot(*(ts.pos[robot] - world.ball_pos))) <= reach and float(world.ball_height) <= 0.15)
+        if not touching:
+            self._touch_from = None
+        elif self._touch_from is None:
+            self._touch_from = np.array(world.ball_pos, float)
+
+    def dribbled_m(self, world: WorldState) -> float:
+        """How far (m) the ball lies from where this robot's current touch began (0 without one)."""
+        start = self._touch_from
+        return 0.0 if start is None else float(np.hypot(*(world.ball_pos - start)))
+
     def keep_action(self, world: WorldState, robot: int) -> np.ndarray:
         """KEEP: dribbler on, turn towards ``keep_target`` (default the opponent goal
-        centre), creep forward when facing it (within 0.4 rad) and the field ahead is free."""
+        centre), creep forward when facing it (within 0.4 rad) and the field ahead is free;
+        with ``keep_tap_m``, tap the ball ahead before the dribble grows too long."""
         p = self.params
         ts = world.team(world.frame)
         pos, heading = ts.pos[robot], float(ts.heading[robot])
@@ -335,6 +369,11 @@ class GoToBallAndShoot(Tactic):
         omega = float(np.clip(6.0 * err, -p.keep_turn_rate, p.keep_turn_rate))
         free = free_distance_ahead(world.ball_pos, heading, self.field)
         speed = p.keep_speed * min(max((free - 0.3) / 0.5, 0.0), 1.0) if abs(err) < 0.4 else 0.0
+        if p.keep_tap_m is not None and self.dribbled_m(world) >= p.keep_tap_m:
+            if abs(err) < 0.4 and free >= p.keep_tap_free_m and bool(ts.kick_ready[robot]):
+                return make_action(vx=speed / self.rp.max_speed, omega=omega / self.rp.max_omega, dribble=False,
+                                   kick=p.keep_tap_kick)
+            speed = 0.0
         return make_action(vx=speed / self.rp.max_speed, omega=omega / self.rp.max_omega, dribble=True)
 
 
