@@ -162,6 +162,20 @@ MATCH_VARIANTS_SHOTS = [("the attacking team as it plays (plain format)", "shots
 #: 11v11 Division A: passes up to 8 m (``benchmarks/match_variants.py --robots 11 --field div_a``)
 MATCH_VARIANTS_DIV_A = [("11v11 Division A, the attacking team as it plays (passes up to 6 m)", "div_a/plain-62010.json"),
                         ("11v11 Division A, passes up to 8 m (`pass-8m`)", "div_a/pass-8m-62010.json")]
+#: 11v11 Division A: the carrier's keep rule, and the learned decision (same tuning seeds as ``MATCH_VARIANTS_DIV_A``)
+MATCH_VARIANTS_DIV_A_KEEP = [
+    ("11v11 Division A, the attacking team as it plays (as above)", "div_a/plain-62010.json"),
+    ("the carrier keeps up to 2 s (`keep-2s`)", "div_a/keep-2s-62010.json"),
+    ("an expired keep passes (`keep-pass`)", "div_a/keep-pass-62010.json"),
+    ("an expired keep shoots only within 6 m of the goal (`keep-near-6`; stopped after 4 matches)",
+     "div_a/keep-near-6-62010.json"),
+    ("the carrier's open-play decision by the shipped attack-drill actor (`--blue attack-learned-decision`)",
+     "div_a/learned-decision-62010.json")]
+#: 11v11 Division A, SSL format: the learned-decision team with and without the keep tap
+MATCH_VARIANTS_DIV_A_TAP = [
+    ("SSL format, the learned-decision team as it plays", "div_a/ssl-learned-decision-62010.json"),
+    ("SSL format, the keeping attacker taps the ball ahead at 0.7 m (`ssl-tap-0.7`)",
+     "div_a/ssl-tap-0.7-learned-decision-62010.json")]
 MATCH_VARIANTS_DEFENCE = [("the attacking team as it plays (pressed passer; seeds 61500-61509 as above)",
                            "press/press-0.6-61500.json"),
                           ("the opponent's plays keep one defender on the ball-goal line (`opp-one-defender`)",
@@ -243,6 +257,20 @@ DECISION_97_POOLED = [("attack-learned, learned decision vs attack-learned, 11v1
                       ("attack-learned-decision vs baseline (commit 319a5ae)",
                        ((DECISION_SERIES_97[2], "blue"), (DECISION_SERIES_97[3], "yellow"),
                         (DECISION_SERIES_97[4], "blue"), (DECISION_SERIES_97[5], "yellow")))]
+#: the team with the learned decision against the no-pass baseline, 11v11 Division A, plain and SSL format
+DECISION_SERIES_DIV_A_102 = ["match_attack_learned_decision_vs_baseline_600_div_a_11v11_102000",
+                             "match_baseline_vs_attack_learned_decision_600_div_a_11v11_102005",
+                             "match_attack_learned_decision_vs_baseline_600_ssl_div_a_11v11_102100",
+                             "match_baseline_vs_attack_learned_decision_600_ssl_div_a_11v11_102105",
+                             "match_attack_learned_vs_baseline_600_div_a_11v11_102000",
+                             "match_baseline_vs_attack_learned_600_div_a_11v11_102005"]
+DECISION_DIV_A_102_POOLED = [
+    ("attack-learned-decision vs baseline, 11v11 Division A (commit 1155796)",
+     ((DECISION_SERIES_DIV_A_102[0], "blue"), (DECISION_SERIES_DIV_A_102[1], "yellow"))),
+    ("the same, `--format ssl` (halves, STOP, free kicks, fouls called)",
+     ((DECISION_SERIES_DIV_A_102[2], "blue"), (DECISION_SERIES_DIV_A_102[3], "yellow"))),
+    ("attack-learned (the cost decision) vs baseline, the seeds of the first row",
+     ((DECISION_SERIES_DIV_A_102[4], "blue"), (DECISION_SERIES_DIV_A_102[5], "yellow")))]
 #: the attacking team with learned skills against itself with hand-coded skills, both colours (commit e395ab2)
 RECEIVE_PRESSED = ["receive_pressed_baseline", "receive_pressed_learned", "receive_pressed_gated",
                    "receive_pressed_baseline_realistic", "receive_pressed_gated_realistic", "receive_gated_plain",
@@ -337,6 +365,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_series_98": lambda r: m.series_600(r, DECISION_SERIES_98),
     "decision_98_pooled": lambda r: m.pooled_sides(r, DECISION_98_POOLED),
     "decision_97_pooled": lambda r: m.pooled_sides(r, DECISION_97_POOLED),
+    "decision_series_div_a_102": lambda r: m.series_600(r, DECISION_SERIES_DIV_A_102),
+    "decision_div_a_102_pooled": lambda r: m.pooled_sides(r, DECISION_DIV_A_102_POOLED),
     "receive_pressed": lambda r: t.skills(r, RECEIVE_PRESSED),
     "receive_pressed_selection": lambda r: t.selection(r, RECEIVE_PRESSED_RUNS),
     "receive_mixed_selection_s0": lambda r: t.selection_by_field(r, "receive_pressed_mixed_s0"),
@@ -365,6 +395,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "match_variants_selfplay_pass": lambda r: m.match_variants(r, MATCH_VARIANTS_SELFPLAY_PASS),
     "match_variants_shots": lambda r: m.match_variants(r, MATCH_VARIANTS_SHOTS),
     "match_variants_div_a": lambda r: m.match_variants(r, MATCH_VARIANTS_DIV_A),
+    "match_variants_div_a_keep": lambda r: m.match_variants(r, MATCH_VARIANTS_DIV_A_KEEP),
+    "match_variants_div_a_tap": lambda r: m.match_variants(r, MATCH_VARIANTS_DIV_A_TAP),
     "wall_probe": lambda r: m.wall_probe(r / "tuning" / "wall_probe.json"),
     "shot_outcomes": lambda r: m.shot_outcomes(r / "tuning" / "shot_outcome_probe.json"),
     "pass_losses": lambda r: m.pass_losses([r / "tuning" / "pass_loss_probe_d8f659c.json",
