@@ -75,7 +75,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 RULES = {"plain": {}, "free-kick": {"ssl_restarts": True, "stop_s": 0.0},
          "free-kick-stop": {"ssl_restarts": True, "stop_s": 1.0},
          "free-kick-stop-fouls": {"ssl_restarts": True, "stop_s": 1.0, "fouls": True},
-         "keep-2s": {}, "keep-inf": {}, "keep-pass": {}, "keep-near-4": {}, "keep-near-6": {}, "tap-0.7": {}, "receiver-guard": {},
+         "keep-2s": {}, "keep-inf": {}, "keep-pass": {}, "keep-near-4": {}, "keep-near-6": {}, "tap-0.7": {},
+         "receiver-guard": {},
          "contested-kick": {}, "press-0.6": {}, "aim-reach": {}, "reach-shot": {}}
 #: the match format of each variant (:func:`ssl_marl.runners.match.format_options`; default plain)
 FORMAT = {"ssl": "ssl", "ssl-receiver-guard": "ssl", "ssl-tap-0.7": "ssl"}

@@ -48,6 +48,21 @@ COMMANDS = (RUNNING, STOP, KICKOFF, FREE_KICK)
 IN_PLAY_DISTANCE = 0.05  #: m the ball moves from its spot for a kickoff / free kick to be taken (rules)
 MAX_DRIBBLE_M = 1.0  #: m: the rules' limit on dribbling the ball
 TOUCH_MARGIN = 0.01  #: m of slack on body contact (solver slop and one tick of motion)
+TOUCH_MAX_HEIGHT_M = 0.15  #: m: a ball higher than this passes over the robots (rules: robots fit under 0.15 m)
+
+
+def touch_reach(robot_radius: float, ball_radius: float) -> float:
+    """Centre distance (m) within which a robot body touches the ball."""
+    return robot_radius + ball_radius + TOUCH_MARGIN
+
+
+def touching_robots(pos: np.ndarray, ball_pos: np.ndarray, ball_height: float, on_dribbler: np.ndarray,
+                    reach: float) -> np.ndarray:
+    """(n,) bool: robots at ``pos`` (n, 2) that touch the ball at ``ball_pos`` (2,), ``ball_height``
+    (m) high: the ball on the dribbler (``on_dribbler`` (n,)), or a ball no higher than
+    :data:`TOUCH_MAX_HEIGHT_M` within ``reach`` (:func:`touch_reach`) of the robot's centre."""
+    d = pos - ball_pos[None, :]
+    return ((d[:, 0] ** 2 + d[:, 1] ** 2 <= reach ** 2) & (ball_height <= TOUCH_MAX_HEIGHT_M)) | on_dribbler
 FOULS = ("excessive_dribbling", "double_touch", "attacker_in_defense_area")
 
 
@@ -91,7 +106,7 @@ class TouchWatch:
 
     def __init__(self, n_blue: int, n_yellow: int, robot_radius: float, ball_radius: float) -> None:
         self.teams = np.array(["blue"] * n_blue + ["yellow"] * n_yellow)
-        self.reach = robot_radius + ball_radius + TOUCH_MARGIN
+        self.reach = touch_reach(robot_radius, ball_radius)
         self.reset()
 
     def reset(self) -> None:
@@ -105,10 +120,8 @@ class TouchWatch:
     def touching(self, ws: WorldState, kicked: list[int]) -> np.ndarray:
         """(n,) bool: robots touching the ball in snapshot ``ws`` (field frame) or
         kicking it this step (rows in ``kicked``)."""
-        pos = np.concatenate([ws.blue.pos, ws.yellow.pos])
-        d = pos - ws.ball_pos[None, :]
-        touch = (d[:, 0] ** 2 + d[:, 1] ** 2 <= self.reach ** 2) & (ws.ball_height <= 0.15)
-        touch |= np.concatenate([ws.blue.ball_on_dribbler, ws.yellow.ball_on_dribbler])
+        touch = touching_robots(np.concatenate([ws.blue.pos, ws.yellow.pos]), ws.ball_pos, ws.ball_height,
+                                np.concatenate([ws.blue.ball_on_dribbler, ws.yellow.ball_on_dribbler]), self.reach)
         for i in kicked:
             touch[i] = True
         return touch

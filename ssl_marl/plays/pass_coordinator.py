@@ -396,7 +396,7 @@ class PassCoordinator:
     def _keep_may_expire(self, ctx: PlayContext) -> bool:
         """``keep_shot_max_m``'s rule: the ball is near enough to the opponent goal (team frame)."""
         m = self.params.keep_shot_max_m
-        return m is None or float(np.hypot(*(np.asarray(ctx.ball, float) - ctx.field.goal_center(+1)))) <= m
+        return m is None or float(np.hypot(*(ctx.ball - ctx.field.goal_center(+1)))) <= m
 
     def _restart_kicker(self, ctx: PlayContext) -> int | None:
         """The set piece's kicker: the ``attacker`` role's robot, else our field robot

@@ -36,7 +36,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..envs.game_control import TOUCH_MARGIN
+from ..envs.game_control import touch_reach, touching_robots
 from ..physics.state import WorldState, wrap_angle
 from ..skills.base import SkillStatus, make_action
 from ..skills.baseline import DriveForward
@@ -340,13 +340,16 @@ class GoToBallAndShoot(Tactic):
         return make_action(omega=omega / self.rp.max_omega, dribble=True)
 
     def _track_touch(self, world: WorldState, robot: int) -> None:
-        """Where this robot's current touch of the ball began (the referee's touch:
-        :meth:`~ssl_marl.envs.game_control.TouchWatch.touching`; None while it does not
-        touch the ball)."""
+        """Where this robot's current touch of the ball began, while ``keep_tap_m`` needs it
+        (the referee's touch, :func:`~ssl_marl.envs.game_control.touching_robots`; None while
+        it does not touch the ball)."""
+        if self.params.keep_tap_m is None:
+            self._touch_from = None
+            return
         ts = world.team(world.frame)
-        reach = self.rp.radius + self.bp.radius + TOUCH_MARGIN
-        touching = bool(ts.ball_on_dribbler[robot]) or (
-            float(np.hypot(*(ts.pos[robot] - world.ball_pos))) <= reach and float(world.ball_height) <= 0.15)
+        touching = bool(touching_robots(ts.pos[robot:robot + 1], world.ball_pos, world.ball_height,
+                                        ts.ball_on_dribbler[robot:robot + 1],
+                                        touch_reach(self.rp.radius, self.bp.radius))[0])
         if not touching:
             self._touch_from = None
         elif self._touch_from is None:
@@ -369,12 +372,12 @@ class GoToBallAndShoot(Tactic):
         omega = float(np.clip(6.0 * err, -p.keep_turn_rate, p.keep_turn_rate))
         free = free_distance_ahead(world.ball_pos, heading, self.field)
         speed = p.keep_speed * min(max((free - 0.3) / 0.5, 0.0), 1.0) if abs(err) < 0.4 else 0.0
+        tap = False
         if p.keep_tap_m is not None and self.dribbled_m(world) >= p.keep_tap_m:
-            if abs(err) < 0.4 and free >= p.keep_tap_free_m and bool(ts.kick_ready[robot]):
-                return make_action(vx=speed / self.rp.max_speed, omega=omega / self.rp.max_omega, dribble=False,
-                                   kick=p.keep_tap_kick)
-            speed = 0.0
-        return make_action(vx=speed / self.rp.max_speed, omega=omega / self.rp.max_omega, dribble=True)
+            tap = abs(err) < 0.4 and free >= p.keep_tap_free_m and bool(ts.kick_ready[robot])
+            speed = speed if tap else 0.0  # at the limit: tap, or hold still until a tap fits
+        return make_action(vx=speed / self.rp.max_speed, omega=omega / self.rp.max_omega, dribble=not tap,
+                           kick=p.keep_tap_kick if tap else 0.0)
 
 
 def govern_approach(action: np.ndarray, world: WorldState, robot: int, rp, bp, v_touch: float,
