@@ -72,6 +72,23 @@ def test_bad_settings_and_a_mismatched_actor_are_refused():
         pol.reset(TinyEnv())
 
 
+def test_a_value_actor_file_records_how_it_is_played(tmp_path):
+    """``first_k`` and ``margin`` default to the file's ``improve`` record; arguments override it."""
+    from ssl_marl.skills.checkpoint import save_actor_file
+
+    actor = value_actor([0.3, 0.6, 0.2, 0.9])
+    state = {f"net.{k}": v for k, v in actor.net.state_dict().items()}
+    meta = {"task": None, "obs_dim": 3, "n_options": 4, "hidden": [], "agent_ids": None, "option_names": None}
+    plain, recorded = tmp_path / "plain.pt", tmp_path / "k2.pt"
+    save_actor_file(plain, "decision", state, meta)
+    save_actor_file(recorded, "decision", state, {**meta, "improve": {"first_k": 2, "margin": 0.5}})
+    assert play(ImprovedDecisionPolicy(FixedPolicy(0), plain), 3) == [3, 0, 0]  # 1 decision, margin 0.1
+    pol = ImprovedDecisionPolicy(FixedPolicy(0), recorded)
+    assert (pol.first_k, pol.margin) == (2, 0.5) and play(pol, 3) == [3, 3, 0]
+    assert play(ImprovedDecisionPolicy(FixedPolicy(0), recorded, margin=0.7), 2) == [0, 0]
+    assert play(ImprovedDecisionPolicy(FixedPolicy(0), recorded, first_k=1), 2) == [3, 0]
+
+
 def test_in_a_match_the_value_actor_decides_once_per_possession():
     from types import SimpleNamespace
 

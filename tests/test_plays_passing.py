@@ -317,6 +317,31 @@ def test_stats_full_power_flat_kick_past_a_teammate_is_no_pass_but_a_chip_is():
     assert tr.classify_kick(chip, "blue", 0) == "pass"
 
 
+def test_stats_a_kick_towards_the_goal_that_dies_short_of_it_is_no_shot():
+    """A 1 m/s tap from 3 m in front of the goal mouth stops short (a dribbler's push ahead):
+    a kick, no shot; the same kick at 6.5 m/s, a chip at 1 m/s and a 1 m/s tap from 0.2 m
+    in front of the line are shots. Both colours."""
+    import dataclasses
+
+    from ssl_marl.physics import ball_model
+
+    tr = MatchStatsTracker(F, BP)
+    x = F.half_length - 3.0
+    assert ball_model.stop_distance(1.0, BP) < 3.0 < ball_model.stop_distance(6.5, BP)
+    for side, team in ((1.0, "blue"), (-1.0, "yellow")):
+        def kick(x0, speed, vz=0.0):
+            w = make_world(blue=[(side * x0, 0.0, 0.0)], yellow=[(-side * x0, 0.0, 0.0)], ball=(side * x0, 0.0),
+                           ball_vel=(side * speed, 0.0))
+            if team == "yellow":
+                w = make_world(yellow=[(side * x0, 0.0, math.pi)], blue=[(-side * x0, 0.0, 0.0)],
+                               ball=(side * x0, 0.0), ball_vel=(side * speed, 0.0))
+            return dataclasses.replace(w, ball_vz=vz)
+        assert tr.classify_kick(kick(x, 1.0), team, 0) == "clear"
+        assert tr.classify_kick(kick(x, 6.5), team, 0) == "shot"
+        assert tr.classify_kick(kick(x, 1.0, vz=1.0), team, 0) == "shot"
+        assert tr.classify_kick(kick(F.half_length - 0.2, 1.0), team, 0) == "shot"
+
+
 def test_stats_same_step_control_goes_to_the_robot_nearest_the_ball_not_to_blue():
     """A blue pass; a blue receiver and a yellow robot both hold the ball on their dribblers
     for the control time, beginning in the same step: the one nearer the ball takes it."""

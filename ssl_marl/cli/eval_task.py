@@ -21,8 +21,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                    default="handcoded",
                    help="decision policy: learned (ssl_marl.decisions.learned, the shipped actor or --actor), "
                         "handcoded (the task's benchmark), random (uniform over legal options), always-hold "
-                        "(keepaway only), improved (handcoded, except at an episode's first decision, where a "
-                        "value actor's best option is played if it is predicted to score 0.1 more) "
+                        "(keepaway only), improved (handcoded, except at an episode's first K decisions, where a "
+                        "value actor's best option is played if it is predicted to score M goals more; K and M "
+                        "as the value actor file records them, else 1 and 0.1) "
                         "(default handcoded)")
     k.add_argument("--actor", default=None, metavar="PATH",
                    help="decision actor file (.pt, loaded with weights_only=True); with --policy learned the "

@@ -195,17 +195,22 @@ class ImprovedDecisionPolicy:
             e.g. the keep clock, stays as if it played alone).
         path_or_actor: value actor file or :class:`DecisionActor`; ``task``: checked as in
             :class:`LearnedDecisionPolicy`.
-        first_k: decisions per episode, counted over all agents, at which the actor may deviate.
-        margin: predicted gain (return units) a deviation needs.
+        first_k: decisions per episode, counted over all agents, at which the actor may deviate;
+            None: the value actor file's ``improve["first_k"]`` (``fit --first-k``), else 1.
+        margin: predicted gain (return units) a deviation needs; None: the file's
+            ``improve["margin"]`` (``fit --margin``), else 0.1.
     """
 
     name = "improved"
 
     def __init__(self, base: Any, path_or_actor: str | Path | DecisionActor, task: str | None = None,
-                 first_k: int = 1, margin: float = 0.1) -> None:
+                 first_k: int | None = None, margin: float | None = None) -> None:
+        self.base, self.value = base, LearnedDecisionPolicy(path_or_actor, task=task)
+        improve = self.value.meta.get("improve") or {}
+        first_k = int(improve.get("first_k", 1)) if first_k is None else first_k
+        margin = float(improve.get("margin", 0.1)) if margin is None else margin
         if first_k < 0 or not np.isfinite(margin):
             raise ValueError(f"ImprovedDecisionPolicy: first_k must be >= 0 and margin finite, got {first_k}, {margin}")
-        self.base, self.value = base, LearnedDecisionPolicy(path_or_actor, task=task)
         self.first_k, self.margin = int(first_k), float(margin)
         self.decisions = 0
         self.deviations = 0

@@ -16,8 +16,11 @@ same rules:
   shot that runs past a teammate is not a pass. A chip (``ball_vz > 0``) towards a
   teammate is a pass at any speed (its ground speed drops at each bounce).
 * **Shot**: any other kick whose straight path crosses the opponent goal line within
-  the posts widened by ``shot_margin_m`` on each side. Kicks aimed at nobody and not
-  at the goal (clearances) count only as kicks.
+  the posts widened by ``shot_margin_m`` on each side and that would reach that line
+  (the ball model's stop distance covers the path to it; a chip, ``ball_vz > 0``,
+  counts at any speed): a tap that dies on the way, e.g. a dribbler's push ahead of
+  the 1 m dribbling limit, is not a shot. Kicks aimed at nobody and not at the goal
+  (clearances) and taps short of the goal count only as kicks.
 * **Control**: a robot holds the ball on its dribbler for ``control_steps``
   consecutive steps (0.1 s at 60 Hz), so a deflection is not control.
 * A pass ends at the first control or kick by another robot (robots taking control in the same
@@ -186,18 +189,21 @@ class MatchStatsTracker:
         u = v / sp
         side = 1.0 if team == "blue" else -1.0
         x_goal = side * self.field.half_length
-        at_goal = False
+        at_goal, to_goal = False, np.inf
         if u[0] * side > 1e-6:
-            y = p[1] + (x_goal - p[0]) / u[0] * u[1]
+            to_goal = (x_goal - p[0]) / u[0]
+            y = p[1] + to_goal * u[1]
             at_goal = abs(y) <= self.field.goal_width / 2.0 + self.params.shot_margin_m
-        reach = ball_model.stop_distance(sp, self.ball) + self.params.pass_lane_m
+        stop = ball_model.stop_distance(sp, self.ball)
+        reach = stop + self.params.pass_lane_m
         lane = self.params.goal_lane_m if at_goal else self.params.pass_lane_m
         for _, along, lateral in kick_path_offsets(world, team, kicker):
             if self.params.min_pass_m <= along <= reach and lateral <= lane and (
                     world.ball_vz > 0.0
                     or ball_model.speed_at_distance(sp, along, self.ball) <= self.params.pass_max_arrive_speed):
                 return "pass"
-        return "shot" if at_goal else "clear"
+        reaches_goal = world.ball_vz > 0.0 or stop >= to_goal
+        return "shot" if at_goal and reaches_goal else "clear"
 
     def _close(self, outcome: str, by: tuple[str, int] | None, t: float, why: str | None = None) -> None:
         """End the open pass as "completed", "intercepted" or "lost" (``why``: what ended a

@@ -26,7 +26,11 @@ picks the option with the highest predicted value: the improved policy. The last
 fraction of the episodes is held out; the printed figures compare, on those decisions, the mean
 return of the option the actor picks with the benchmark's (the rollout values of both are known).
 The actor is written in the decision-actor format, so it is evaluated like any learned decision,
-or warm-starts MAPPO (``--set init_actor=PATH``).
+or warm-starts MAPPO (``--set init_actor=PATH``); ``--first-k`` / ``--margin`` are recorded in the file
+(``improve``) as how :class:`~ssl_marl.decisions.learned.ImprovedDecisionPolicy` plays it
+(``eval-task --policy improved --actor PATH``). ``collect --policy improved`` labels under the
+improved policy: a second iteration, whose first-decision labels value an option followed by the
+benchmark, as the first iteration's do.
 
 **summarize** writes the labels' mean value of every option, by decision index and by the option
 the benchmark chose (where the benchmark loses against another option), with each chunk's record.
@@ -275,6 +279,11 @@ def main(argv: list[str] | None = None) -> int:
     f.add_argument("--weight-decay", type=float, default=1e-4, help="Adam weight decay (default 1e-4)")
     f.add_argument("--holdout", type=float, default=0.2, help="fraction of episodes held out (default 0.2)")
     f.add_argument("--seed", type=int, default=0, help="torch seed (default 0)")
+    f.add_argument("--first-k", type=int, default=1,
+                   help="recorded in the file: the improved policy may deviate at an episode's first K decisions "
+                        "(default 1)")
+    f.add_argument("--margin", type=float, default=0.1,
+                   help="recorded in the file: predicted gain (goals) a deviation needs (default 0.1)")
     f.add_argument("--out", type=Path, required=True, help="actor file to write (.pt)")
     m = sub.add_parser("summarize", help="write the labels' mean option values (JSON with a manifest)")
     m.add_argument("--task", required=True, help="decision task the labels come from")
@@ -297,11 +306,14 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     if not 0 <= args.holdout < 1:
         p.error(f"--holdout must be in [0, 1), got {args.holdout}")
+    if args.first_k < 1 or not np.isfinite(args.margin):
+        p.error(f"--first-k must be >= 1 and --margin finite, got {args.first_k}, {args.margin}")
     labels = _concat([load_labels(d) for d in args.labels])
     agent, stats = fit_value_actor(args.task, labels, epochs=args.epochs, lr=args.lr, holdout=args.holdout,
                                    weight_decay=args.weight_decay, seed=args.seed)
     seeds = sorted({int(s) for s in labels["seed"]})
     save_bc_actor(agent, args.task, args.out, seed=args.seed,
+                  improve={"first_k": args.first_k, "margin": args.margin},
                   rollout_pi={"labels": [str(d) for d in args.labels], "seeds": [seeds[0], seeds[-1]], **stats})
     print(json.dumps({"out": str(args.out), **stats}))
     return 0
