@@ -271,6 +271,11 @@ DECISION_DIV_A_102_POOLED = [
      ((DECISION_SERIES_DIV_A_102[2], "blue"), (DECISION_SERIES_DIV_A_102[3], "yellow"))),
     ("attack-learned (the cost decision) vs baseline, the seeds of the first row",
      ((DECISION_SERIES_DIV_A_102[4], "blue"), (DECISION_SERIES_DIV_A_102[5], "yellow")))]
+#: the learned carrier decision against the cost decision under SSL rules, 6v6 Division B, both colours (commit d8eae02)
+DECISION_SSL_103 = ["match_attack_learned_decision_vs_attack_learned_600_ssl_103000",
+                    "match_attack_learned_vs_attack_learned_decision_600_ssl_103005"]
+DECISION_SSL_103_POOLED = [("attack-learned, learned decision vs attack-learned, `--format ssl`, 6v6 Division B",
+                            ((DECISION_SSL_103[0], "blue"), (DECISION_SSL_103[1], "yellow")))]
 #: the attacking team with learned skills against itself with hand-coded skills, both colours (commit e395ab2)
 RECEIVE_PRESSED = ["receive_pressed_baseline", "receive_pressed_learned", "receive_pressed_gated",
                    "receive_pressed_baseline_realistic", "receive_pressed_gated_realistic", "receive_gated_plain",
@@ -367,6 +372,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_97_pooled": lambda r: m.pooled_sides(r, DECISION_97_POOLED),
     "decision_series_div_a_102": lambda r: m.series_600(r, DECISION_SERIES_DIV_A_102),
     "decision_div_a_102_pooled": lambda r: m.pooled_sides(r, DECISION_DIV_A_102_POOLED),
+    "decision_series_ssl_103": lambda r: m.series_600(r, DECISION_SSL_103),
+    "decision_ssl_103_pooled": lambda r: m.pooled_sides(r, DECISION_SSL_103_POOLED),
     "receive_pressed": lambda r: t.skills(r, RECEIVE_PRESSED),
     "receive_pressed_selection": lambda r: t.selection(r, RECEIVE_PRESSED_RUNS),
     "receive_mixed_selection_s0": lambda r: t.selection_by_field(r, "receive_pressed_mixed_s0"),
@@ -453,6 +460,9 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
                                                    "attack_drill_improved_150000"),
                                                   ("improved, second iteration (shipped `attack_drill_value.pt`)",
                                                    "attack_drill_improved_2nd_150000")]),
+    "attack_drill_div_a_150000": lambda r: t.attack(r, [("hand-coded", "attack_drill_handcoded_div_a_150000"),
+                                                        ("improved, second iteration (shipped `attack_drill_value.pt`)",
+                                                         "attack_drill_improved_2nd_div_a_150000")]),
     "attack_drill_realistic_150000": lambda r: t.attack(r, [("hand-coded", "attack_drill_handcoded_realistic_150000"),
                                                             ("improved, second iteration (shipped `attack_drill_value.pt`)",
                                                              "attack_drill_improved_2nd_realistic_150000")]),
