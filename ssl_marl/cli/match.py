@@ -106,10 +106,10 @@ def resolve_team(side: str, value: str, sources: list[tuple[str, str]], decision
 
 
 def match_line(res) -> str:
-    """One line of a single match's result: score, shots, possession, times."""
+    """One line of a single match's result: score, kicks (every kick event), possession, times."""
     s, sh, po = res.score, res.shots, res.possession
     return (f"blue ({res.config.get('blue')}) {s['blue']} - {s['yellow']} yellow ({res.config.get('yellow')})"
-            f"  | shots {sh.get('blue', 0)}-{sh.get('yellow', 0)}"
+            f"  | kicks {sh.get('blue', 0)}-{sh.get('yellow', 0)}"
             f"  | possession {100 * po.get('blue', 0):.0f}%-{100 * po.get('yellow', 0):.0f}%"
             f"  | {res.sim_time_s:.0f} s simulated in {res.wall_time_s:.1f} s wall"
             + (f"  | missed deadlines {res.missed_deadlines}" if res.config.get("realtime") else ""))
@@ -169,7 +169,7 @@ def run(args: argparse.Namespace) -> int:
     results, summary = play_series(blue=blue, yellow=yellow, matches=args.matches, workers=workers(args),
                                    seed=args.seed, progress=not args.quiet, backend=args.backend,
                                    address=args.address, keep_dir=keep_dir, **common)
-    print(f"{'match':>5} {'seed':>6}  {'score':>7}  {'shots':>7}  possession")
+    print(f"{'match':>5} {'seed':>6}  {'score':>7}  {'kicks':>7}  possession")
     for i, r in enumerate(results):
         print(f"{i:>5} {r.seed:>6}  {r.score['blue']:>3}-{r.score['yellow']:<3}  {r.shots['blue']:>3}-{r.shots['yellow']:<3}"
               f"  {100 * r.possession['blue']:.0f}%-{100 * r.possession['yellow']:.0f}%")

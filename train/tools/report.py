@@ -447,10 +447,10 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
                                                  ("learned, retrained in the fixed drill (`mappo_attack_drill_v2_s0`, not shipped)",
                                                   "attack_drill_learned_v2_42000"),
                                                  ("improved: hand-coded, the value actor's option at the first decision "
-                                                  "(`attack_drill_value.pt`)", "attack_drill_improved_42000")]),
+                                                  "(first iteration, `attack_drill_value_1st.pt`)", "attack_drill_improved_42000")]),
     "attack_drill_realistic_42000": lambda r: t.attack(r, [("hand-coded", "attack_drill_handcoded_realistic"),
                                                            ("learned, shipped `attack_drill.pt`", "attack_drill_learned_realistic"),
-                                                           ("improved (`attack_drill_value.pt` at the first decision)",
+                                                           ("improved (first iteration, `attack_drill_value_1st.pt`, at the first decision)",
                                                             "attack_drill_improved_realistic")]),
     "attack_drill_first_decision": lambda r: t.probe_rows(r / "tuning" / "attack_drill_first_decision.json", "policy"),
     "attack_drill_second_iteration": lambda r: t.probe_rows(r / "tuning" / "attack_drill_second_iteration.json",
