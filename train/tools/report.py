@@ -453,7 +453,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
                                                            ("improved (first iteration, `attack_drill_value_1st.pt`, at the first decision)",
                                                             "attack_drill_improved_realistic")]),
     "attack_drill_first_decision": lambda r: t.probe_rows(r / "tuning" / "attack_drill_first_decision.json", "policy"),
-    "attack_drill_second_iteration": lambda r: t.probe_rows(r / "tuning" / "attack_drill_second_iteration.json",
+    "attack_drill_iterations": lambda r: t.probe_rows(r / "tuning" / "attack_drill_iterations.json",
                                                             "policy"),
     "attack_drill_150000": lambda r: t.attack(r, [("hand-coded", "attack_drill_handcoded_150000"),
                                                   ("improved, first iteration (`attack_drill_value_1st.pt`)",
