@@ -276,6 +276,11 @@ DECISION_SSL_103 = ["match_attack_learned_decision_vs_attack_learned_600_ssl_103
                     "match_attack_learned_vs_attack_learned_decision_600_ssl_103005"]
 DECISION_SSL_103_POOLED = [("attack-learned, learned decision vs attack-learned, `--format ssl`, 6v6 Division B",
                             ((DECISION_SSL_103[0], "blue"), (DECISION_SSL_103[1], "yellow")))]
+#: the improved decision with the second-iteration value actor against the cost decision, both colours (commit 646fe1b)
+DECISION_IMPROVED_103 = ["match_attack_improved_decision_vs_attack_learned_600_103100",
+                         "match_attack_learned_vs_attack_improved_decision_600_103105"]
+DECISION_IMPROVED_103_POOLED = [("attack-learned, improved decision (second-iteration value actor) vs attack-learned",
+                                 ((DECISION_IMPROVED_103[0], "blue"), (DECISION_IMPROVED_103[1], "yellow")))]
 #: the attacking team with learned skills against itself with hand-coded skills, both colours (commit e395ab2)
 RECEIVE_PRESSED = ["receive_pressed_baseline", "receive_pressed_learned", "receive_pressed_gated",
                    "receive_pressed_baseline_realistic", "receive_pressed_gated_realistic", "receive_gated_plain",
@@ -369,6 +374,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_series_97": lambda r: m.series_600(r, DECISION_SERIES_97),
     "decision_series_98": lambda r: m.series_600(r, DECISION_SERIES_98),
     "decision_98_pooled": lambda r: m.pooled_sides(r, DECISION_98_POOLED),
+    "decision_series_improved_103": lambda r: m.series_600(r, DECISION_IMPROVED_103),
+    "decision_improved_103_pooled": lambda r: m.pooled_sides(r, DECISION_IMPROVED_103_POOLED),
     "decision_97_pooled": lambda r: m.pooled_sides(r, DECISION_97_POOLED),
     "decision_series_div_a_102": lambda r: m.series_600(r, DECISION_SERIES_DIV_A_102),
     "decision_div_a_102_pooled": lambda r: m.pooled_sides(r, DECISION_DIV_A_102_POOLED),
