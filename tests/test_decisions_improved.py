@@ -97,6 +97,7 @@ def test_in_a_match_the_value_actor_decides_once_per_possession():
 
     dec = make_match_decider("improved", task=DRILL_TASK)
     assert isinstance(dec, ImprovedAttackDecider)
+    assert dec.margin == 0.1  # the margin the shipped value actor file records
     first = [dec._first_of_possession(SimpleNamespace(t=t, carrier=c)) for t, c in
              [(0.0, 2), (0.1, 2), (0.2, 2), (1.0, 3), (1.1, 3)]]
     assert first == [True, False, False, True, False]  # a request after a gap opens a possession

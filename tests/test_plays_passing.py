@@ -330,11 +330,9 @@ def test_stats_a_kick_towards_the_goal_that_dies_short_of_it_is_no_shot():
     assert ball_model.stop_distance(1.0, BP) < 3.0 < ball_model.stop_distance(6.5, BP)
     for side, team in ((1.0, "blue"), (-1.0, "yellow")):
         def kick(x0, speed, vz=0.0):
-            w = make_world(blue=[(side * x0, 0.0, 0.0)], yellow=[(-side * x0, 0.0, 0.0)], ball=(side * x0, 0.0),
-                           ball_vel=(side * speed, 0.0))
-            if team == "yellow":
-                w = make_world(yellow=[(side * x0, 0.0, math.pi)], blue=[(-side * x0, 0.0, 0.0)],
-                               ball=(side * x0, 0.0), ball_vel=(side * speed, 0.0))
+            kicker, other = [(side * x0, 0.0, 0.0 if side > 0 else math.pi)], [(-side * x0, 0.0, 0.0)]
+            blue, yellow = (kicker, other) if team == "blue" else (other, kicker)
+            w = make_world(blue=blue, yellow=yellow, ball=(side * x0, 0.0), ball_vel=(side * speed, 0.0))
             return dataclasses.replace(w, ball_vz=vz)
         assert tr.classify_kick(kick(x, 1.0), team, 0) == "clear"
         assert tr.classify_kick(kick(x, 6.5), team, 0) == "shot"

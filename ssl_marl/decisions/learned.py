@@ -206,9 +206,9 @@ class ImprovedDecisionPolicy:
     def __init__(self, base: Any, path_or_actor: str | Path | DecisionActor, task: str | None = None,
                  first_k: int | None = None, margin: float | None = None) -> None:
         self.base, self.value = base, LearnedDecisionPolicy(path_or_actor, task=task)
-        improve = self.value.meta.get("improve") or {}
-        first_k = int(improve.get("first_k", 1)) if first_k is None else first_k
-        margin = float(improve.get("margin", 0.1)) if margin is None else margin
+        recorded_k, recorded_margin = improve_settings(self.value.meta)
+        first_k = recorded_k if first_k is None else first_k
+        margin = recorded_margin if margin is None else margin
         if first_k < 0 or not np.isfinite(margin):
             raise ValueError(f"ImprovedDecisionPolicy: first_k must be >= 0 and margin finite, got {first_k}, {margin}")
         self.first_k, self.margin = int(first_k), float(margin)
@@ -234,6 +234,19 @@ class ImprovedDecisionPolicy:
         return best
 
 
+#: how :class:`ImprovedDecisionPolicy` plays a value actor file that records nothing else: the
+#: episode's first decision only, where the actor predicts a gain of more than 0.1 goals
+DEFAULT_FIRST_K, DEFAULT_MARGIN = 1, 0.1
+
+
+def improve_settings(meta: dict) -> tuple[int, float]:
+    """(first_k, margin) a value actor file records for :class:`ImprovedDecisionPolicy`
+    (its ``improve`` entry, ``python -m train.mappo_rollout_pi fit --first-k --margin``),
+    else (:data:`DEFAULT_FIRST_K`, :data:`DEFAULT_MARGIN`)."""
+    improve = meta.get("improve") or {}
+    return int(improve.get("first_k", DEFAULT_FIRST_K)), float(improve.get("margin", DEFAULT_MARGIN))
+
+
 def better_option(values: np.ndarray, mask: np.ndarray, choice: int, margin: float) -> int | None:
     """The legal option (``mask``) of the highest predicted value (``values``, one per option)
     if it beats option ``choice`` by more than ``margin``, else None."""
@@ -242,5 +255,5 @@ def better_option(values: np.ndarray, mask: np.ndarray, choice: int, margin: flo
     return best if v[best] > v[choice] + margin else None
 
 
-__all__ = ["DecisionActor", "ImprovedDecisionPolicy", "better_option", "LearnedDecisionPolicy", "load_decision_actor", "pretrained_path",
+__all__ = ["DecisionActor", "ImprovedDecisionPolicy", "better_option", "improve_settings", "LearnedDecisionPolicy", "load_decision_actor", "pretrained_path",
            "pretrained_value_path"]

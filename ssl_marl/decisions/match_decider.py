@@ -160,7 +160,8 @@ class ImprovedAttackDecider(AttackDecider):
     with the ball in the half the drill is played in (x >= ``min_x_m``, team frame; the drill's
     carrier starts at 0.5-2.5 m), the value actor rates the drill's legal options; where the best
     is predicted to score more than ``margin`` above the cost decision's option, it is played
-    instead. A possession starts with a request after none for ``gap_s`` (the coordinator asks every
+    instead (``margin`` None: the one the value actor file records,
+    :func:`~ssl_marl.decisions.learned.improve_settings`). A possession starts with a request after none for ``gap_s`` (the coordinator asks every
     few ticks while a robot holds the ball), unless that carrier is the receiver of the team's last
     planned pass (in the drill, too, only the episode's first decision is the actor's).
 
@@ -169,14 +170,15 @@ class ImprovedAttackDecider(AttackDecider):
         deviations: possessions at which the value actor's option was played.
     """
 
-    def __init__(self, value_actor: str | Path, params: AttackParams | None = None, margin: float = 0.1,
+    def __init__(self, value_actor: str | Path, params: AttackParams | None = None, margin: float | None = None,
                  gap_s: float = 0.5, min_x_m: float = 0.0) -> None:
-        from .learned import LearnedDecisionPolicy
+        from .learned import LearnedDecisionPolicy, improve_settings
 
         super().__init__(params)
         self.value = LearnedDecisionPolicy(str(value_actor), task=DRILL_TASK)
         self.spec_env = AttackSpecEnv(DRILL_TASK)
         self.value.reset(self.spec_env)
+        margin = improve_settings(self.value.meta)[1] if margin is None else margin
         self.margin, self.gap_s, self.min_x_m = float(margin), float(gap_s), float(min_x_m)
         self.deviations = 0
         self._last_t: float | None = None

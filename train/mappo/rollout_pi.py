@@ -48,6 +48,7 @@ import numpy as np
 import torch
 from tqdm import tqdm
 
+from ssl_marl.decisions.learned import DEFAULT_FIRST_K, DEFAULT_MARGIN
 from ssl_marl.decisions.policies import run_episode
 from ssl_marl.io import atomic_write_bytes, atomic_write_json
 
@@ -279,11 +280,11 @@ def main(argv: list[str] | None = None) -> int:
     f.add_argument("--weight-decay", type=float, default=1e-4, help="Adam weight decay (default 1e-4)")
     f.add_argument("--holdout", type=float, default=0.2, help="fraction of episodes held out (default 0.2)")
     f.add_argument("--seed", type=int, default=0, help="torch seed (default 0)")
-    f.add_argument("--first-k", type=int, default=1,
+    f.add_argument("--first-k", type=int, default=DEFAULT_FIRST_K,
                    help="recorded in the file: the improved policy may deviate at an episode's first K decisions "
-                        "(default 1)")
-    f.add_argument("--margin", type=float, default=0.1,
-                   help="recorded in the file: predicted gain (goals) a deviation needs (default 0.1)")
+                        f"(default {DEFAULT_FIRST_K})")
+    f.add_argument("--margin", type=float, default=DEFAULT_MARGIN,
+                   help=f"recorded in the file: predicted gain (goals) a deviation needs (default {DEFAULT_MARGIN})")
     f.add_argument("--out", type=Path, required=True, help="actor file to write (.pt)")
     m = sub.add_parser("summarize", help="write the labels' mean option values (JSON with a manifest)")
     m.add_argument("--task", required=True, help="decision task the labels come from")

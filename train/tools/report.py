@@ -226,25 +226,26 @@ DECISION_SERIES_PRESS = ["match_attack_learned_decision_vs_attack_learned_600_95
                          "match_attack_learned_decision_vs_attack_learned_600_realistic_95600",
                          "match_attack_learned_vs_attack_learned_decision_600_realistic_95610"]
 #: each pair of DECISION_SERIES_PRESS (learned decision blue, then yellow) from the learned side
-DECISION_PRESS_POOLED = [(label, ((blue, "blue"), (yellow, "yellow"))) for label, blue, yellow in zip(
+DECISION_PRESS_POOLED = [m.both_colours(label, blue, yellow) for label, blue, yellow in zip(
     ("attack-learned, learned decision vs attack-learned (pressed passer, commit fcb21d2)",
      "the same, `--realism realistic`"), DECISION_SERIES_PRESS[::2], DECISION_SERIES_PRESS[1::2])]
 #: the learned decision against the hand-coded one with the receive retrained under its gate (commit 845ac88)
 DECISION_SERIES_99 = ["match_attack_learned_decision_vs_attack_learned_600_99400",
                       "match_attack_learned_vs_attack_learned_decision_600_99430"]
-DECISION_99_POOLED = [("attack-learned, learned decision vs attack-learned (commit 845ac88)",
-                       ((DECISION_SERIES_99[0], "blue"), (DECISION_SERIES_99[1], "yellow")))]
+DECISION_99_POOLED = [m.both_colours("attack-learned, learned decision vs attack-learned (commit 845ac88)",
+                                     DECISION_SERIES_99[0], DECISION_SERIES_99[1])]
 #: the same under ``--realism realistic`` with commit f0ad2a0 (the play code of 74a0018; seeds 100200-100219)
 DECISION_SERIES_REAL_100 = ["match_attack_learned_decision_vs_attack_learned_600_realistic_100200",
                             "match_attack_learned_vs_attack_learned_decision_600_realistic_100210"]
-DECISION_REAL_100_POOLED = [("attack-learned, learned decision vs attack-learned, `--realism realistic` (commit f0ad2a0)",
-                             ((DECISION_SERIES_REAL_100[0], "blue"), (DECISION_SERIES_REAL_100[1], "yellow")))]
+DECISION_REAL_100_POOLED = [
+    m.both_colours("attack-learned, learned decision vs attack-learned, `--realism realistic` (commit f0ad2a0)",
+                   DECISION_SERIES_REAL_100[0], DECISION_SERIES_REAL_100[1])]
 #: the retrained drill actor (blue only) and the improved decision (both colours) against the hand-coded decision
 DECISION_SERIES_98 = ["match_attack_drill_v2_decision_vs_attack_learned_600_98000",
                       "match_attack_improved_decision_vs_attack_learned_600_98100",
                       "match_attack_learned_vs_attack_improved_decision_600_98130"]
-DECISION_98_POOLED = [("attack-learned, improved decision vs attack-learned (commit e8e1dc0)",
-                       ((DECISION_SERIES_98[1], "blue"), (DECISION_SERIES_98[2], "yellow")))]
+DECISION_98_POOLED = [m.both_colours("attack-learned, improved decision vs attack-learned (commit e8e1dc0)",
+                                     DECISION_SERIES_98[1], DECISION_SERIES_98[2])]
 #: the learned decision on Division A against the hand-coded one, and against the no-pass baseline (commit 319a5ae)
 DECISION_SERIES_97 = ["match_attack_learned_decision_vs_attack_learned_600_div_a_11v11_97000",
                       "match_attack_learned_vs_attack_learned_decision_600_div_a_11v11_97005",
@@ -252,11 +253,12 @@ DECISION_SERIES_97 = ["match_attack_learned_decision_vs_attack_learned_600_div_a
                       "match_baseline_vs_attack_learned_decision_600_97105",
                       "match_attack_learned_decision_vs_baseline_600_97110",
                       "match_baseline_vs_attack_learned_decision_600_97115"]
-DECISION_97_POOLED = [("attack-learned, learned decision vs attack-learned, 11v11 Division A (commit 319a5ae)",
-                       ((DECISION_SERIES_97[0], "blue"), (DECISION_SERIES_97[1], "yellow"))),
-                      ("attack-learned-decision vs baseline (commit 319a5ae)",
-                       ((DECISION_SERIES_97[2], "blue"), (DECISION_SERIES_97[3], "yellow"),
-                        (DECISION_SERIES_97[4], "blue"), (DECISION_SERIES_97[5], "yellow")))]
+DECISION_97_POOLED = [
+    m.both_colours("attack-learned, learned decision vs attack-learned, 11v11 Division A (commit 319a5ae)",
+                   DECISION_SERIES_97[0], DECISION_SERIES_97[1]),
+    ("attack-learned-decision vs baseline (commit 319a5ae)",
+     ((DECISION_SERIES_97[2], "blue"), (DECISION_SERIES_97[3], "yellow"),
+      (DECISION_SERIES_97[4], "blue"), (DECISION_SERIES_97[5], "yellow")))]
 #: the team with the learned decision against the no-pass baseline, 11v11 Division A, plain and SSL format
 DECISION_SERIES_DIV_A_102 = ["match_attack_learned_decision_vs_baseline_600_div_a_11v11_102000",
                              "match_baseline_vs_attack_learned_decision_600_div_a_11v11_102005",
@@ -265,22 +267,24 @@ DECISION_SERIES_DIV_A_102 = ["match_attack_learned_decision_vs_baseline_600_div_
                              "match_attack_learned_vs_baseline_600_div_a_11v11_102000",
                              "match_baseline_vs_attack_learned_600_div_a_11v11_102005"]
 DECISION_DIV_A_102_POOLED = [
-    ("attack-learned-decision vs baseline, 11v11 Division A (commit 1155796)",
-     ((DECISION_SERIES_DIV_A_102[0], "blue"), (DECISION_SERIES_DIV_A_102[1], "yellow"))),
-    ("the same, `--format ssl` (halves, STOP, free kicks, fouls called)",
-     ((DECISION_SERIES_DIV_A_102[2], "blue"), (DECISION_SERIES_DIV_A_102[3], "yellow"))),
-    ("attack-learned (the cost decision) vs baseline, the seeds of the first row",
-     ((DECISION_SERIES_DIV_A_102[4], "blue"), (DECISION_SERIES_DIV_A_102[5], "yellow")))]
+    m.both_colours("attack-learned-decision vs baseline, 11v11 Division A (commit 1155796)",
+                   DECISION_SERIES_DIV_A_102[0], DECISION_SERIES_DIV_A_102[1]),
+    m.both_colours("the same, `--format ssl` (halves, STOP, free kicks, fouls called)",
+                   DECISION_SERIES_DIV_A_102[2], DECISION_SERIES_DIV_A_102[3]),
+    m.both_colours("attack-learned (the cost decision) vs baseline, the seeds of the first row",
+                   DECISION_SERIES_DIV_A_102[4], DECISION_SERIES_DIV_A_102[5])]
 #: the learned carrier decision against the cost decision under SSL rules, 6v6 Division B, both colours (commit d8eae02)
 DECISION_SSL_103 = ["match_attack_learned_decision_vs_attack_learned_600_ssl_103000",
                     "match_attack_learned_vs_attack_learned_decision_600_ssl_103005"]
-DECISION_SSL_103_POOLED = [("attack-learned, learned decision vs attack-learned, `--format ssl`, 6v6 Division B",
-                            ((DECISION_SSL_103[0], "blue"), (DECISION_SSL_103[1], "yellow")))]
+DECISION_SSL_103_POOLED = [
+    m.both_colours("attack-learned, learned decision vs attack-learned, `--format ssl`, 6v6 Division B",
+                   DECISION_SSL_103[0], DECISION_SSL_103[1])]
 #: the improved decision with the second-iteration value actor against the cost decision, both colours (commit 646fe1b)
 DECISION_IMPROVED_103 = ["match_attack_improved_decision_vs_attack_learned_600_103100",
                          "match_attack_learned_vs_attack_improved_decision_600_103105"]
-DECISION_IMPROVED_103_POOLED = [("attack-learned, improved decision (second-iteration value actor) vs attack-learned",
-                                 ((DECISION_IMPROVED_103[0], "blue"), (DECISION_IMPROVED_103[1], "yellow")))]
+DECISION_IMPROVED_103_POOLED = [
+    m.both_colours("attack-learned, improved decision (second-iteration value actor) vs attack-learned",
+                   DECISION_IMPROVED_103[0], DECISION_IMPROVED_103[1])]
 #: the attacking team with learned skills against itself with hand-coded skills, both colours (commit e395ab2)
 RECEIVE_PRESSED = ["receive_pressed_baseline", "receive_pressed_learned", "receive_pressed_gated",
                    "receive_pressed_baseline_realistic", "receive_pressed_gated_realistic", "receive_gated_plain",
@@ -289,30 +293,33 @@ RECEIVE_PRESSED = ["receive_pressed_baseline", "receive_pressed_learned", "recei
 RECEIVE_PRESSED_RUNS = ["receive_pressed_s0", "receive_pressed_bc1_s0", "receive_pressed_bc01_s0", "receive_pressed_gated_s0",
                         "receive_pressed_gated_s1", "receive_pressed_lane_s0"]
 SKILLS_99100 = ["match_pressed_receive_vs_attack_baseline_600_99100", "match_attack_baseline_vs_pressed_receive_600_99130"]
-SKILLS_99100_POOLED = [("attack-learned with the pressed receive, first gate, vs attack-baseline (commit 15af20f)",
-                        ((SKILLS_99100[0], "blue"), (SKILLS_99100[1], "yellow")))]
+SKILLS_99100_POOLED = [
+    m.both_colours("attack-learned with the pressed receive, first gate, vs attack-baseline (commit 15af20f)",
+                   SKILLS_99100[0], SKILLS_99100[1])]
 SKILLS_99200 = ["match_attack_learned_vs_attack_baseline_600_99200", "match_attack_baseline_vs_attack_learned_600_99230"]
-SKILLS_99200_POOLED = [("attack-learned (receive retrained under the lane gate) vs attack-baseline (commit 845ac88)",
-                        ((SKILLS_99200[0], "blue"), (SKILLS_99200[1], "yellow")))]
+SKILLS_99200_POOLED = [
+    m.both_colours("attack-learned (receive retrained under the lane gate) vs attack-baseline (commit 845ac88)",
+                   SKILLS_99200[0], SKILLS_99200[1])]
 SKILLS_99100_LANE = ["match_pressed_receive_lane_vs_attack_baseline_600_99100",
                      "match_attack_baseline_vs_pressed_receive_lane_600_99130"]
 SKILLS_99110 = ["match_attack_learned_vs_attack_baseline_600_99110", "match_attack_baseline_vs_attack_learned_600_99140"]
 SKILLS_99120 = ["match_attack_learned_vs_attack_baseline_600_99120", "match_attack_baseline_vs_attack_learned_600_99150"]
-SKILLS_99100_LANE_POOLED = [("attack-learned with the pressed receive, lane gate, vs attack-baseline (commit 466a0c5)",
-                             ((SKILLS_99100_LANE[0], "blue"), (SKILLS_99100_LANE[1], "yellow"))),
-                            ("attack-learned (shipped pressed receive) vs attack-baseline (commit 17b2cca)",
-                             ((SKILLS_99110[0], "blue"), (SKILLS_99110[1], "yellow"))),
-                            ("attack-learned (shipped pressed receive) vs attack-baseline (commit ca1bd94)",
-                             ((SKILLS_99120[0], "blue"), (SKILLS_99120[1], "yellow"))),
-                            ("the 40 with the shipped receive (seeds never used in tuning)",
-                             ((SKILLS_99110[0], "blue"), (SKILLS_99110[1], "yellow"),
-                              (SKILLS_99120[0], "blue"), (SKILLS_99120[1], "yellow"))),
-                            ("all 60", ((SKILLS_99100_LANE[0], "blue"), (SKILLS_99100_LANE[1], "yellow"),
-                                        (SKILLS_99110[0], "blue"), (SKILLS_99110[1], "yellow"),
-                                        (SKILLS_99120[0], "blue"), (SKILLS_99120[1], "yellow")))]
+SKILLS_99100_LANE_POOLED = [
+    m.both_colours("attack-learned with the pressed receive, lane gate, vs attack-baseline (commit 466a0c5)",
+                   SKILLS_99100_LANE[0], SKILLS_99100_LANE[1]),
+    m.both_colours("attack-learned (shipped pressed receive) vs attack-baseline (commit 17b2cca)",
+                   SKILLS_99110[0], SKILLS_99110[1]),
+    m.both_colours("attack-learned (shipped pressed receive) vs attack-baseline (commit ca1bd94)",
+                   SKILLS_99120[0], SKILLS_99120[1]),
+    ("the 40 with the shipped receive (seeds never used in tuning)",
+     ((SKILLS_99110[0], "blue"), (SKILLS_99110[1], "yellow"),
+      (SKILLS_99120[0], "blue"), (SKILLS_99120[1], "yellow"))),
+    ("all 60", ((SKILLS_99100_LANE[0], "blue"), (SKILLS_99100_LANE[1], "yellow"),
+                (SKILLS_99110[0], "blue"), (SKILLS_99110[1], "yellow"),
+                (SKILLS_99120[0], "blue"), (SKILLS_99120[1], "yellow")))]
 SKILLS_97200 = ["match_attack_learned_vs_attack_baseline_600_97200", "match_attack_baseline_vs_attack_learned_600_97230"]
-SKILLS_97200_POOLED = [("attack-learned vs attack-baseline (commit e395ab2)",
-                        ((SKILLS_97200[0], "blue"), (SKILLS_97200[1], "yellow")))]
+SKILLS_97200_POOLED = [m.both_colours("attack-learned vs attack-baseline (commit e395ab2)",
+                                      SKILLS_97200[0], SKILLS_97200[1])]
 ATTACK_DRILL = [("hand-coded (the attacking plays' cost decision)", "attack_drill_handcoded"),
                 ("learned (shipped `attack_drill.pt`: cloned, then MAPPO `mappo_attack_drill_bc_s0`)",
                  "attack_drill_learned")]

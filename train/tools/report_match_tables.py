@@ -158,6 +158,11 @@ def _played_commits(manifest: dict) -> list[str]:
     return [g.get("commit", "?")[:7] for g in gits]
 
 
+def both_colours(label: str, blue_series: str, yellow_series: str) -> tuple[str, tuple[tuple[str, str], ...]]:
+    """A :func:`pooled_sides` row spec: one team, blue in ``blue_series`` and yellow in ``yellow_series``."""
+    return label, ((blue_series, "blue"), (yellow_series, "yellow"))
+
+
 def pooled_sides(results: Path, rows_spec: Iterable[tuple[str, tuple[tuple[str, str], ...]]]) -> Lines:
     """One row per (label, ((series name, side), ...)): the matches of the named series
     pooled from the named side's point of view ("blue" or "yellow"), so a team played on
