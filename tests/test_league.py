@@ -103,7 +103,25 @@ def test_bad_arguments_give_clear_errors(fake, tmp_path):
         lg.play_league(config(teams=("baseline", str(tmp_path / "missing.json"))), tmp_path, progress=False)
     lg.play_league(config(), tmp_path / "l", progress=False)
     with pytest.raises(ValueError, match="other arguments .*rounds"):
-        lg.play_league(config(rounds=3), tmp_path / "l", progress=False)
+        lg.play_league(config(rounds=1), tmp_path / "l", progress=False)
+    with pytest.raises(ValueError, match="other arguments .*seed"):
+        lg.play_league(config(rounds=3, seed=5), tmp_path / "l", progress=False)
+
+
+def test_more_rounds_extend_a_league_and_keep_the_earlier_runs_manifest(fake, tmp_path, monkeypatch):
+    calls = []
+    monkeypatch.setattr(lg, "play_match", lambda **kw: calls.append(kw["seed"]) or fake_play(**kw))
+    first = lg.play_league(config(), tmp_path, progress=False, argv=["first"])
+    assert len(calls) == 6 and "earlier_manifests" not in first
+    calls.clear()
+    longer = lg.play_league(config(rounds=3), tmp_path, progress=False, argv=["second"])
+    assert len(calls) == 3 and longer["played"] == 9
+    assert longer["matches"][:6] == first["matches"]
+    assert longer["matches"] == lg.play_league(config(rounds=3), tmp_path / "fresh", progress=False)["matches"]
+    assert [m["command"] for m in longer["earlier_manifests"]] == [["first"]]
+    assert longer["manifest"]["command"] == ["second"]
+    again = lg.play_league(config(rounds=3), tmp_path, progress=False, argv=["second"])
+    assert [m["command"] for m in again["earlier_manifests"]] == [["first"]]
 
 
 def test_cli_league_real_matches(tmp_path, capsys):

@@ -15,7 +15,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                                           "sigma, ordinal = mu - 3 sigma; a draw is a tie) and write OUT/league.json "
                                           "(matches with seeds and scores, ratings, results matrix, manifest), "
                                           "OUT/ratings.md and OUT/matrix.png. A rerun with the same arguments "
-                                          "resumes, playing only the missing matches. Needs the league extra "
+                                          "resumes, playing only the missing matches; one with more --rounds extends the league. "
+                                          "Needs the league extra "
                                           "(pip install -e \".[league]\").")
     p.add_argument("teams", nargs="+", type=team, metavar="TEAM",
                    help="two or more teams: learned, baseline, passing-learned, passing-baseline, "
@@ -24,7 +25,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         "DECISION} (a learned snapshot: skill checkpoints, or a decision actor PATH, handcoded or "
                         "learned; skills and decision optional)")
     p.add_argument("--rounds", type=positive_int("--rounds"), default=1,
-                   help="round-robin rounds (default 1)")
+                   help="round-robin rounds (default 1); more than a league folder holds extend it")
     p.add_argument("--colours", choices=("alternate", "both"), default="alternate",
                    help="alternate: each pair plays once per round, colours swapped from round to round; both: "
                         "each pair plays twice per round, once in each colour (default alternate)")

@@ -13,8 +13,11 @@ The output folder holds ``league.json`` (the arguments, every played match with 
 seed and score, ratings, the results matrix and a manifest), ``ratings.md`` (the table
 by ordinal) and ``matrix.png`` (mean goal difference per pair). ``league.json`` is
 rewritten atomically after each chunk of matches, so an interrupted league resumes:
-a rerun with the same arguments plays only the missing matches; other arguments on the
-same folder are an error. Ratings are recomputed from the stored matches in schedule
+a rerun with the same arguments plays only the missing matches, and a rerun with more
+``rounds`` (the other arguments the same) extends the league, whose schedule begins with the
+shorter one's; other arguments on the same folder are an error. When a rerun's command or
+commit differs from the stored manifest's, that manifest is kept in ``earlier_manifests``, so
+every match's code stays on record. Ratings are recomputed from the stored matches in schedule
 order, so a resumed league rates exactly as an uninterrupted one.
 
 Training draws its opponents from a league by prioritized fictitious self-play
@@ -139,12 +142,13 @@ def match_kwargs(config: LeagueConfig) -> dict[str, Any]:
                 env_kwargs=format_options(config.match_format, config.seconds))
 
 
-def load_state(out: str | os.PathLike, config: LeagueConfig) -> list[dict[str, Any]]:
-    """The matches already played in ``out`` (empty for a new folder); ValueError when the
-    folder holds a league with other arguments."""
+def load_state(out: str | os.PathLike, config: LeagueConfig) -> tuple[list[dict[str, Any]], list[dict[str, Any]]]:
+    """The matches already played in ``out`` and the manifests of the runs that played them
+    (both empty for a new folder); ValueError when the folder holds a league with other
+    arguments (more ``rounds`` than stored extend it; fewer are an error)."""
     path = Path(out) / LEAGUE_FILE
     if not path.is_file():
-        return []
+        return [], []
     import json
 
     try:
@@ -153,12 +157,22 @@ def load_state(out: str | os.PathLike, config: LeagueConfig) -> list[dict[str, A
     except (json.JSONDecodeError, KeyError, TypeError):
         raise ValueError(f"{path} is not a league file; give another --out") from None
     mine = config.to_json()
-    if stored != mine:
-        diff = sorted(k for k in set(stored) | set(mine) if stored.get(k) != mine.get(k))
+    diff = sorted(k for k in set(stored) | set(mine) if stored.get(k) != mine.get(k))
+    extends = diff == ["rounds"] and isinstance(stored.get("rounds"), int) and stored["rounds"] < mine["rounds"]
+    if diff and not extends:
         raise ValueError(f"{path} holds a league with other arguments ({', '.join(diff)}: "
                          + "; ".join(f"{k} {stored.get(k)!r} there, {mine.get(k)!r} here" for k in diff)
-                         + "); use the same arguments to resume or another --out")
-    return list(state.get("matches", []))
+                         + "); use the same arguments to resume (or more --rounds to extend it) or another --out")
+    matches = list(state.get("matches", []))
+    plan = {m["index"]: m for m in schedule(config)}
+    for m in matches:
+        want = plan.get(m.get("index"))
+        if want is None or any(m.get(k) != want[k] for k in ("blue", "yellow", "seed")):
+            raise ValueError(f"{path}: stored match {m.get('index')!r} is not the schedule's; give another --out")
+    manifests = list(state.get("earlier_manifests", []))
+    if state.get("manifest") is not None:
+        manifests.append(state["manifest"])
+    return matches, manifests
 
 
 def play_league(config: LeagueConfig, out: str | os.PathLike, workers: int | None = 1, backend: str = "local",
@@ -179,7 +193,8 @@ def play_league(config: LeagueConfig, out: str | os.PathLike, workers: int | Non
     validate_config(config)
     validate_backend(backend, workers, address)
     folder = prepare_output_dir(out, "league folder")
-    played = {m["index"]: m for m in load_state(folder, config)}
+    stored, manifests = load_state(folder, config)
+    played = {m["index"]: m for m in stored}
     plan = schedule(config)
     todo = [m for m in plan if m["index"] not in played]
     kwargs = match_kwargs(config)
@@ -195,18 +210,21 @@ def play_league(config: LeagueConfig, out: str | os.PathLike, workers: int | Non
             for m in run_pool(_league_worker, [(e, kwargs) for e in part], workers, "league", False,
                               unit="match", backend=backend, address=address):
                 played[m["index"]] = m
-            state = league_state(config, [played[i] for i in sorted(played)], argv)
+            state = league_state(config, [played[i] for i in sorted(played)], argv, manifests)
             atomic_write_json(folder / LEAGUE_FILE, state)
             bar.update(len(part))
-    state = league_state(config, [played[i] for i in sorted(played)], argv)
+    state = league_state(config, [played[i] for i in sorted(played)], argv, manifests)
     atomic_write_json(folder / LEAGUE_FILE, state)
     atomic_write_bytes(folder / RATINGS_FILE, ratings_markdown(state).encode())
     write_matrix_plot(state, folder / MATRIX_FILE)
     return state
 
 
-def league_state(config: LeagueConfig, matches: list[dict[str, Any]], argv: list[str] | None = None) -> dict:
-    """``league.json``'s content from the matches played so far (in schedule order)."""
+def league_state(config: LeagueConfig, matches: list[dict[str, Any]], argv: list[str] | None = None,
+                 earlier: Sequence[dict[str, Any]] = ()) -> dict:
+    """``league.json``'s content from the matches played so far (in schedule order);
+    ``earlier``: manifests of the runs that played stored matches, kept in
+    ``earlier_manifests`` unless their command and commit are this run's."""
     from .controllers import load_team_file
     from .provenance import build_manifest
 
@@ -218,9 +236,14 @@ def league_state(config: LeagueConfig, matches: list[dict[str, Any]], argv: list
     manifest = build_manifest(rules, {"seed": config.seed, "rounds": config.rounds,
                                       "match_seed": "ssl_marl.io.episode_seed(seed, match index)"},
                               argv=argv)
-    return {"config": config.to_json(), "scheduled": len(schedule(config)), "played": len(matches),
-            "matches": matches, "ratings": rate(config.teams, matches),
-            "matrix": results_matrix(config.teams, matches), "manifest": manifest}
+    same = lambda m: m.get("command") == manifest.get("command") and m.get("git") == manifest.get("git")  # noqa: E731
+    kept = [m for i, m in enumerate(earlier) if not (i == len(earlier) - 1 and same(m))]
+    state = {"config": config.to_json(), "scheduled": len(schedule(config)), "played": len(matches),
+             "matches": matches, "ratings": rate(config.teams, matches),
+             "matrix": results_matrix(config.teams, matches), "manifest": manifest}
+    if kept:
+        state["earlier_manifests"] = kept
+    return state
 
 
 def rate(teams: Sequence[str], matches: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
