@@ -147,6 +147,23 @@ def test_spawn_follows_the_documented_ranges():
         assert w.yellow.pos[0, 0] == pytest.approx(F.half_length - 0.25)
 
 
+def test_spawn_is_measured_from_the_goal_line_on_both_fields():
+    """On Division A the attack starts as far from the goal as on Division B (x shifted by
+    the 1.5 m longer half length); the ball and the attackers are the same draw."""
+    b, a = _env(), _env(field="div_a")
+    shift = a.field.half_length - b.field.half_length
+    assert shift == pytest.approx(1.5)
+    for s in range(4):
+        b.reset(seed=s)
+        a.reset(seed=s)
+        wb, wa = b.engine.world_state(), a.engine.world_state()
+        assert a.task.carrier_robot == b.task.carrier_robot
+        np.testing.assert_allclose(wa.ball_pos, wb.ball_pos + [shift, 0.0], atol=1e-9)
+        np.testing.assert_allclose(wa.blue.pos[1:], wb.blue.pos[1:] + [shift, 0.0], atol=1e-9)
+        np.testing.assert_allclose(wa.yellow.pos[0], wb.yellow.pos[0] + [shift, 0.0], atol=1e-9)
+        assert wa.yellow.pos[1, 0] <= a.field.half_length - a.field.defense_depth
+
+
 # ------------------------------------------------------- hand-coded policy
 def _request(blue, yellow, ball, carrier, t=1.0, candidates=None):
     w = make_world(blue=blue, yellow=yellow, ball=ball, t=t, frame="blue",

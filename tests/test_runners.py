@@ -340,3 +340,18 @@ def test_team_spec_resolves_team_kinds_skills_and_decisions(tmp_path):
     path.write_text(json.dumps({"kind": "attack-learned", "decision": "learned"}))
     assert resolve_team_option(str(path)) == ("attack-learned", None, "learned")
     assert resolve_team_option(str(path), decision="handcoded")[2] == "handcoded"  # the option wins
+
+
+def test_match_stats_count_fouls_by_the_offending_team():
+    from types import SimpleNamespace
+
+    from ssl_marl.runners.match import MatchStats
+
+    st = MatchStats()
+    truth = SimpleNamespace(blue=SimpleNamespace(ball_on_dribbler=np.zeros(2, bool)),
+                            yellow=SimpleNamespace(ball_on_dribbler=np.zeros(2, bool)))
+    st.record([{"type": "foul", "foul": "excessive_dribbling", "team": "blue", "agent": "blue_1"},
+               {"type": "foul", "foul": "double_touch", "team": "yellow", "agent": "yellow_2"}], truth)
+    st.record([{"type": "foul", "foul": "excessive_dribbling", "team": "blue", "agent": "blue_2"}], truth)
+    assert st.fouls == {"blue": {"excessive_dribbling": 2}, "yellow": {"double_touch": 1}}
+    assert st.referee == {"foul_excessive_dribbling": 2, "foul_double_touch": 1}

@@ -345,3 +345,39 @@ def test_rollout_policy_improvement_labels_fit_and_resume(tmp_path: Path) -> Non
     lab["value"][0][best] = 2.0
     with pytest.raises(ValueError, match=r"\[0, 1\]"):
         fit_value_actor("attack-drill", lab, epochs=1, holdout=0.0)
+
+
+def test_offline_score_plays_the_improved_policys_first_decision_from_the_labels() -> None:
+    """train.mappo.rollout_pi.score_first_decision: the pick of ImprovedDecisionPolicy's rule
+    (margin in predicted goals or in logits; an ensemble averages) reads its return from the
+    labels; the benchmark's and the best option's returns come beside it."""
+    import numpy as np
+    import torch
+
+    from ssl_marl.decisions.learned import DecisionActor
+    from train.mappo.rollout_pi import score_first_decision
+
+    def actor(logits):
+        a = DecisionActor(4, 3, [])
+        with torch.no_grad():
+            a.net[0].weight.zero_()
+            a.net[0].bias.copy_(torch.tensor(logits, dtype=torch.float32))
+        return a
+
+    nan = np.nan
+    lab = {"obs": np.zeros((3, 4), np.float32), "mask": np.array([[1, 1, 1], [1, 1, 0], [1, 1, 1]], np.int8),
+           "agent": np.zeros(3, np.int64), "seed": np.array([1, 2, 2]), "decision": np.array([0, 0, 1]),
+           "base_option": np.array([0, 0, 0]), "value": np.array([[0, 0, 1], [1, 0, nan], [0, 0, 1]], np.float32)}
+    prefers_1 = actor([0.0, 0.3, 2.0])  # option 2 is best but illegal in row 1
+    r = score_first_decision(lab, [prefers_1], margin=0.05, units="goal")
+    assert r["episodes"] == 2 and r["deviations"] == 2
+    assert r["goal_rate"] == 0.5 and r["benchmark_goal_rate"] == 0.5 and r["oracle_goal_rate"] == 1.0
+    assert r["paired_diff"] == 0.0  # row 0: option 2 (1) instead of 0; row 1: option 1 (0) instead of 1
+    keeps = score_first_decision(lab, [actor([0.0, 0.3, 0.2])], margin=0.1, units="goal")
+    assert keeps["deviations"] == 0 and keeps["goal_rate"] == 0.5  # sigmoid gap 0.074 < 0.1
+    moves = score_first_decision(lab, [actor([0.0, 0.3, 0.2])], margin=0.1, units="logit")
+    assert moves["deviations"] == 2 and moves["goal_rate"] == 0.0  # option 1 in both rows
+    both = score_first_decision(lab, [actor([0.0, 4.0, -4.0]), actor([0.0, -4.0, 4.0])], margin=0.05)
+    assert both["deviations"] == 0  # the members' means are level with the benchmark's option
+    with pytest.raises(ValueError, match="units"):
+        score_first_decision(lab, [prefers_1], margin=0.1, units="odds")

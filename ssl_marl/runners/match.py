@@ -76,6 +76,8 @@ class MatchStats:
         self.goals: list[dict] = []
         self.steps = 0
         self.referee: dict[str, int] = {}  #: counts of the referee's calls (game control on)
+        #: fouls by the offending team: {"blue": {foul: count}, "yellow": {...}}
+        self.fouls: dict[str, dict[str, int]] = {"blue": {}, "yellow": {}}
 
     def record(self, events: list[dict], truth: Any) -> None:
         """Count one control step's env events and who holds the ball (ground truth)."""
@@ -89,6 +91,9 @@ class MatchStats:
                 key = {"foul": lambda: f"foul_{e['foul']}", "referee": lambda: f"command_{e['command']}"}.get(
                     e["type"], lambda: e["type"])()
                 self.referee[key] = self.referee.get(key, 0) + 1
+            if e["type"] == "foul" and e.get("team") in self.fouls:
+                by = self.fouls[e["team"]]
+                by[e["foul"]] = by.get(e["foul"], 0) + 1
         self.held["blue"] += bool(truth.blue.ball_on_dribbler.any())
         self.held["yellow"] += bool(truth.yellow.ball_on_dribbler.any())
 
@@ -259,7 +264,7 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
                        act_time_ms={k: 1000.0 * v / max(steps, 1) for k, v in act_time.items()},
                        missed_deadlines={team: d.missed for team, d in deadlines.items()}, seed=seed, config=config,
                        stats={**pass_stats.summary(), "events": pass_stats.log,
-                              **({"referee": stats.referee} if game_on else {})})
+                              **({"referee": stats.referee, "fouls": stats.fouls} if game_on else {})})
 
 
 def _json_safe(skills: Any) -> Any:

@@ -34,6 +34,15 @@ benchmark, as the first iteration's do.
 
 **summarize** writes the labels' mean value of every option, by decision index and by the option
 the benchmark chose (where the benchmark loses against another option), with each chunk's record.
+
+**score** plays the improved policy offline on labels of the benchmark policy (e.g. ``collect
+--max-decisions 1`` on tuning seeds): at each episode's first decision the value actor (or the
+mean of several: an ensemble) picks as :class:`~ssl_marl.decisions.learned.ImprovedDecisionPolicy`
+does, and since the labels hold every legal option's return with the benchmark playing on, the
+episode's return under that pick is read, not played. One row per value actor set and margin:
+its goal rate, the benchmark's, the best option's (an oracle: the ceiling of any first-decision
+departure) and the paired difference with its 95 % interval. Exact for deterministic tasks;
+``--units`` says whether the margin compares predicted goals (the logits' sigmoid) or logits.
 """
 
 from __future__ import annotations
@@ -259,6 +268,41 @@ def summarize(task: str, folders: list[str | Path]) -> dict[str, Any]:
             "by_decision": by_decision, "by_benchmark_option": by_choice, "chunks": chunks}
 
 
+def score_first_decision(labels: dict[str, np.ndarray], actors: list[Any], margin: float,
+                         units: str = "goal") -> dict[str, Any]:
+    """The improved policy's figures at the labels' first decisions (module docstring, **score**).
+
+    ``actors``: :class:`~ssl_marl.decisions.learned.DecisionActor` s whose predictions are averaged
+    (in ``units``: "goal", the sigmoid of the logits, or "logit"); ``margin`` in those units."""
+    from ssl_marl.decisions.learned import better_option
+
+    if units not in ("goal", "logit"):
+        raise ValueError(f"units must be 'goal' or 'logit', got {units!r}")
+    rows = np.flatnonzero(labels["decision"] == 0)
+    if len(rows) == 0:
+        raise ValueError("the labels hold no first decision")
+    val = labels["value"]
+    got, base, best, dev = [], [], [], 0
+    for r in rows:
+        idx = int(labels["agent"][r])
+        preds = [a.logits(labels["obs"][r], idx if a.n_agents else None) for a in actors]
+        if units == "goal":
+            preds = [1.0 / (1.0 + np.exp(-p)) for p in preds]
+        b = int(labels["base_option"][r])
+        o = better_option(np.mean(preds, axis=0), labels["mask"][r].astype(bool), b, margin)
+        dev += o is not None
+        got.append(val[r, b if o is None else o])
+        base.append(val[r, b])
+        best.append(np.nanmax(val[r]))
+    got, base, best = np.asarray(got, float), np.asarray(base, float), np.asarray(best, float)
+    d = got - base
+    half = 1.96 * float(d.std(ddof=1)) / np.sqrt(len(d)) if len(d) > 1 else float("nan")
+    return {"episodes": int(len(rows)), "goal_rate": float(got.mean()), "benchmark_goal_rate": float(base.mean()),
+            "oracle_goal_rate": float(best.mean()), "deviations": int(dev),
+            "paired_diff": float(d.mean()), "paired_diff_ci95": [float(d.mean()) - half, float(d.mean()) + half],
+            "outcomes": {"goal": int(got.sum()), "no goal": int(len(got) - got.sum())}}
+
+
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(prog="python -m train.mappo_rollout_pi", description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -290,7 +334,41 @@ def main(argv: list[str] | None = None) -> int:
     m.add_argument("--task", required=True, help="decision task the labels come from")
     m.add_argument("--labels", type=Path, nargs="+", required=True, help="folders of chunk files")
     m.add_argument("--out", type=Path, required=True, help="JSON file to write")
+    sc = sub.add_parser("score", help="play first-decision departures offline on labels (JSON with a manifest)")
+    sc.add_argument("--task", required=True, help="decision task the labels come from")
+    sc.add_argument("--labels", type=Path, nargs="+", required=True, help="folders of chunk files")
+    sc.add_argument("--actor", type=Path, nargs="+", action="append", required=True,
+                    help="value actor file(s) whose predictions are averaged; repeat --actor for another row")
+    sc.add_argument("--margin", type=float, nargs="+", default=[DEFAULT_MARGIN],
+                    help=f"margins to score, one row each (default {DEFAULT_MARGIN})")
+    sc.add_argument("--units", choices=("goal", "logit"), default="goal",
+                    help="the margin compares predicted goals (sigmoid of the logits) or logits (default goal)")
+    sc.add_argument("--out", type=Path, required=True, help="JSON file to write")
     args = p.parse_args(argv)
+    if args.cmd == "score":
+        from ssl_marl.decisions.learned import load_decision_actor
+        from ssl_marl.runners.provenance import build_manifest
+
+        if not all(np.isfinite(m) for m in args.margin):
+            p.error(f"--margin must be finite, got {args.margin}")
+        labels = _concat([load_labels(d) for d in args.labels])
+        rows = []
+        for files in args.actor:
+            actors = [load_decision_actor(f)[0] for f in files]
+            for m in args.margin:
+                name = " + ".join(f.name for f in files) + f", margin {m:g} {args.units}"
+                rows.append({"policy": name, "actors": [str(f) for f in files], "margin": m, "units": args.units,
+                             **score_first_decision(labels, actors, m, args.units)})
+        seeds = sorted({int(x) for x in labels["seed"]})
+        out = {"task": args.task, "seeds": [seeds[0], seeds[-1]], "rows": rows,
+               "manifest": build_manifest(rules={"probe": "rollout_pi_score", "task": args.task, "units": args.units},
+                                          seeds={"seeds": [seeds[0], seeds[-1]]})}
+        atomic_write_json(args.out, out)
+        for r in rows:
+            print(f"{r['policy']}: {r['goal_rate']:.3f} (benchmark {r['benchmark_goal_rate']:.3f}, oracle "
+                  f"{r['oracle_goal_rate']:.3f}; {r['paired_diff']:+.3f} [{r['paired_diff_ci95'][0]:+.3f}, "
+                  f"{r['paired_diff_ci95'][1]:+.3f}]; {r['deviations']} departures of {r['episodes']})")
+        return 0
     if args.cmd == "summarize":
         from ssl_marl.runners.provenance import build_manifest
 

@@ -9,13 +9,17 @@ the attacking team's goalie, parked in its own goal (x = -L/2 + 0.3 m) far from 
 play (it keeps the passing play's team layout, where robot 0 is the goalie, and never
 takes part); ``yellow_0`` is the goalie, ``yellow_1`` the defender.
 
-Start (:class:`AttackSpawn`, drawn from ``env.np_random``; Division B, L/2 = 4.5 m,
-W/2 = 3 m):
+Start (:class:`AttackSpawn`, drawn from ``env.np_random``; distances along x are measured
+from the +x goal line, so the attack is the same on any field: on Division B, L/2 = 4.5 m,
+W/2 = 3 m, the x ranges below are those of the field frame; on Division A, L/2 = 6 m, they
+lie 1.5 m farther up the field):
 
-* the carrier: one of the three attackers (uniform), x in [0.5, 2.5] m, |y| <= 2.0 m,
+* the carrier: one of the three attackers (uniform), 2.0-4.0 m from the goal line (x in
+  [0.5, 2.5] m on Division B), |y| <= 2.0 m,
   heading towards the goal centre +- 0.5 rad; the ball rests 0.12-0.30 m in front of
   its centre (at most 0.2 m from the face: "near an attacker", it has to take it);
-* the two other attackers: x in [0.5, 3.2] m, |y| <= 2.6 m, at least 1.0 m from the
+* the two other attackers: 1.3-4.0 m from the goal line (x in [0.5, 3.2] m on Division B),
+  |y| <= 2.6 m, at least 1.0 m from the
   carrier and each other, random heading;
 * the goalie: on its goal line, x = L/2 - 0.25 m, |y| <= 0.3 m, facing the field;
 * the defender: on the ball-goal segment at 40-70 % of the way from the ball, moved
@@ -58,13 +62,14 @@ ATTACKER_ROBOTS = ("blue_1", "blue_2", "blue_3")
 
 @dataclass(frozen=True)
 class AttackSpawn:
-    """Spawn ranges (m, rad; field frame; module docstring)."""
+    """Spawn ranges (m, rad; module docstring). ``*_goal_dist``: (near, far) distance along x
+    from the +x goal line (x = L/2 - distance); ``*_abs_y``: |y| in the field frame."""
 
-    carrier_x: tuple[float, float] = (0.5, 2.5)
+    carrier_goal_dist: tuple[float, float] = (2.0, 4.0)
     carrier_abs_y: float = 2.0
     carrier_heading_noise: float = 0.5
     ball_ahead_m: tuple[float, float] = (0.12, 0.30)
-    mate_x: tuple[float, float] = (0.5, 3.2)
+    mate_goal_dist: tuple[float, float] = (1.3, 4.0)
     mate_abs_y: float = 2.6
     mate_spacing_m: float = 1.0
     goalie_inset_m: float = 0.25
@@ -119,7 +124,7 @@ class AttackTask(Task):
         L2 = f.half_length
         goal = f.goal_center(+1)
         k = int(rng.integers(N_ATTACKERS))
-        cx = rng.uniform(*s.carrier_x)
+        cx = rng.uniform(L2 - s.carrier_goal_dist[1], L2 - s.carrier_goal_dist[0])
         cy = rng.uniform(-s.carrier_abs_y, s.carrier_abs_y)
         ch = math.atan2(goal[1] - cy, goal[0] - cx) + rng.uniform(-s.carrier_heading_noise, s.carrier_heading_noise)
         d = rng.uniform(*s.ball_ahead_m)
@@ -131,7 +136,8 @@ class AttackTask(Task):
         pose[1 + k] = (cx, cy, ch)
         for j in mates:
             for _ in range(200):
-                p = np.array([rng.uniform(*s.mate_x), rng.uniform(-s.mate_abs_y, s.mate_abs_y)])
+                p = np.array([rng.uniform(L2 - s.mate_goal_dist[1], L2 - s.mate_goal_dist[0]),
+                              rng.uniform(-s.mate_abs_y, s.mate_abs_y)])
                 if all(np.hypot(*(p - q)) >= s.mate_spacing_m for q in placed) and np.hypot(*(p - ball)) > 0.5:
                     break
             placed.append(p)
