@@ -381,3 +381,41 @@ def test_offline_score_plays_the_improved_policys_first_decision_from_the_labels
     assert both["deviations"] == 0  # the members' means are level with the benchmark's option
     with pytest.raises(ValueError, match="units"):
         score_first_decision(lab, [prefers_1], margin=0.1, units="odds")
+
+
+def test_merged_value_actors_output_the_members_mean_logits(tmp_path: Path) -> None:
+    """train.mappo.ensemble: the merged file is a plain decision actor whose logits are the
+    members' mean; members of another shape are refused, naming the difference."""
+    import numpy as np
+    import torch
+
+    from ssl_marl.decisions.learned import DecisionActor, load_decision_actor
+    from ssl_marl.skills.checkpoint import save_actor_file
+    from train.mappo.rollout_pi import main as rpi_main
+
+    def member(seed, hidden=(5, 3)):
+        torch.manual_seed(seed)
+        a = DecisionActor(4, 3, list(hidden), n_agents=2)
+        a.obs_mean.fill_(0.5)
+        a.obs_std.fill_(2.0)
+        path = tmp_path / f"m{seed}_{len(hidden)}.pt"
+        meta = {"task": "toy", "obs_dim": 4, "n_options": 3, "hidden": list(hidden), "agent_ids": ["a", "b"],
+                "option_names": None, "continuous": False}
+        save_actor_file(path, "decision", {**{f"net.{k}": v for k, v in a.net.state_dict().items()},
+                                           "obs_mean": a.obs_mean, "obs_std": a.obs_std}, meta)
+        return path, a
+
+    (p1, a1), (p2, a2), (p3, a3) = member(1), member(2), member(3)
+    out = tmp_path / "ens.pt"
+    assert rpi_main(["merge", "--actor", str(p1), str(p2), str(p3), "--margin", "0.05", "--out", str(out)]) == 0
+    merged, meta = load_decision_actor(out)
+    assert meta["hidden"] == [15, 9] and meta["improve"] == {"first_k": 1, "margin": 0.05}
+    assert [m["file"] for m in meta["ensemble"]["members"]] == [p1.name, p2.name, p3.name]
+    rng = np.random.default_rng(0)
+    for _ in range(5):
+        obs, who = rng.normal(size=4).astype(np.float32), int(rng.integers(2))
+        mean = np.mean([a.logits(obs, who) for a in (a1, a2, a3)], axis=0)
+        np.testing.assert_allclose(merged.logits(obs, who), mean, rtol=1e-5, atol=1e-6)
+    other, _ = member(4, hidden=(5,))
+    with pytest.raises(SystemExit):
+        rpi_main(["merge", "--actor", str(p1), str(other), "--out", str(tmp_path / "bad.pt")])

@@ -42,7 +42,11 @@ does, and since the labels hold every legal option's return with the benchmark p
 episode's return under that pick is read, not played. One row per value actor set and margin:
 its goal rate, the benchmark's, the best option's (an oracle: the ceiling of any first-decision
 departure) and the paired difference with its 95 % interval. Exact for deterministic tasks;
+several actors in one ``--actor`` are an ensemble (their logits averaged);
 ``--units`` says whether the margin compares predicted goals (the logits' sigmoid) or logits.
+
+**merge** writes value actors of one shape as one actor file that outputs their mean logits
+(:mod:`train.mappo.ensemble`), with the ``improve`` record of ``fit``.
 """
 
 from __future__ import annotations
@@ -272,8 +276,9 @@ def score_first_decision(labels: dict[str, np.ndarray], actors: list[Any], margi
                          units: str = "goal") -> dict[str, Any]:
     """The improved policy's figures at the labels' first decisions (module docstring, **score**).
 
-    ``actors``: :class:`~ssl_marl.decisions.learned.DecisionActor` s whose predictions are averaged
-    (in ``units``: "goal", the sigmoid of the logits, or "logit"); ``margin`` in those units."""
+    ``actors``: :class:`~ssl_marl.decisions.learned.DecisionActor` s whose logits are averaged (an
+    ensemble, as one merged network computes it); ``margin`` in ``units``: "goal" (the sigmoid of
+    the mean logit) or "logit"."""
     from ssl_marl.decisions.learned import better_option
 
     if units not in ("goal", "logit"):
@@ -285,11 +290,11 @@ def score_first_decision(labels: dict[str, np.ndarray], actors: list[Any], margi
     got, base, best, dev = [], [], [], 0
     for r in rows:
         idx = int(labels["agent"][r])
-        preds = [a.logits(labels["obs"][r], idx if a.n_agents else None) for a in actors]
+        v = np.mean([a.logits(labels["obs"][r], idx if a.n_agents else None) for a in actors], axis=0)
         if units == "goal":
-            preds = [1.0 / (1.0 + np.exp(-p)) for p in preds]
+            v = 1.0 / (1.0 + np.exp(-v))
         b = int(labels["base_option"][r])
-        o = better_option(np.mean(preds, axis=0), labels["mask"][r].astype(bool), b, margin)
+        o = better_option(v, labels["mask"][r].astype(bool), b, margin)
         dev += o is not None
         got.append(val[r, b if o is None else o])
         base.append(val[r, b])
@@ -338,13 +343,34 @@ def main(argv: list[str] | None = None) -> int:
     sc.add_argument("--task", required=True, help="decision task the labels come from")
     sc.add_argument("--labels", type=Path, nargs="+", required=True, help="folders of chunk files")
     sc.add_argument("--actor", type=Path, nargs="+", action="append", required=True,
-                    help="value actor file(s) whose predictions are averaged; repeat --actor for another row")
+                    help="value actor file(s) whose logits are averaged; repeat --actor for another row")
     sc.add_argument("--margin", type=float, nargs="+", default=[DEFAULT_MARGIN],
                     help=f"margins to score, one row each (default {DEFAULT_MARGIN})")
     sc.add_argument("--units", choices=("goal", "logit"), default="goal",
                     help="the margin compares predicted goals (sigmoid of the logits) or logits (default goal)")
     sc.add_argument("--out", type=Path, required=True, help="JSON file to write")
+    mg = sub.add_parser("merge", help="write value actors as one actor of their mean logits (an ensemble)")
+    mg.add_argument("--actor", type=Path, nargs="+", required=True, help="two or more value actor files of one shape")
+    mg.add_argument("--first-k", type=int, default=DEFAULT_FIRST_K,
+                    help=f"recorded in the file, as for fit (default {DEFAULT_FIRST_K})")
+    mg.add_argument("--margin", type=float, default=DEFAULT_MARGIN,
+                    help=f"recorded in the file, as for fit (default {DEFAULT_MARGIN})")
+    mg.add_argument("--out", type=Path, required=True, help="actor file to write (.pt)")
     args = p.parse_args(argv)
+    if args.cmd == "merge":
+        from ssl_marl.skills.checkpoint import git_commit
+
+        from train.mappo.ensemble import write_merged
+
+        if args.first_k < 1 or not np.isfinite(args.margin):
+            p.error(f"--first-k must be >= 1 and --margin finite, got {args.first_k}, {args.margin}")
+        try:
+            write_merged(args.actor, args.out, improve={"first_k": args.first_k, "margin": args.margin},
+                         commit=git_commit())
+        except ValueError as e:
+            p.error(str(e))
+        print(json.dumps({"out": str(args.out), "members": [str(a) for a in args.actor]}))
+        return 0
     if args.cmd == "score":
         from ssl_marl.decisions.learned import load_decision_actor
         from ssl_marl.runners.provenance import build_manifest
