@@ -22,7 +22,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                    help="decision policy: learned (ssl_marl.decisions.learned, the shipped actor or --actor), "
                         "handcoded (the task's benchmark), random (uniform over legal options), always-hold "
                         "(keepaway only), improved (handcoded, except at an episode's first K decisions, where a "
-                        "value actor's best option is played if it is predicted to score M goals more; K and M "
+                        "value actor's best option is played if its logit, the predicted log-odds of a goal, exceeds "
+                        "the benchmark option's by more than M; K and M "
                         "as the value actor file records them, else 1 and 0.1) "
                         "(default handcoded)")
     k.add_argument("--actor", default=None, metavar="PATH",

@@ -42,7 +42,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                             "decision), learned (the shipped actor: Attack 3v2 for passing-* teams, the attack "
                             "drill's for attack-* teams), improved (attack-* teams: the cost decision, except at "
                             "the first decision of a possession in the attacking half, where the shipped attack-drill "
-                            "value actor's option is played if it predicts 0.1 goals more) or PATH to a decision "
+                            "value actor's option is played if its logit, the predicted log-odds of a goal, is 0.1 above "
+                            "the cost decision's option's) or PATH to a decision "
                             "actor checkpoint of that task; needs "
                             "a passing-* or attack-* team; wins over a team file's decision (default: the team's own: "
                             "the team file's, learned for *-learned-decision, else handcoded)")

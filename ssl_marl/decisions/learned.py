@@ -183,7 +183,8 @@ class ImprovedDecisionPolicy:
     At each of the first ``first_k`` decisions of an episode the value actor (``path_or_actor``:
     outputs are predicted returns per option, as ``python -m train.mappo_rollout_pi fit`` trains
     them) rates the legal options; where the best of them is predicted to beat the hand-coded
-    policy's choice by more than ``margin`` (return units: goals), it is played instead. Every
+    policy's choice by more than ``margin``, it is played instead; the comparison is of the actor's
+    outputs, the logits of a goal (log-odds: a margin of 0.1 is about 0.025 goals near even odds). Every
     other decision is the hand-coded policy's. This is one step of policy iteration kept where
     its labels hold: each label is an option's return with the hand-coded policy playing on, so
     the improvement is sound for a deviation followed by the hand-coded policy; played at every
@@ -197,7 +198,7 @@ class ImprovedDecisionPolicy:
             :class:`LearnedDecisionPolicy`.
         first_k: decisions per episode, counted over all agents, at which the actor may deviate;
             None: the value actor file's ``improve["first_k"]`` (``fit --first-k``), else 1.
-        margin: predicted gain (return units) a deviation needs; None: the file's
+        margin: logit (log-odds) gain a deviation needs; None: the file's
             ``improve["margin"]`` (``fit --margin``), else 0.1.
     """
 
@@ -235,7 +236,7 @@ class ImprovedDecisionPolicy:
 
 
 #: how :class:`ImprovedDecisionPolicy` plays a value actor file that records nothing else: the
-#: episode's first decision only, where the actor predicts a gain of more than 0.1 goals
+#: episode's first decision only, where the actor's logit exceeds the hand-coded option's by more than 0.1
 DEFAULT_FIRST_K, DEFAULT_MARGIN = 1, 0.1
 
 

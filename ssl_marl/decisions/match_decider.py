@@ -159,7 +159,7 @@ class ImprovedAttackDecider(AttackDecider):
     The cost decision is taken at every request. At the first open-play request of a possession
     with the ball in the half the drill is played in (x >= ``min_x_m``, team frame; the drill's
     carrier starts at 0.5-2.5 m), the value actor rates the drill's legal options; where the best
-    is predicted to score more than ``margin`` above the cost decision's option, it is played
+    has a logit (predicted log-odds of a goal) more than ``margin`` above the cost decision's option's, it is played
     instead (``margin`` None: the one the value actor file records,
     :func:`~ssl_marl.decisions.learned.improve_settings`). A possession starts with a request after none for ``gap_s`` (the coordinator asks every
     few ticks while a robot holds the ball), unless that carrier is the receiver of the team's last

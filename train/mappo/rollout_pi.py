@@ -43,7 +43,8 @@ episode's return under that pick is read, not played. One row per value actor se
 its goal rate, the benchmark's, the best option's (an oracle: the ceiling of any first-decision
 departure) and the paired difference with its 95 % interval. Exact for deterministic tasks;
 several actors in one ``--actor`` are an ensemble (their logits averaged);
-``--units`` says whether the margin compares predicted goals (the logits' sigmoid) or logits.
+``--units`` says whether the margin compares logits (as the improved policy does) or predicted goals
+(the logits' sigmoid).
 
 **merge** writes value actors of one shape as one actor file that outputs their mean logits
 (:mod:`train.mappo.ensemble`), with the ``improve`` record of ``fit``.
@@ -273,7 +274,7 @@ def summarize(task: str, folders: list[str | Path]) -> dict[str, Any]:
 
 
 def score_first_decision(labels: dict[str, np.ndarray], actors: list[Any], margin: float,
-                         units: str = "goal") -> dict[str, Any]:
+                         units: str = "logit") -> dict[str, Any]:
     """The improved policy's figures at the labels' first decisions (module docstring, **score**).
 
     ``actors``: :class:`~ssl_marl.decisions.learned.DecisionActor` s whose logits are averaged (an
@@ -333,7 +334,8 @@ def main(argv: list[str] | None = None) -> int:
                    help="recorded in the file: the improved policy may deviate at an episode's first K decisions "
                         f"(default {DEFAULT_FIRST_K})")
     f.add_argument("--margin", type=float, default=DEFAULT_MARGIN,
-                   help=f"recorded in the file: predicted gain (goals) a deviation needs (default {DEFAULT_MARGIN})")
+                   help="recorded in the file: the gain in logits (predicted log-odds of a goal) a deviation needs "
+                        f"(default {DEFAULT_MARGIN})")
     f.add_argument("--out", type=Path, required=True, help="actor file to write (.pt)")
     m = sub.add_parser("summarize", help="write the labels' mean option values (JSON with a manifest)")
     m.add_argument("--task", required=True, help="decision task the labels come from")
@@ -346,8 +348,9 @@ def main(argv: list[str] | None = None) -> int:
                     help="value actor file(s) whose logits are averaged; repeat --actor for another row")
     sc.add_argument("--margin", type=float, nargs="+", default=[DEFAULT_MARGIN],
                     help=f"margins to score, one row each (default {DEFAULT_MARGIN})")
-    sc.add_argument("--units", choices=("goal", "logit"), default="goal",
-                    help="the margin compares predicted goals (sigmoid of the logits) or logits (default goal)")
+    sc.add_argument("--units", choices=("goal", "logit"), default="logit",
+                    help="the margin compares logits, as ImprovedDecisionPolicy does, or predicted goals (the "
+                         "sigmoid of the logits) (default logit)")
     sc.add_argument("--out", type=Path, required=True, help="JSON file to write")
     mg = sub.add_parser("merge", help="write value actors as one actor of their mean logits (an ensemble)")
     mg.add_argument("--actor", type=Path, nargs="+", required=True, help="two or more value actor files of one shape")
