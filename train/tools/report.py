@@ -285,13 +285,14 @@ DECISION_IMPROVED_103 = ["match_attack_improved_decision_vs_attack_learned_600_1
 DECISION_IMPROVED_103_POOLED = [
     m.both_colours("attack-learned, improved decision (second-iteration value actor) vs attack-learned",
                    DECISION_IMPROVED_103[0], DECISION_IMPROVED_103[1])]
-#: the attacking team with learned skills against itself with hand-coded skills, both colours (commit e395ab2)
+#: the pressed-receive drills (RESULTS section 6, "Receive under pressure") and their training runs
 RECEIVE_PRESSED = ["receive_pressed_baseline", "receive_pressed_learned", "receive_pressed_gated",
                    "receive_pressed_baseline_realistic", "receive_pressed_gated_realistic", "receive_gated_plain",
                    "receive_pressed_lane", "receive_pressed_lane_realistic", "receive_pressed_lane2",
                    "receive_pressed_lane2_realistic", "receive_lane2_plain", "receive_lane2_plain_div_a"]
 RECEIVE_PRESSED_RUNS = ["receive_pressed_s0", "receive_pressed_bc1_s0", "receive_pressed_bc01_s0", "receive_pressed_gated_s0",
                         "receive_pressed_gated_s1", "receive_pressed_lane_s0"]
+#: the attacking team with learned skills against itself with hand-coded skills, both colours
 SKILLS_99100 = ["match_pressed_receive_vs_attack_baseline_600_99100", "match_attack_baseline_vs_pressed_receive_600_99130"]
 SKILLS_99100_POOLED = [
     m.both_colours("attack-learned with the pressed receive, first gate, vs attack-baseline (commit 15af20f)",

@@ -184,6 +184,22 @@ def probe_rows(path: Path, key: str) -> Lines:
     return rows
 
 
+def departure_scores(path: Path, names: dict[str, str] | None = None) -> Lines:
+    """``python -m train.mappo_rollout_pi score`` rows: the departure rule's goal rate, the
+    benchmark's and the best option's on the same labelled episodes, the paired difference
+    (points, 95 %) and how often it departs. ``names``: display names of the value actor files."""
+    d = json.loads(path.read_text())
+    rows = _head("value actor(s)", "margin", "episodes", "goal rate", "benchmark", "paired (points, 95 %)",
+                 "departures", "best option (oracle)")
+    for r in d["rows"]:
+        who = " + ".join((names or {}).get(Path(a).name, Path(a).name) for a in r["actors"])
+        lo, hi = r["paired_diff_ci95"]
+        rows.append(f"| {who} | {r['margin']:g} ({r['units']}) | {r['episodes']} | {r['goal_rate']:.3f} | "
+                    f"{r['benchmark_goal_rate']:.3f} | {100 * r['paired_diff']:+.1f} [{100 * lo:+.1f}, {100 * hi:+.1f}] | "
+                    f"{r['deviations']} | {r['oracle_goal_rate']:.3f} |")
+    return rows
+
+
 def decision_tasks(results: Path, pattern: str) -> Lines:
     """Every ``ssl-marl eval-task`` record whose folder matches ``pattern`` (a glob under
     ``results``); one line saying so when there is none."""
