@@ -97,7 +97,7 @@ def test_in_a_match_the_value_actor_decides_once_per_possession():
 
     dec = make_match_decider("improved", task=DRILL_TASK)
     assert isinstance(dec, ImprovedAttackDecider)
-    assert dec.margin == 0.1  # the margin the shipped value actor file records
+    assert dec.margin == 0.0  # the margin the shipped value actor file records
     first = [dec._first_of_possession(SimpleNamespace(t=t, carrier=c)) for t, c in
              [(0.0, 2), (0.1, 2), (0.2, 2), (1.0, 3), (1.1, 3)]]
     assert first == [True, False, False, True, False]  # a request after a gap opens a possession
@@ -107,7 +107,7 @@ def test_in_a_match_the_value_actor_decides_once_per_possession():
         make_match_decider("improved", task=TASK)
 
     deviations = decisions = 0
-    for seed in (6, 7):  # two short matches (one deviates once, the other 7 times of 33 with the shipped actors)
+    for seed in (6, 7):  # two short matches (one deviates once of 38 decisions, the other 13 times of 28, shipped actors)
         dec = make_match_decider("improved", task=DRILL_TASK)
         play_match("attack-learned", "attack-learned", robots=6, seconds=40, seed=seed, render=None, progress=False,
                    blue_decision=dec)

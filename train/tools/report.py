@@ -336,6 +336,14 @@ ATTACK_DRILL_FT_SELECTION = [("hand-coded", "tuning/attack_drill_handcoded_val49
                              ("`mappo_attack_drill_ft_s1` at 5,084 decisions", "tuning/attack_drill_ft_s1_5084_val49300"),
                              ("`mappo_attack_drill_ft_s1` at 7,098 decisions", "tuning/attack_drill_ft_s1_7098_val49300")]
 #: the attack drill's rollout values: the drill with the hand-coded chip pass and redirect (87714dd), then as in matches
+#: display names of the value actors scored offline on the drill's tuning labels (seeds 49000-49299)
+DEPARTURE_ACTORS = {
+    "attack_drill_value_2nd.pt": "second iteration (`attack_drill_value_2nd.pt`)",
+    "attack_drill_value_3rd.pt": "third iteration (`attack_drill_value_3rd.pt`)",
+    "attack_drill_value_d0.pt": "first-decision labels, weight decay 1e-3, 300 epochs, seeds 0-2 merged (`attack_drill_value_d0.pt`)",
+    **{f"v_{wd}_{ep}_s{s}.pt": f"first-decision labels, weight decay {wd}, {ep} epochs, seed {s}"
+       for wd in ("1e-3", "1e-2", "3e-2") for ep in (100, 300) for s in (0, 1, 2)},
+}
 ROLLOUT_VALUES = ("tuning/attack_drill_rollout_values_87714dd.json", "tuning/attack_drill_rollout_values.json")
 ATTACK_DRILL_RPI = [("hand-coded", "tuning/attack_drill_handcoded_val49000_87714dd"),
                     ("value actor, weight decay 1e-3 (`rollout_pi_attack_drill/a_1e-3_300.pt`)",
@@ -473,19 +481,38 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "attack_drill_150000": lambda r: t.attack(r, [("hand-coded", "attack_drill_handcoded_150000"),
                                                   ("improved, first iteration (`attack_drill_value_1st.pt`)",
                                                    "attack_drill_improved_150000"),
-                                                  ("improved, second iteration (shipped `attack_drill_value.pt`)",
+                                                  ("improved, second iteration (`attack_drill_value_2nd.pt`)",
                                                    "attack_drill_improved_2nd_150000")]),
     "attack_drill_151000": lambda r: t.attack(r, [("hand-coded", "attack_drill_handcoded_151000"),
-                                                  ("improved, second iteration (shipped `attack_drill_value.pt`)",
+                                                  ("improved, second iteration (`attack_drill_value_2nd.pt`)",
                                                    "attack_drill_improved_2nd_151000"),
                                                   ("improved, third iteration (`attack_drill_value_3rd.pt`, not shipped)",
                                                    "attack_drill_improved_3rd_151000")]),
     "attack_drill_div_a_150000": lambda r: t.attack(r, [("hand-coded", "attack_drill_handcoded_div_a_150000"),
-                                                        ("improved, second iteration (shipped `attack_drill_value.pt`)",
+                                                        ("improved, second iteration (`attack_drill_value_2nd.pt`)",
                                                          "attack_drill_improved_2nd_div_a_150000")]),
     "attack_drill_realistic_150000": lambda r: t.attack(r, [("hand-coded", "attack_drill_handcoded_realistic_150000"),
-                                                            ("improved, second iteration (shipped `attack_drill_value.pt`)",
+                                                            ("improved, second iteration (`attack_drill_value_2nd.pt`)",
                                                              "attack_drill_improved_2nd_realistic_150000")]),
+    "attack_drill_first_decision_values": lambda r: t.rollout_values(
+        [r / "tuning" / "attack_drill_rollout_values_d0.json", r / "tuning" / "attack_drill_rollout_values_49000.json"],
+        "decision"),
+    "attack_drill_departures_49000": lambda r: t.departure_scores(r / "tuning" / "attack_drill_departures_49000.json",
+                                                                  DEPARTURE_ACTORS),
+    "attack_drill_152000": lambda r: t.attack(r, [("hand-coded", "attack_drill_handcoded_152000"),
+                                                  ("improved, second iteration (`attack_drill_value_2nd.pt`)",
+                                                   "attack_drill_improved_2nd_152000"),
+                                                  ("improved, first-decision labels (`attack_drill_value_d0.pt`)",
+                                                   "attack_drill_improved_d0_152000")]),
+    "attack_drill_d0_150000": lambda r: t.attack(r, [("hand-coded", "attack_drill_handcoded_150000"),
+                                                     ("improved, second iteration (`attack_drill_value_2nd.pt`)",
+                                                      "attack_drill_improved_2nd_150000"),
+                                                     ("improved, first-decision labels (`attack_drill_value_d0.pt`)",
+                                                      "attack_drill_improved_d0_150000")]),
+    "attack_drill_d0_realistic_150000": lambda r: t.attack(r, [
+        ("hand-coded", "attack_drill_handcoded_realistic_150000"),
+        ("improved, second iteration (`attack_drill_value_2nd.pt`)", "attack_drill_improved_2nd_realistic_150000"),
+        ("improved, first-decision labels (`attack_drill_value_d0.pt`)", "attack_drill_improved_d0_realistic_150000")]),
     "attack_drill_aim": lambda r: t.probe_rows(r / "tuning" / "attack_drill_aim.json", "rule"),
     "attack_drill_rollout_values": lambda r: t.rollout_values([r / f for f in ROLLOUT_VALUES], "decision"),
     "attack_drill_rollout_choices": lambda r: t.rollout_values([r / f for f in ROLLOUT_VALUES], "choice"),
