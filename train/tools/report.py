@@ -335,7 +335,6 @@ ATTACK_DRILL_FT_SELECTION = [("hand-coded", "tuning/attack_drill_handcoded_val49
                              ("learned, shipped `attack_drill.pt`", "tuning/attack_drill_shipped_val49300"),
                              ("`mappo_attack_drill_ft_s1` at 5,084 decisions", "tuning/attack_drill_ft_s1_5084_val49300"),
                              ("`mappo_attack_drill_ft_s1` at 7,098 decisions", "tuning/attack_drill_ft_s1_7098_val49300")]
-#: the attack drill's rollout values: the drill with the hand-coded chip pass and redirect (87714dd), then as in matches
 #: display names of the value actors scored offline on the drill's tuning labels (seeds 49000-49299)
 DEPARTURE_ACTORS = {
     "attack_drill_value_2nd.pt": "second iteration (`attack_drill_value_2nd.pt`)",
@@ -344,7 +343,18 @@ DEPARTURE_ACTORS = {
     **{f"v_{wd}_{ep}_s{s}.pt": f"first-decision labels, weight decay {wd}, {ep} epochs, seed {s}"
        for wd in ("1e-3", "1e-2", "3e-2") for ep in (100, 300) for s in (0, 1, 2)},
 }
+#: the attack drill's rollout values: the drill with the hand-coded chip pass and redirect (87714dd), then as in matches
 ROLLOUT_VALUES = ("tuning/attack_drill_rollout_values_87714dd.json", "tuning/attack_drill_rollout_values.json")
+
+
+def drill_vs_d0(tag: str) -> list[tuple[str, str]]:
+    """The drill's hand-coded decision, the second-iteration and the first-decision value actors on one
+    held-out run family (``attack_drill_<policy>_<tag>``)."""
+    return [("hand-coded", f"attack_drill_handcoded_{tag}"),
+            ("improved, second iteration (`attack_drill_value_2nd.pt`)", f"attack_drill_improved_2nd_{tag}"),
+            ("improved, first-decision labels (`attack_drill_value_d0.pt`)", f"attack_drill_improved_d0_{tag}")]
+
+
 ATTACK_DRILL_RPI = [("hand-coded", "tuning/attack_drill_handcoded_val49000_87714dd"),
                     ("value actor, weight decay 1e-3 (`rollout_pi_attack_drill/a_1e-3_300.pt`)",
                      "tuning/attack_drill_rpi_wd1e-3_val49000"),
@@ -499,20 +509,9 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
         "decision"),
     "attack_drill_departures_49000": lambda r: t.departure_scores(r / "tuning" / "attack_drill_departures_49000.json",
                                                                   DEPARTURE_ACTORS),
-    "attack_drill_152000": lambda r: t.attack(r, [("hand-coded", "attack_drill_handcoded_152000"),
-                                                  ("improved, second iteration (`attack_drill_value_2nd.pt`)",
-                                                   "attack_drill_improved_2nd_152000"),
-                                                  ("improved, first-decision labels (`attack_drill_value_d0.pt`)",
-                                                   "attack_drill_improved_d0_152000")]),
-    "attack_drill_d0_150000": lambda r: t.attack(r, [("hand-coded", "attack_drill_handcoded_150000"),
-                                                     ("improved, second iteration (`attack_drill_value_2nd.pt`)",
-                                                      "attack_drill_improved_2nd_150000"),
-                                                     ("improved, first-decision labels (`attack_drill_value_d0.pt`)",
-                                                      "attack_drill_improved_d0_150000")]),
-    "attack_drill_d0_realistic_150000": lambda r: t.attack(r, [
-        ("hand-coded", "attack_drill_handcoded_realistic_150000"),
-        ("improved, second iteration (`attack_drill_value_2nd.pt`)", "attack_drill_improved_2nd_realistic_150000"),
-        ("improved, first-decision labels (`attack_drill_value_d0.pt`)", "attack_drill_improved_d0_realistic_150000")]),
+    "attack_drill_152000": lambda r: t.attack(r, drill_vs_d0("152000")),
+    "attack_drill_d0_150000": lambda r: t.attack(r, drill_vs_d0("150000")),
+    "attack_drill_d0_realistic_150000": lambda r: t.attack(r, drill_vs_d0("realistic_150000")),
     "attack_drill_aim": lambda r: t.probe_rows(r / "tuning" / "attack_drill_aim.json", "rule"),
     "attack_drill_rollout_values": lambda r: t.rollout_values([r / f for f in ROLLOUT_VALUES], "decision"),
     "attack_drill_rollout_choices": lambda r: t.rollout_values([r / f for f in ROLLOUT_VALUES], "choice"),
