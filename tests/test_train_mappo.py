@@ -337,6 +337,11 @@ def test_rollout_policy_improvement_labels_fit_and_resume(tmp_path: Path) -> Non
     summary = summarize("attack-drill", [tmp_path])
     assert summary["episodes"] == 1 and summary["by_decision"][0]["benchmark"] == base["return"]
     assert summary["chunks"][0]["seeds"] == [46004, 46004] and summary["chunks"][0]["policy"] == "handcoded"
+    assert (summary["chunks"][0]["realism"], summary["chunks"][0]["field"]) == ("none", "div_b")
+    with pytest.raises(ValueError, match="collected with .*'realism': 'none'.* asks for .*'realistic'"):
+        collect("attack-drill", tmp_path, 1, 46005, max_decisions=1, chunk=1, progress=False, realism="realistic")
+    with pytest.raises(ValueError, match="realism must be"):
+        collect("attack-drill", tmp_path / "other", 1, 46005, progress=False, realism="noisy")
     lab["value"][0][legal] = 0.0
     best = int(np.flatnonzero(legal)[-1])
     lab["value"][0][best] = 1.0
@@ -345,6 +350,20 @@ def test_rollout_policy_improvement_labels_fit_and_resume(tmp_path: Path) -> Non
     lab["value"][0][best] = 2.0
     with pytest.raises(ValueError, match=r"\[0, 1\]"):
         fit_value_actor("attack-drill", lab, epochs=1, holdout=0.0)
+
+
+def test_rollout_labels_under_the_realistic_preset_replay_the_same_decision(tmp_path: Path) -> None:
+    """collect --realism realistic: the noisy world and the tracker are seeded by the episode, so
+    every branch replays the benchmark's episode up to its first decision (collect raises if not);
+    the chunk records the preset."""
+    import numpy as np
+
+    from train.mappo.rollout_pi import collect, load_labels, summarize
+
+    collect("attack-drill", tmp_path, 1, 46004, max_decisions=1, chunk=1, progress=False, realism="realistic")
+    lab = load_labels(tmp_path)
+    assert lab["obs"].shape == (1, 48) and np.isfinite(lab["value"][0][lab["mask"][0].astype(bool)]).all()
+    assert summarize("attack-drill", [tmp_path])["chunks"][0]["realism"] == "realistic"
 
 
 def test_offline_score_plays_the_improved_policys_first_decision_from_the_labels() -> None:

@@ -16,7 +16,10 @@ episode's return after every legal option (NaN for illegal ones): Monte-Carlo va
 the benchmark policy (Bertsekas's rollout; Lagoudakis and Parr's classification-based policy
 iteration). Rows go to ``OUT/labels-<first seed>.npz`` in chunks of ``--chunk`` episodes, written
 atomically; a rerun skips the chunks already there, so collection resumes and several processes
-can share the seed range (``--episodes`` / ``--seed`` per process).
+can share the seed range (``--episodes`` / ``--seed`` per process). ``--realism realistic`` labels
+the task's world under the realistic preset with the tracker on (as ``eval-task --realism
+realistic`` plays it; noise and tracker are seeded by the episode, so the replays hold), ``--field``
+the other division; each chunk records both, and a folder takes one condition only.
 
 **fit** trains the shared actor of the task's default MAPPO config (sizes, observation scaling,
 agent one-hot) to predict each legal option's return from the observation: its logits are the
@@ -133,17 +136,39 @@ def _write_npz(path: Path, data: dict[str, np.ndarray], meta: dict) -> None:
 
 
 def collect(task: str, out: str | Path, episodes: int, seed: int, policy: str = "handcoded",
-            max_decisions: int = 4, chunk: int = 25, progress: bool = True) -> list[Path]:
+            max_decisions: int = 4, chunk: int = 25, progress: bool = True, realism: str | None = None,
+            field: str | None = None) -> list[Path]:
     """Label ``episodes`` episodes (seeds ``seed + i``) into ``out``'s chunk files (module
-    docstring); returns the chunk files of this range, new and already there."""
+    docstring); returns the chunk files of this range, new and already there.
+
+    ``realism`` ("none" or "realistic", the tracker on with it as in ``eval-task``) and ``field``
+    ("div_a" or "div_b") are passed to the task when given (else the task's defaults) and recorded
+    in every chunk's record; a folder's chunks must all share them."""
     from ssl_marl.decisions import make_decision_policy
+    from ssl_marl.envs.tracking import resolve_tracker
     from ssl_marl.skills.checkpoint import git_commit
 
     if episodes < 1 or chunk < 1 or max_decisions < 1:
         raise ValueError(f"episodes, chunk and max_decisions must be >= 1, got {episodes}, {chunk}, {max_decisions}")
+    if realism not in (None, "none", "realistic"):
+        raise ValueError(f"realism must be 'none' or 'realistic', got {realism!r}")
+    if field not in (None, "div_a", "div_b"):
+        raise ValueError(f"field must be 'div_a' or 'div_b', got {field!r}")
+    kwargs = dict(task_config(task).task_kwargs)
+    if realism is not None:
+        kwargs.update(realism=realism, tracker=resolve_tracker("auto", realism))
+    if field is not None:
+        kwargs["field"] = field
+    conditions = {"realism": kwargs.get("realism", "none"), "field": kwargs.get("field", "div_b")}
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    env = get_task(task).factory(**task_config(task).task_kwargs)
+    for f in out.glob("labels-*.npz"):
+        with np.load(f, allow_pickle=False) as z:
+            there = json.loads(str(z["meta"]))
+        got = {k: there.get(k, "none" if k == "realism" else "div_b") for k in conditions}
+        if got != conditions:
+            raise ValueError(f"{f} was collected with {got}, this run asks for {conditions}; use another --out")
+    env = get_task(task).factory(**kwargs)
     base = make_decision_policy(policy, task, seed=seed)
     files = []
     bar = tqdm(total=episodes, disable=not progress, desc=f"rollout labels {task}", unit="ep")
@@ -161,7 +186,7 @@ def collect(task: str, out: str | Path, episodes: int, seed: int, policy: str = 
                 parts.append(rows)
             bar.update(1)
         meta = {"task": task, "policy": policy, "seeds": [c0, c0 + n - 1], "max_decisions": max_decisions,
-                "commit": git_commit()}
+                **conditions, "commit": git_commit()}
         _write_npz(path, _concat(parts) if parts else {k: np.zeros(0) for k in LABEL_KEYS}, meta)
     bar.close()
     env.close()
@@ -321,6 +346,10 @@ def main(argv: list[str] | None = None) -> int:
     c.add_argument("--max-decisions", type=int, default=4, help="label an episode's first N decisions (default 4)")
     c.add_argument("--chunk", type=int, default=25, help="episodes per chunk file (default 25)")
     c.add_argument("--out", type=Path, required=True, help="folder of the chunk files (resumed if there)")
+    c.add_argument("--realism", choices=("none", "realistic"), default=None,
+                   help="realism preset of the task's world, the tracker on with realistic (default: the task's, none)")
+    c.add_argument("--field", choices=("div_a", "div_b"), default=None,
+                   help="field and team size of the task (default: the task's, div_b)")
     c.add_argument("--no-progress", action="store_true", help="no progress bar")
     f = sub.add_parser("fit", help="fit a value actor to the labels and write it")
     f.add_argument("--task", required=True, help="decision task the labels come from")
@@ -408,8 +437,11 @@ def main(argv: list[str] | None = None) -> int:
         print(json.dumps({k: out[k] for k in ("task", "episodes", "decisions", "seeds")}))
         return 0
     if args.cmd == "collect":
-        files = collect(args.task, args.out, args.episodes, args.seed, args.policy, args.max_decisions, args.chunk,
-                        progress=not args.no_progress)
+        try:
+            files = collect(args.task, args.out, args.episodes, args.seed, args.policy, args.max_decisions,
+                            args.chunk, progress=not args.no_progress, realism=args.realism, field=args.field)
+        except ValueError as e:
+            p.error(str(e))
         print(json.dumps({"out": str(args.out), "chunks": [f.name for f in files]}))
         return 0
     if not 0 <= args.holdout < 1:

@@ -512,6 +512,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "attack_drill_152000": lambda r: t.attack(r, drill_vs_d0("152000")),
     "attack_drill_d0_150000": lambda r: t.attack(r, drill_vs_d0("150000")),
     "attack_drill_d0_realistic_150000": lambda r: t.attack(r, drill_vs_d0("realistic_150000")),
+    "attack_drill_d0_div_a_150000": lambda r: t.attack(r, drill_vs_d0("div_a_150000")),
     "attack_drill_aim": lambda r: t.probe_rows(r / "tuning" / "attack_drill_aim.json", "rule"),
     "attack_drill_rollout_values": lambda r: t.rollout_values([r / f for f in ROLLOUT_VALUES], "decision"),
     "attack_drill_rollout_choices": lambda r: t.rollout_values([r / f for f in ROLLOUT_VALUES], "choice"),
