@@ -106,6 +106,28 @@ def test_a_pass_into_a_redirect_is_rated_at_its_own_arrival_speed():
     assert rated[2.0] < DecisionParams().min_pass_success <= rated[4.5], rated
 
 
+def test_open_teammate_up_the_field_with_a_clear_lane_gets_a_flat_pass():
+    """No shot from the own half, an opponent 0.7 m behind the carrier (the keep value falls)
+    and a teammate 1.7 m up the field with nobody near the lane: a flat pass, rated safe."""
+    mates = np.array([[-4.0, 0.0], [-1.0, 0.0], [0.5, 1.5]])
+    opp = np.array([[4.4, 0.0], [3.2, -0.3], [3.2, 0.3], [-1.5, -0.4]])
+    d = decide_attack(np.array([-0.9, 0.0]), 1, mates, opp, F, RP, BP, candidates=(2,), heading=0.0)
+    assert d.choice is AttackChoice.PASS, d
+    assert d.best.kind is AttackChoice.PASS and d.best.teammate == 2 and d.best.chip_angle == 0.0
+    assert d.best.success > 0.9 and d.best.value >= d.keep + DecisionParams().pass_gain
+
+
+def test_no_shot_and_only_a_marked_teammate_behind_gives_a_dribble():
+    """The only teammate stands behind the carrier with a marker on it (its pass rated 0) and
+    the goal is 5 m away: the carrier keeps the ball (no pass, no forced shot)."""
+    mates = np.array([[-4.0, 0.0], [-1.0, 0.0], [-3.0, 2.5]])
+    opp = np.array([[4.4, 0.0], [3.0, 0.0], [-2.2, 2.3]])
+    d = decide_attack(np.array([-0.9, 0.0]), 1, mates, opp, F, RP, BP, candidates=(2,), heading=0.0)
+    assert d.choice is AttackChoice.DRIBBLE, d
+    assert d.best is None and d.shot < DecisionParams().shoot_threshold
+    assert d.keep >= DecisionParams().min_keep
+
+
 def test_open_goal_gives_a_shot():
     mates = np.array([[-4.0, 0.0], [2.5, 0.0], [1.0, 2.0]])
     opp = np.array([[4.45, 0.45], [-2.0, 0.0]])

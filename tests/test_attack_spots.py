@@ -86,3 +86,36 @@ def test_edge_spots_lie_on_the_defense_area_border_where_no_marker_stands_goal_s
     assert _marked_open_angle(front - [0.5, 0.0], ball) < 0.02
     with pytest.raises(ValueError, match="edge_spots"):
         SpotParams(edge_spots=-1)
+
+
+def test_spot_planner_rerates_every_rate_every_ticks_as_the_play_moves():
+    """The supports' spots follow the ball: kept between ratings, re-rated on the
+    ``rate_every``-th tick from the ball and opponents of that tick, and rated at once after a
+    reset."""
+    from types import SimpleNamespace
+
+    from ssl_marl.plays.attack_play import SpotPlanner
+
+    opp = np.array([[4.4, 0.0], [1.0, 1.0]])
+    planner = SpotPlanner(n_spots=3, rate_every=6, ball=BP)
+
+    def ctx(ball):
+        return SimpleNamespace(field=F, robot=RP, ball=np.array(ball), opp_pos=opp)
+
+    def rated(ball):
+        b = np.array(ball)
+        return assign_spots(3, candidate_grid(F, b, planner.params), b, opp, F, RP, BP, planner.params)
+
+    planner.update(ctx([-2.0, 0.0]))  # tick 1: no spots yet, rated now
+    first = planner.spots.copy()
+    np.testing.assert_array_equal(first, rated([-2.0, 0.0]))
+    for _ in range(4):  # ticks 2-5: kept, though the ball moved 3 m up the field
+        planner.update(ctx([1.0, -1.0]))
+        np.testing.assert_array_equal(planner.spots, first)
+    planner.update(ctx([1.0, -1.0]))  # tick 6: re-rated from this tick's ball
+    np.testing.assert_array_equal(planner.spots, rated([1.0, -1.0]))
+    assert not np.array_equal(planner.spots, first)
+    assert planner.spots[:, 0].mean() > first[:, 0].mean()  # the spots moved up with the ball
+    planner.reset()
+    planner.update(ctx([-3.0, 1.0]))  # a new episode: rated at its first tick
+    np.testing.assert_array_equal(planner.spots, rated([-3.0, 1.0]))

@@ -208,26 +208,38 @@ def test_behind_ball_waypoint_walks_round_the_ball_to_the_pass_line():
                                (-back, 0.0))
 
 
-def test_attack_team_takes_its_free_kick_as_a_set_piece():
-    """A free kick for blue (ball out over the side line in blue's half, nobody touched
-    it): the attacking plays plan the pass before anyone reaches the ball (a set-piece
-    plan), the kicker walks round behind the ball and passes within the free kick."""
+def _free_kick_scene(blocker: tuple[float, float] | None = None):
+    """A free kick for blue (ball out over the side line at x = -1 m in blue's half, nobody
+    touched it; SSL game control, 0.5 s STOP): four attacking-team robots against an idle
+    goalie and defender, and an idle ``blocker`` where given. Returns env, blue, yellow and
+    blue's pass coordinator."""
     from ssl_marl.envs import parallel_env
-    from ssl_marl.envs.game_control import FREE_KICK
-    from ssl_marl.plays.attack_play import attack_decider_of
     from ssl_marl.runners.controllers import make_controller
-    from ssl_marl.runners.match import fit_action
 
-    env = parallel_env(n_blue=4, n_yellow=2, field="div_b", max_time_s=12.0, chip_kicks=True, ssl_restarts=True,
-                       fouls=True, stop_s=0.5)
+    n_yellow = 2 if blocker is None else 3
+    env = parallel_env(n_blue=4, n_yellow=n_yellow, field="div_b", max_time_s=12.0, chip_kicks=True,
+                       ssl_restarts=True, fouls=True, stop_s=0.5)
     cfg = env.config
     blue = make_controller("attack-baseline", "blue", 4, F, robot=cfg.robot, ball=cfg.ball, dt=cfg.dt)
-    yellow = make_controller("idle", "yellow", 2, F)
-    env.reset(seed=0, options={"ball": {"pos": (-1.0, 2.9), "vel": (0.0, 2.0)},
-                               "robots": {"blue_0": (-4.0, 0.0, 0.0), "blue_1": (-2.0, 1.5, 0.0),
-                                          "blue_2": (0.5, 1.0, math.pi), "blue_3": (-0.5, -1.5, 0.0),
-                                          "yellow_0": (4.0, 0.0, math.pi), "yellow_1": (2.0, -2.0, math.pi)}})
+    yellow = make_controller("idle", "yellow", n_yellow, F)
+    robots = {"blue_0": (-4.0, 0.0, 0.0), "blue_1": (-2.0, 1.5, 0.0), "blue_2": (0.5, 1.0, math.pi),
+              "blue_3": (-0.5, -1.5, 0.0), "yellow_0": (4.0, 0.0, math.pi), "yellow_1": (2.0, -2.0, math.pi)}
+    if blocker is not None:
+        robots["yellow_2"] = (*blocker, 0.0)
+    env.reset(seed=0, options={"ball": {"pos": (-1.0, 2.9), "vel": (0.0, 2.0)}, "robots": robots})
     coord = next(p.prepare.coordinator for p in blue.selector.plays if p.prepare is not None)
+    return env, blue, yellow, coord
+
+
+def test_attack_team_takes_its_free_kick_as_a_set_piece():
+    """The free kick of :func:`_free_kick_scene`: the attacking plays plan the pass before
+    anyone reaches the ball (a set-piece plan), the kicker walks round behind the ball and
+    passes within the free kick."""
+    from ssl_marl.envs.game_control import FREE_KICK
+    from ssl_marl.plays.attack_play import attack_decider_of
+    from ssl_marl.runners.match import fit_action
+
+    env, blue, yellow, coord = _free_kick_scene()
     restart_plans, fk_seen, fouls, kicked_in_fk = 0, False, [], False
     while env.agents and env.world_state().t < 10.0:
         st = env.task.referee_state
@@ -244,6 +256,36 @@ def test_attack_team_takes_its_free_kick_as_a_set_piece():
             break
     assert fk_seen and restart_plans > 0  # planned while the ball still rested at the spot
     assert coord.counters.kicked == 1 and attack_decider_of(blue.selector.plays).counters.shoot == 0
+    assert not fouls
+
+
+def test_attack_team_chips_its_free_kick_over_a_robot_in_the_lane():
+    """The free kick of :func:`_free_kick_scene` with a robot standing midway in the lane to
+    the teammate the flat set piece goes to (blue_2): the set piece is planned as a chip
+    (decided at the restart) and the kick that follows lifts the ball over 0.15 m, with no
+    foul called."""
+    from ssl_marl.plays.attack_decision import AttackChoice
+    from ssl_marl.plays.attack_play import attack_decider_of
+    from ssl_marl.runners.match import fit_action
+
+    env, blue, yellow, coord = _free_kick_scene(blocker=(-0.05, 2.05))
+    dec = attack_decider_of(blue.selector.plays)
+    set_piece_chip, kick_t, top, fouls = False, None, 0.0, []
+    while env.agents and env.world_state().t < 10.0:
+        actions = {k: fit_action(v, 6) for k, v in {**blue.act(env), **yellow.act(env)}.items()}
+        if coord.plan is not None and coord.plan.restart and dec.option is not None:
+            set_piece_chip |= dec.option.kind is AttackChoice.CHIP
+        _, _, _, _, infos = env.step(actions)
+        ev = infos["blue_0"]["events"]
+        fouls += [e for e in ev if e["type"] == "foul"]
+        if kick_t is None and any(e["type"] == "kick" and e["agent"].startswith("blue") for e in ev):
+            kick_t = env.world_state().t
+        if kick_t is not None:
+            top = max(top, env.world_state().ball_height)
+            if env.world_state().t > kick_t + 0.6:
+                break
+    assert set_piece_chip and dec.counters.chip >= 1 and dec.counters.pass_ == 0
+    assert kick_t is not None and top > 0.15  # over the robots
     assert not fouls
 
 

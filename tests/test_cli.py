@@ -111,3 +111,24 @@ def test_match_series_resumes_from_its_partial_folder(tmp_path, capsys):
     assert main(args) == 2 and "other options" in capsys.readouterr().err
     (kept / "match_4.json").unlink()
     assert main(args) == 0 and json.loads(out.read_text())["summary"]["goals_for"] == first["goals_for"]
+
+
+def test_match_command_plays_the_ssl_format(tmp_path):
+    """``ssl-marl match --format ssl``: SSL game control with fouls and a half-time at half the
+    match, recorded in the match's rules; ``--format plain`` records none of them."""
+    import json
+
+    from ssl_marl.cli import main
+
+    for fmt in ("ssl", "plain"):
+        out = tmp_path / f"{fmt}.json"
+        assert main(["match", "--seconds", "4", "--robots", "2", "--format", fmt, "--render", "none", "--quiet",
+                     "--json", str(out)]) == 0
+        rec = json.loads(out.read_text())
+        rules = rec["config"]["rules"]
+        if fmt == "ssl":
+            assert rules["ssl_restarts"] and rules["fouls"] and rules["half_time_s"] == 2.0
+            assert rec["stats"]["referee"].get("half_time") == 1
+        else:
+            assert not rules.get("ssl_restarts") and not rules.get("half_time_s")
+            assert "half_time" not in rec["stats"]["referee"]

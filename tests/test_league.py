@@ -67,6 +67,30 @@ def test_a_draw_is_a_tie():
     assert rows[0]["mu"] == pytest.approx(rows[1]["mu"]) and rows[0]["draws"] == rows[1]["draws"] == 1
 
 
+def test_each_teams_row_is_the_statistics_helpers_view_of_its_matches():
+    """Wins, goals, the win rate's Wilson interval and the goal difference per 600 s with its t
+    interval come from the one statistics helper (either colour; a 300 s match counts double
+    per 600 s), and the ratings table shows them."""
+    from ssl_marl.runners.statistics import series_statistics
+
+    matches = [{"index": 0, "blue": "a", "yellow": "b", "score": {"blue": 2, "yellow": 0}, "sim_time_s": 600.0},
+               {"index": 1, "blue": "b", "yellow": "a", "score": {"blue": 1, "yellow": 1}, "sim_time_s": 600.0},
+               {"index": 2, "blue": "b", "yellow": "a", "score": {"blue": 0, "yellow": 1}, "sim_time_s": 300.0}]
+    rows = {r["team"]: r for r in lg.rate(["a", "b"], matches)}
+    want = series_statistics([2, 1, 1], [0, 1, 0], [600.0, 600.0, 300.0])
+    for k in ("wins", "draws", "losses", "goals_for", "goals_against", "win_rate", "win_rate_ci95",
+              "goal_diff_per_600s", "goal_diff_per_600s_ci95"):
+        assert rows["a"][k] == want[k], k
+    assert rows["a"]["goal_diff_per_600s"] == pytest.approx((2 + 0 + 2) / 3)
+    assert rows["b"]["losses"] == 2 and rows["b"]["goal_diff_per_600s"] == pytest.approx(-4 / 3)
+    state = {"config": {"seconds": 600.0, "match_format": "plain", "robots": 6, "field": "div_b", "realism": "none",
+                        "rounds": 1, "colours": "both", "seed": 0},
+             "played": 3, "scheduled": 3, "ratings": lg.rate(["a", "b"], matches), "matches": matches}
+    table = lg.ratings_markdown(state)
+    lo, hi = want["goal_diff_per_600s_ci95"]
+    assert "goal diff per 600 s [95% CI]" in table and f"+1.33 [{lo:+.2f}, {hi:+.2f}]" in table
+
+
 def test_resume_skips_played_matches_and_rates_like_one_run(fake, monkeypatch, tmp_path):
     whole = lg.play_league(config(), tmp_path / "whole", progress=False)
     calls = []

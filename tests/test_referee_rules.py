@@ -130,6 +130,19 @@ def test_stop_keep_clear_moves_robots_away_and_the_kicker_plays():
     assert far["blue_0"][0] == 1.0  # far away: untouched
 
 
+def _played(env, ctrls):
+    """Step ``env`` to its end with the team controllers ``ctrls`` (actions fitted to the env's
+    action size); yield each step's infos."""
+    from ssl_marl.envs.actions import fit_action
+
+    dim = env.action_space(env.possible_agents[0]).shape[0]
+    while env.agents:
+        actions = {}
+        for c in ctrls:
+            actions.update({k: fit_action(v, dim) for k, v in c.act(env).items()})
+        yield env.step(actions)[4]
+
+
 def test_stop_is_obeyed_by_the_team_controller_in_a_match():
     from ssl_marl.runners.controllers import make_controller
 
@@ -137,11 +150,7 @@ def test_stop_is_obeyed_by_the_team_controller_in_a_match():
     ctrls = [make_controller("baseline", t, 3, env.field) for t in ("blue", "yellow")]
     env.reset(seed=3)
     worst, free_kicks = np.inf, 0
-    while env.agents:
-        actions = {}
-        for c in ctrls:
-            actions.update(c.act(env))
-        _, _, _, _, infos = env.step(actions)
+    for infos in _played(env, ctrls):
         free_kicks += sum(e["type"] == "referee" and e["command"] == FREE_KICK for e in infos["blue_0"]["events"]
                           if "command" in e)
         st = env.task.referee_state
@@ -152,6 +161,27 @@ def test_stop_is_obeyed_by_the_team_controller_in_a_match():
     assert free_kicks > 0
     if np.isfinite(worst):
         assert worst >= 0.45
+
+
+def test_the_attacking_team_keeps_clear_of_the_opponents_free_kicks_in_a_match():
+    """The attacking plays (both sides, chip env, SSL game control): while a kickoff or free
+    kick for the other team is not taken yet, no robot of the defending side comes within
+    0.45 m of the ball (SSL's 0.5 m less 0.05 m of slack) once the command is 0.5 s old. The
+    referee does not call the distance: the teams keep it (DESIGN.md, "Referee")."""
+    from ssl_marl.runners.controllers import make_controller
+
+    env = parallel_env(n_blue=6, n_yellow=6, max_time_s=60.0, ssl_restarts=True, fouls=True, chip_kicks=True)
+    ctrls = [make_controller("attack-baseline", t, 6, env.field) for t in ("blue", "yellow")]
+    env.reset(seed=1)
+    worst, ticks = np.inf, 0
+    for _ in _played(env, ctrls):
+        st, w = env.task.referee_state, env.world_state()
+        if st.command in (FREE_KICK, KICKOFF) and w.t - st.since > 0.5:
+            defending = w.yellow.pos if st.team == "blue" else w.blue.pos
+            worst = min(worst, float(np.min(np.hypot(*(defending - w.ball_pos).T))))
+            ticks += 1
+    assert ticks > 60  # set pieces were played (1 s or more of them)
+    assert worst >= 0.45
 
 
 def test_half_time_keeps_the_score_and_swaps_ends():
@@ -197,6 +227,36 @@ def test_no_restart_repeats_an_earlier_world_state():
     assert np.array_equal(a, _forced_goal_kickoffs(5, 0.1))  # same seed, same match
     fixed = _forced_goal_kickoffs(5, 0.0, goals=3)  # without jitter every kickoff is the same formation
     assert np.allclose(fixed[1], fixed[2]) and np.allclose(fixed[2], fixed[3])
+
+
+def _forced_ball_out_placements(seed, jitter, outs=5):
+    """The same crowded ball-out, ``outs`` times over: blue_1 and yellow_1 next to the ball
+    as it rolls over the touch line; the robots' poses after each restart."""
+    env = parallel_env(n_blue=3, n_yellow=3, max_time_s=600.0, restart_jitter_m=jitter)
+    env.reset(seed=seed)
+    placed = []
+    for _ in range(outs):
+        pose = env.robot_poses()
+        pose[1], pose[4] = (1.0, FIELD.half_width - 0.25, 0.0), (1.2, FIELD.half_width - 0.3, np.pi)
+        env.place_robots(pose)
+        env.place_ball(np.array([1.1, FIELD.half_width + 0.01]), np.array([0.0, 1.0]))
+        _, _, _, _, infos = env.step(_idle(env))
+        assert any(e["type"] == "ball_out" for e in infos["blue_0"]["events"])
+        placed.append(env.robot_poses())
+    return np.array(placed)
+
+
+def test_repeated_ball_out_restarts_place_the_robots_anew_each_time():
+    """The no-replay rule for free kicks / ball placement: the same crowded ball-out restarted
+    five times puts the two robots near the ball somewhere new each time (the match's seeded
+    RNG), the same seed gives the same placements, and without jitter they are the same."""
+    a = _forced_ball_out_placements(7, 0.1)
+    for i in range(1, len(a)):
+        for j in range(i):
+            assert not np.allclose(a[i][[1, 4]], a[j][[1, 4]], atol=1e-3), (i, j)
+    np.testing.assert_array_equal(a, _forced_ball_out_placements(7, 0.1))
+    fixed = _forced_ball_out_placements(7, 0.0, outs=3)
+    np.testing.assert_allclose(fixed[1][[1, 4]], fixed[2][[1, 4]], atol=1e-6)
 
 
 def test_jittered_kickoff_stays_legal():
@@ -266,3 +326,49 @@ def test_match_statistics_by_kind():
     assert s["pass_completion_chip"] == 1.0 and s["pass_completion_flat"] is None
     assert (s["shots_after_chip_pass"], s["shots_redirect"], s["shots_direct"]) == (1, 1, 0)
     assert (s["goals"], s["goals_after_chip_pass"]) == (1, 1)
+
+
+@pytest.mark.parametrize("jitter", [0.0, 0.1])
+def test_a_restart_never_places_a_robot_on_another(jitter):
+    """Robots crowding the ball at a restart are moved out to 0.5 m (plus the jitter) without
+    landing on each other or on a robot already standing on that ring: two robots on the same
+    side of the ball, a third just beyond where they would go, the ball near a touch line."""
+    from ssl_marl.envs.game_control import jittered_clearance
+    from ssl_marl.envs.referee import PLACEMENT_GAP_M, clear_robots_from
+
+    f = FieldGeometry.div_b()
+    ball = np.array([1.0, f.half_width - 0.2])
+    pos = np.array([[1.2, 2.5], [1.25, 2.45], [1.5, 2.35], [-3.0, 0.0], [1.0, 2.75]])
+    for seed in range(20):
+        if jitter:
+            new = jittered_clearance(ball, pos, f, 0.5, jitter, np.random.default_rng(seed), 0.09)
+        else:
+            new = clear_robots_from(ball, pos, f, robot_radius=0.09)
+        d_ball = np.hypot(*(new - ball).T)
+        assert np.all(d_ball >= 0.5 - 1e-9)
+        gaps = np.hypot(*(new[:, None] - new[None]).transpose(2, 0, 1)) + 9 * np.eye(len(new))
+        assert gaps.min() >= 2 * 0.09 + PLACEMENT_GAP_M - 1e-9, (seed, new)
+        assert all(f.in_field(p, margin=-f.boundary_width + 0.1) for p in new)
+        np.testing.assert_array_equal(new[3], pos[3])  # robots far from the ball stay
+        if not jitter:
+            break
+
+
+def test_no_two_robots_overlap_after_the_restarts_of_a_match():
+    """A 60 s plain-format match (attacking plays against the standard plays): after no
+    restart (ball out, no progress) do two robots' bodies overlap by more than 2 cm."""
+    from ssl_marl.runners.controllers import make_controller
+
+    env = parallel_env(n_blue=6, n_yellow=6, max_time_s=60.0, chip_kicks=True, restart_jitter_m=0.1,
+                       after_goal="kickoff")
+    ctrls = [make_controller(k, t, 6, env.field) for t, k in (("blue", "attack-baseline"), ("yellow", "baseline"))]
+    env.reset(seed=5)
+    restarts, r = 0, env.config.robot.radius
+    for infos in _played(env, ctrls):
+        if any(e["type"] in ("ball_out", "no_progress", "goal") for e in infos["blue_0"]["events"]):
+            restarts += 1
+            w = env.world_state()
+            p = np.concatenate([w.blue.pos, w.yellow.pos])
+            gaps = np.hypot(*(p[:, None] - p[None]).transpose(2, 0, 1)) + 9 * np.eye(len(p))
+            assert gaps.min() >= 2 * r - 0.02, (w.t, gaps.min())
+    assert restarts >= 5

@@ -115,6 +115,7 @@ class BatchedSSLEnv:
                              "supported by the batched env; use SSLParallelEnv")
         self.K = n_worlds
         self.field = cfg.field
+        self.robot_radius = cfg.robot.radius  #: m, for the restarts' placements
         self.possible_agents = list(self.envs[0].possible_agents)
         self.n = len(self.possible_agents)
         self.n_blue, self.n_yellow = cfg.n_blue, cfg.n_yellow
@@ -293,7 +294,7 @@ class BatchedSSLEnv:
                 continue
             ball_out[k], no_progress[k] = bool(out[j] or in_goal[j]), bool(stalled[j])
             place = placement_point(ph.ball_pos[k], f)
-            new_pos = clear_robots_from(place, ph.pos[k], f)
+            new_pos = clear_robots_from(place, ph.pos[k], f, robot_radius=self.robot_radius)
             moved = np.flatnonzero(np.any(new_pos != ph.pos[k], axis=1))
             if moved.size:
                 pose = np.column_stack([ph.pos[k], ph.heading[k]])

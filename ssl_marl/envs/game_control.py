@@ -42,6 +42,7 @@ import numpy as np
 
 from ..physics.field import FieldGeometry
 from ..physics.state import WorldState
+from .referee import placement_spot
 
 RUNNING, STOP, KICKOFF, FREE_KICK = "RUNNING", "STOP", "KICKOFF", "FREE_KICK"
 COMMANDS = (RUNNING, STOP, KICKOFF, FREE_KICK)
@@ -174,21 +175,18 @@ class TouchWatch:
 
 
 def jittered_clearance(point: np.ndarray, robot_pos: np.ndarray, field: FieldGeometry, clearance: float,
-                       jitter_m: float, rng: np.random.Generator) -> np.ndarray:
+                       jitter_m: float, rng: np.random.Generator, robot_radius: float = 0.09) -> np.ndarray:
     """Robots within ``clearance`` of ``point`` moved out to ``clearance`` + U(0,
     ``jitter_m``) m, in their own direction turned by a random angle of up to +-0.5
-    rad (seeded ``rng``); kept inside the walled area. Returns new (n, 2) positions."""
+    rad (seeded ``rng``); kept inside the walled area and clear of the other robots
+    (:func:`~ssl_marl.envs.referee.placement_spot`). Returns new (n, 2) positions."""
     pos = np.array(robot_pos, dtype=float, copy=True)
     d = pos - point[None, :]
     dist = np.hypot(d[:, 0], d[:, 1])
     for i in np.flatnonzero(dist < clearance):
         a = (np.arctan2(d[i, 1], d[i, 0]) if dist[i] > 1e-9 else rng.uniform(-np.pi, np.pi)) + rng.uniform(-0.5, 0.5)
         r = clearance + rng.uniform(0.0, jitter_m)
-        for turn in (0.0, np.pi, np.pi / 2, -np.pi / 2):
-            cand = point + r * np.array([np.cos(a + turn), np.sin(a + turn)])
-            if field.in_field(cand, margin=-field.boundary_width + 0.1):
-                break
-        pos[i] = cand
+        pos[i] = placement_spot(point, float(a), float(r), pos, int(i), field, robot_radius)
     return pos
 
 

@@ -75,19 +75,48 @@ def placement_point(ball_pos: np.ndarray, field: FieldGeometry) -> np.ndarray:
     return p
 
 
+#: m of free space kept between the bodies of two robots a restart places
+PLACEMENT_GAP_M = 0.02
+#: the angles (rad) a restart tries, in this order, to turn a robot's way out of the ball
+#: until the spot is inside the walled area and clear of every other robot
+_PLACEMENT_TURNS = (0.0, np.pi, np.pi / 2, -np.pi / 2) + tuple(s * k * 0.35 for k in range(1, 9) for s in (1, -1))
+_PLACEMENT_RINGS_M = (0.0, 0.25, 0.5)  #: extra distance (m) beyond the clearance, tried after the turns
+
+
+def placement_spot(point: np.ndarray, angle: float, radius: float, pos: np.ndarray, i: int,
+                   field: FieldGeometry, robot_radius: float) -> np.ndarray:
+    """Where a restart puts robot ``i`` that stands too near the ball at ``point`` (m, field
+    frame): ``radius`` m from it in direction ``angle`` (rad), else the first of
+    :data:`_PLACEMENT_TURNS` x :data:`_PLACEMENT_RINGS_M` that lies inside the walled area
+    (0.1 m from the wall) and at least 2 ``robot_radius`` + :data:`PLACEMENT_GAP_M` from every
+    other robot in ``pos`` ((n, 2), the placements so far), so that no two robots are put one
+    on top of the other; if none is, the first spot inside the walled area."""
+    others = np.delete(pos, i, axis=0)
+    need = 2.0 * robot_radius + PLACEMENT_GAP_M
+    first = None
+    for ring in _PLACEMENT_RINGS_M:
+        for turn in _PLACEMENT_TURNS:
+            cand = point + (radius + ring) * np.array([np.cos(angle + turn), np.sin(angle + turn)])
+            if not field.in_field(cand, margin=-field.boundary_width + 0.1):
+                continue
+            if first is None:
+                first = cand
+            if others.size == 0 or float(np.min(np.hypot(*(others - cand).T))) >= need:
+                return cand
+    return first if first is not None else point + radius * np.array([np.cos(angle), np.sin(angle)])
+
+
 def clear_robots_from(point: np.ndarray, robot_pos: np.ndarray, field: FieldGeometry,
-                      clearance: float = RESTART_CLEARANCE) -> np.ndarray:
+                      clearance: float = RESTART_CLEARANCE, robot_radius: float = 0.09) -> np.ndarray:
     """Move robots closer than ``clearance`` to ``point`` radially out to ``clearance``
-    (kept inside the walled area). Returns new (n, 2) positions."""
+    (kept inside the walled area, clear of the other robots: :func:`placement_spot`).
+    Returns new (n, 2) positions."""
     pos = np.array(robot_pos, dtype=float, copy=True)
     d = pos - point[None, :]
     dist = np.hypot(d[:, 0], d[:, 1])
     for i in np.flatnonzero(dist < clearance):
         u = d[i] / dist[i] if dist[i] > 1e-9 else np.array([-np.sign(point[0]) or -1.0, 0.0])
-        cand = point + u * clearance
-        if not field.in_field(cand, margin=-field.boundary_width + 0.1):
-            cand = point - u * clearance
-        pos[i] = cand
+        pos[i] = placement_spot(point, float(np.arctan2(u[1], u[0])), clearance, pos, int(i), field, robot_radius)
     return pos
 
 

@@ -257,22 +257,35 @@ def rate(teams: Sequence[str], matches: Sequence[dict[str, Any]]) -> list[dict[s
 
     model = PlackettLuce()
     ratings = {t: model.rating(name=t) for t in teams}
-    counts = {t: dict(matches=0, wins=0, draws=0, losses=0, goals_for=0, goals_against=0) for t in teams}
     for m in matches:
         b, y = m["score"]["blue"], m["score"]["yellow"]
         [[rb], [ry]] = model.rate([[ratings[m["blue"]]], [ratings[m["yellow"]]]],
                                   ranks=[0 if b >= y else 1, 0 if y >= b else 1])
         ratings[m["blue"]], ratings[m["yellow"]] = rb, ry
-        for team, gf, ga in ((m["blue"], b, y), (m["yellow"], y, b)):
-            c = counts[team]
-            c["matches"] += 1
-            c["wins" if gf > ga else "losses" if gf < ga else "draws"] += 1
-            c["goals_for"] += gf
-            c["goals_against"] += ga
     rows = [{"team": t, "mu": float(ratings[t].mu), "sigma": float(ratings[t].sigma),
-             "ordinal": float(ratings[t].ordinal()), **counts[t]} for t in teams]
+             "ordinal": float(ratings[t].ordinal()), **team_series(t, matches)} for t in teams]
     order = {t: i for i, t in enumerate(teams)}
     return sorted(rows, key=lambda r: (-r["ordinal"], order[r["team"]]))
+
+
+def team_series(team: str, matches: Sequence[dict[str, Any]]) -> dict[str, Any]:
+    """``team``'s matches of a league (either colour) through the one statistics helper
+    (:func:`~ssl_marl.runners.statistics.series_statistics`): wins, draws, losses, goals,
+    the win rate with its Wilson 95 % interval and the goal difference per 600 s with its
+    t 95 % interval (each match scaled by its ``sim_time_s``)."""
+    from .statistics import SSL_MATCH_S, series_statistics
+
+    gf, ga, secs = [], [], []
+    for m in matches:
+        for side, opp in (("blue", "yellow"), ("yellow", "blue")):
+            if m[side] == team:
+                gf.append(m["score"][side])
+                ga.append(m["score"][opp])
+                secs.append(float(m.get("sim_time_s") or SSL_MATCH_S))
+    st = series_statistics(gf, ga, secs) if gf else series_statistics([], [])
+    keys = ("matches", "wins", "draws", "losses", "goals_for", "goals_against", "win_rate", "win_rate_ci95",
+            "goal_diff_per_600s", "goal_diff_per_600s_ci95")
+    return {k: st[k] for k in keys}
 
 
 def results_matrix(teams: Sequence[str], matches: Sequence[dict[str, Any]]) -> dict[str, dict[str, dict]]:
@@ -306,11 +319,18 @@ def ratings_markdown(state: dict[str, Any]) -> str:
              f"{state['played']} of {state['scheduled']} matches of {c['seconds']:g} s ({c['match_format']} format, "
              f"{c['robots']} robots, {c['field']}, realism {c['realism']}), {c['rounds']} round(s), colours "
              f"{c['colours']}, seed {c['seed']}. Plackett-Luce ratings (openskill): ordinal = mu - 3 sigma.\n",
-             "| rank | team | ordinal | mu | sigma | matches | W | D | L | goals |",
-             "|---:|---|---:|---:|---:|---:|---:|---:|---:|---|"]
+             "| rank | team | ordinal | mu | sigma | matches | W | D | L | win rate [95% CI] | goals "
+             "| goal diff per 600 s [95% CI] |",
+             "|---:|---|---:|---:|---:|---:|---:|---:|---:|---|---|---|"]
     for k, r in enumerate(state["ratings"], 1):
-        lines.append(f"| {k} | {r['team']} | {r['ordinal']:.2f} | {r['mu']:.2f} | {r['sigma']:.2f} | {r['matches']} "
-                     f"| {r['wins']} | {r['draws']} | {r['losses']} | {r['goals_for']}-{r['goals_against']} |")
+        st = team_series(r["team"], state["matches"])  # also for league files written before these keys
+        wr, (wlo, whi) = st["win_rate"], st["win_rate_ci95"]
+        gd, (glo, ghi) = st["goal_diff_per_600s"], st["goal_diff_per_600s_ci95"]
+        rate_cell = f"{100 * wr:.0f} % [{100 * wlo:.0f}, {100 * whi:.0f}]" if st["matches"] else "-"
+        gd_cell = f"{gd:+.2f} [{glo:+.2f}, {ghi:+.2f}]" if st["matches"] > 1 else "-"
+        lines.append(f"| {k} | {r['team']} | {r['ordinal']:.2f} | {r['mu']:.2f} | {r['sigma']:.2f} | {st['matches']} "
+                     f"| {st['wins']} | {st['draws']} | {st['losses']} | {rate_cell} "
+                     f"| {st['goals_for']}-{st['goals_against']} | {gd_cell} |")
     return "\n".join(lines) + "\n"
 
 

@@ -127,9 +127,9 @@ class MatchTask(Task):
         pose = env.robot_poses()
         if self.rules.restart_jitter_m > 0:
             new_pos = jittered_clearance(place, pose[:, 0:2], env.field, RESTART_CLEARANCE,
-                                         self.rules.restart_jitter_m, env.np_random)
+                                         self.rules.restart_jitter_m, env.np_random, env.config.robot.radius)
         else:
-            new_pos = clear_robots_from(place, pose[:, 0:2], env.field)
+            new_pos = clear_robots_from(place, pose[:, 0:2], env.field, robot_radius=env.config.robot.radius)
         moved = np.flatnonzero(np.any(new_pos != pose[:, 0:2], axis=1))
         if moved.size:
             pose[moved, 0:2] = new_pos[moved]
