@@ -324,13 +324,12 @@ def open_goal_interval(p: np.ndarray, obstacles: np.ndarray, field: FieldGeometr
     intervals = [(a_lo, a_hi)]
     goal_dist = field.half_length - p[0]
     R = rp.radius + bp.radius
-    for o in np.asarray(obstacles, float).reshape(-1, 2):
-        d = o - p
-        dist = float(np.hypot(*d))
-        if dist < 1e-6 or d[0] <= -R or d[0] > goal_dist + R:
+    d_all = np.asarray(obstacles, float).reshape(-1, 2) - p
+    for (dx, dy), dist in zip(d_all.tolist(), np.hypot(d_all[:, 0], d_all[:, 1]).tolist()):
+        if dist < 1e-6 or dx <= -R or dx > goal_dist + R:
             continue
         half = math.asin(min(R / dist, 1.0))
-        c = math.atan2(d[1], d[0])
+        c = math.atan2(dy, dx)
         lo, hi = c - half, c + half
         new = []
         for a, b in intervals:
