@@ -59,6 +59,9 @@ def test_ratings_order_stronger_team_first(fake, tmp_path):
         assert (tmp_path / name).stat().st_size > 0
     saved = json.loads((tmp_path / "league.json").read_text())
     assert saved["played"] == saved["scheduled"] == 9 and "git" in saved["manifest"]
+    from ssl_marl.runners.provenance import code_hash
+
+    assert {m["code"] for m in saved["matches"]} == {code_hash()}  # the source each match ran
     assert "| 1 | baseline |" in (tmp_path / "ratings.md").read_text()
 
 

@@ -123,3 +123,20 @@ def test_every_committed_series_file_finds_its_rows_and_manifest():
         data = load_result(f)
         assert len(data["matches"]) == data["summary"]["matches"], f.name
         assert load_manifest(f) is not None, f.name
+
+
+def test_code_hash_changes_with_any_source_byte(tmp_path):
+    """The package-source hash a league records per match: stable, and changed by one byte of
+    any module or by a new module."""
+    from ssl_marl.runners.provenance import code_hash
+
+    pkg = tmp_path / "pkg"
+    (pkg / "sub").mkdir(parents=True)
+    (pkg / "a.py").write_text("x = 1\n")
+    (pkg / "sub" / "b.py").write_text("y = 2\n")
+    first = code_hash.__wrapped__(pkg)
+    assert code_hash.__wrapped__(pkg) == first and len(first) == 64
+    (pkg / "sub" / "b.py").write_text("y = 3\n")
+    second = code_hash.__wrapped__(pkg)
+    (pkg / "c.py").write_text("")
+    assert len({first, second, code_hash.__wrapped__(pkg)}) == 3

@@ -12,7 +12,8 @@ second; equal scores are a tie. A team's rating is ``mu`` and ``sigma`` (skill u
 The output folder holds ``league.json`` (the arguments, every played match with its
 seed and score, ratings, the results matrix and a manifest), ``ratings.md`` (the table
 by ordinal) and ``matrix.png`` (mean goal difference per pair). ``league.json`` is
-rewritten atomically after each chunk of matches, so an interrupted league resumes:
+rewritten atomically after each chunk of matches (each match with the sha256 of the source its
+worker ran, ``code``: workers start afresh for every chunk), so an interrupted league resumes:
 a rerun with the same arguments plays only the missing matches, and a rerun with more
 ``rounds`` (the other arguments the same) extends the league, whose schedule begins with the
 shorter one's; other arguments on the same folder are an error. When a rerun's command or
@@ -123,8 +124,12 @@ def schedule(config: LeagueConfig) -> list[dict[str, Any]]:
 
 
 def _league_worker(job: tuple[dict, dict]) -> dict[str, Any]:
-    """Play one scheduled match; return the match entry with its score."""
+    """Play one scheduled match; return the match entry with its score and ``code``, the
+    sha256 of the package source the worker ran (:func:`~ssl_marl.runners.provenance.code_hash`:
+    the pool starts new workers for each chunk, so a league resumed or extended across code
+    changes records which matches ran which code)."""
     from .controllers import resolve_team_option
+    from .provenance import code_hash
 
     entry, match_kwargs = job
     blue, blue_skills, blue_decision = resolve_team_option(entry["blue"], (), where="blue")
@@ -133,7 +138,7 @@ def _league_worker(job: tuple[dict, dict]) -> dict[str, Any]:
                      blue_decision=blue_decision, yellow_decision=yellow_decision,
                      seed=entry["seed"], progress=False, **match_kwargs)
     return {**entry, "score": {"blue": int(res.score["blue"]), "yellow": int(res.score["yellow"])},
-            "sim_time_s": float(res.sim_time_s)}
+            "sim_time_s": float(res.sim_time_s), "code": code_hash()}
 
 
 def match_kwargs(config: LeagueConfig) -> dict[str, Any]:

@@ -14,6 +14,7 @@ A value nobody recorded is the string ``"unrecorded"`` (:data:`UNRECORDED`), nev
 from __future__ import annotations
 
 import datetime as _dt
+import functools
 import hashlib
 import os
 import platform
@@ -64,6 +65,18 @@ def git_state(repo: Path = REPO_DIR) -> dict[str, Any]:
     if named and named != own["commit"]:
         return {"commit": named, "dirty": UNRECORDED, "source": COMMIT_ENV, "checkout": own}
     return own
+
+
+@functools.lru_cache(maxsize=None)
+def code_hash(package: Path = PACKAGE_DIR) -> str:
+    """Hex sha256 over the package's Python source as this process imported it (every
+    ``*.py`` under ``package``, by relative path and bytes, in path order; computed once per
+    process). Two runs with the same hash ran the same code, committed or not."""
+    h = hashlib.sha256()
+    for f in sorted(package.rglob("*.py")):
+        h.update(f.relative_to(package).as_posix().encode() + b"\0")
+        h.update(f.read_bytes() + b"\0")
+    return h.hexdigest()
 
 
 def shipped_actors(repo: Path = REPO_DIR) -> dict[str, str]:
