@@ -41,6 +41,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..physics.field import FieldGeometry
+from ..physics.params import RobotParams
 from ..physics.state import WorldState
 from .referee import placement_spot
 
@@ -175,11 +176,13 @@ class TouchWatch:
 
 
 def jittered_clearance(point: np.ndarray, robot_pos: np.ndarray, field: FieldGeometry, clearance: float,
-                       jitter_m: float, rng: np.random.Generator, robot_radius: float = 0.09) -> np.ndarray:
+                       jitter_m: float, rng: np.random.Generator, robot_radius: float | None = None) -> np.ndarray:
     """Robots within ``clearance`` of ``point`` moved out to ``clearance`` + U(0,
     ``jitter_m``) m, in their own direction turned by a random angle of up to +-0.5
-    rad (seeded ``rng``); kept inside the walled area and clear of the other robots
-    (:func:`~ssl_marl.envs.referee.placement_spot`). Returns new (n, 2) positions."""
+    rad (seeded ``rng``); kept inside the walled area and clear of the other robots of
+    radius ``robot_radius`` (m, default :class:`~ssl_marl.physics.params.RobotParams`'s;
+    :func:`~ssl_marl.envs.referee.placement_spot`). Returns new (n, 2) positions."""
+    robot_radius = RobotParams().radius if robot_radius is None else robot_radius
     pos = np.array(robot_pos, dtype=float, copy=True)
     d = pos - point[None, :]
     dist = np.hypot(d[:, 0], d[:, 1])

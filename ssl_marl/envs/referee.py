@@ -32,6 +32,7 @@ from typing import Any
 import numpy as np
 
 from ..physics.field import FieldGeometry
+from ..physics.params import RobotParams
 from ..physics.state import WorldState
 
 PLACEMENT_INSET = 0.2  # m inside the lines
@@ -107,10 +108,12 @@ def placement_spot(point: np.ndarray, angle: float, radius: float, pos: np.ndarr
 
 
 def clear_robots_from(point: np.ndarray, robot_pos: np.ndarray, field: FieldGeometry,
-                      clearance: float = RESTART_CLEARANCE, robot_radius: float = 0.09) -> np.ndarray:
+                      clearance: float = RESTART_CLEARANCE, robot_radius: float | None = None) -> np.ndarray:
     """Move robots closer than ``clearance`` to ``point`` radially out to ``clearance``
-    (kept inside the walled area, clear of the other robots: :func:`placement_spot`).
+    (kept inside the walled area, clear of the other robots of radius ``robot_radius``, m,
+    default :class:`~ssl_marl.physics.params.RobotParams`'s: :func:`placement_spot`).
     Returns new (n, 2) positions."""
+    robot_radius = RobotParams().radius if robot_radius is None else robot_radius
     pos = np.array(robot_pos, dtype=float, copy=True)
     d = pos - point[None, :]
     dist = np.hypot(d[:, 0], d[:, 1])

@@ -234,6 +234,11 @@ DECISION_SERIES_99 = ["match_attack_learned_decision_vs_attack_learned_600_99400
                       "match_attack_learned_vs_attack_learned_decision_600_99430"]
 DECISION_99_POOLED = [m.both_colours("attack-learned, learned decision vs attack-learned (commit 845ac88)",
                                      DECISION_SERIES_99[0], DECISION_SERIES_99[1])]
+#: the learned decision against the cost decision with the restart placement of commit 6c366aa (seeds 104000-104019, 104030-104049)
+DECISION_SERIES_104 = ["match_attack_learned_decision_vs_attack_learned_600_104000",
+                       "match_attack_learned_vs_attack_learned_decision_600_104030"]
+DECISION_104_POOLED = [m.both_colours("attack-learned, learned decision vs attack-learned (commit 6c366aa)",
+                                      DECISION_SERIES_104[0], DECISION_SERIES_104[1])]
 #: the same under ``--realism realistic`` with commit f0ad2a0 (the play code of 74a0018; seeds 100200-100219)
 DECISION_SERIES_REAL_100 = ["match_attack_learned_decision_vs_attack_learned_600_realistic_100200",
                             "match_attack_learned_vs_attack_learned_decision_600_realistic_100210"]
@@ -395,6 +400,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_press_pooled": lambda r: m.pooled_sides(r, DECISION_PRESS_POOLED),
     "decision_series_99": lambda r: m.series_600(r, DECISION_SERIES_99),
     "decision_99_pooled": lambda r: m.pooled_sides(r, DECISION_99_POOLED),
+    "decision_series_104": lambda r: m.series_600(r, DECISION_SERIES_104),
+    "decision_104_pooled": lambda r: m.pooled_sides(r, DECISION_104_POOLED),
     "decision_series_real_100": lambda r: m.series_600(r, DECISION_SERIES_REAL_100),
     "decision_real_100_pooled": lambda r: m.pooled_sides(r, DECISION_REAL_100_POOLED),
     "decision_series_97": lambda r: m.series_600(r, DECISION_SERIES_97),
