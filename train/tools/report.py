@@ -239,6 +239,12 @@ DECISION_SERIES_104 = ["match_attack_learned_decision_vs_attack_learned_600_1040
                        "match_attack_learned_vs_attack_learned_decision_600_104030"]
 DECISION_104_POOLED = [m.both_colours("attack-learned, learned decision vs attack-learned (commit 6c366aa)",
                                       DECISION_SERIES_104[0], DECISION_SERIES_104[1])]
+#: the same under ``--realism realistic`` with the restart placement of commit 6c366aa (seeds 104200-104219)
+DECISION_SERIES_REAL_104 = ["match_attack_learned_decision_vs_attack_learned_600_realistic_104200",
+                            "match_attack_learned_vs_attack_learned_decision_600_realistic_104210"]
+DECISION_REAL_104_POOLED = [
+    m.both_colours("attack-learned, learned decision vs attack-learned, `--realism realistic` (commit 9b4d532)",
+                   DECISION_SERIES_REAL_104[0], DECISION_SERIES_REAL_104[1])]
 #: the same under ``--realism realistic`` with commit f0ad2a0 (the play code of 74a0018; seeds 100200-100219)
 DECISION_SERIES_REAL_100 = ["match_attack_learned_decision_vs_attack_learned_600_realistic_100200",
                             "match_attack_learned_vs_attack_learned_decision_600_realistic_100210"]
@@ -402,6 +408,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_99_pooled": lambda r: m.pooled_sides(r, DECISION_99_POOLED),
     "decision_series_104": lambda r: m.series_600(r, DECISION_SERIES_104),
     "decision_104_pooled": lambda r: m.pooled_sides(r, DECISION_104_POOLED),
+    "decision_series_real_104": lambda r: m.series_600(r, DECISION_SERIES_REAL_104),
+    "decision_real_104_pooled": lambda r: m.pooled_sides(r, DECISION_REAL_104_POOLED),
     "decision_series_real_100": lambda r: m.series_600(r, DECISION_SERIES_REAL_100),
     "decision_real_100_pooled": lambda r: m.pooled_sides(r, DECISION_REAL_100_POOLED),
     "decision_series_97": lambda r: m.series_600(r, DECISION_SERIES_97),
