@@ -287,7 +287,7 @@ def team_series(team: str, matches: Sequence[dict[str, Any]]) -> dict[str, Any]:
                 gf.append(m["score"][side])
                 ga.append(m["score"][opp])
                 secs.append(float(m.get("sim_time_s") or SSL_MATCH_S))
-    st = series_statistics(gf, ga, secs) if gf else series_statistics([], [])
+    st = series_statistics(gf, ga, secs)
     keys = ("matches", "wins", "draws", "losses", "goals_for", "goals_against", "win_rate", "win_rate_ci95",
             "goal_diff_per_600s", "goal_diff_per_600s_ci95")
     return {k: st[k] for k in keys}

@@ -69,9 +69,10 @@ def git_state(repo: Path = REPO_DIR) -> dict[str, Any]:
 
 @functools.lru_cache(maxsize=None)
 def code_hash(package: Path = PACKAGE_DIR) -> str:
-    """Hex sha256 over the package's Python source as this process imported it (every
-    ``*.py`` under ``package``, by relative path and bytes, in path order; computed once per
-    process). Two runs with the same hash ran the same code, committed or not."""
+    """Hex sha256 over the package's Python source (every ``*.py`` under ``package``, by
+    relative path and bytes, in path order) as it stands at the first call in this process
+    (cached: a league worker calls it after its first match, when its modules are imported).
+    Two runs with the same hash ran the same code, committed or not."""
     h = hashlib.sha256()
     for f in sorted(package.rglob("*.py")):
         h.update(f.relative_to(package).as_posix().encode() + b"\0")
