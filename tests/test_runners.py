@@ -139,6 +139,28 @@ def test_gif_sink_streams_frames_that_read_back_exactly(tmp_path):
     assert meta["duration"] == pytest.approx(200, abs=10)  # frame 2 shown for two frame periods
 
 
+def test_gif_sink_maps_later_frames_to_frame_0s_palette_or_their_own(tmp_path):
+    import imageio.v3 as iio
+
+    from ssl_marl.envs.animation import PALETTE_TOLERANCE
+
+    rng = np.random.default_rng(0)
+    first = rng.integers(0, 256, (40, 60, 3), dtype=np.uint8)  # ~2,400 colours: frame 0's palette is lossy
+    second = first.copy()
+    second[5:15, 5:25] = first[20:30, 30:50]  # only colours of frame 0
+    third = second.copy()
+    third[30:38, 40:58] = (255, 0, 255)  # a colour frame 0 hardly has
+    path = tmp_path / "p.gif"
+    with VideoSink(path, fps=10) as sink:
+        for f in (first, second, third):
+            sink.add(f)
+    back = iio.imread(path, index=None)[..., :3].astype(int)
+    assert back.shape[0] == 3
+    for got, want in zip(back, (first, second, third)):
+        assert np.abs(got - want).max() <= 2 * PALETTE_TOLERANCE
+    np.testing.assert_array_equal(back[2][30:38, 40:58], np.broadcast_to([255, 0, 255], (8, 18, 3)))
+
+
 def test_sink_publishes_atomically_and_rejects_bad_input(tmp_path):
     path = tmp_path / "v.gif"
     path.write_bytes(b"old")

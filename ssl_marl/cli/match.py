@@ -94,6 +94,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         "(STOP, kickoff, free kick to the team that did not touch the ball last), the fouls "
                         "excessive dribbling, double touch and attacker in the defense area, and restart "
                         "placements drawn from the match seed (use --seconds 600 for an SSL match)")
+    m.add_argument("--team-processes", choices=("auto", "on", "off"), default="auto",
+                   help="single matches: 'on' runs yellow's team software in its own process, deciding while "
+                        "blue's decides (as SSL teams do on their own computers): the same match, bit for bit, in "
+                        "less wall time; 'auto' (default) does so on machines with two or more CPUs where the "
+                        "match allows it (step mode, a named yellow team); 'off': one process")
     add_tracker_option(m)
     m.set_defaults(handler=run)
 
@@ -159,7 +164,7 @@ def run(args: argparse.Namespace) -> int:
     if args.matches == 1:
         res = play_match(blue=blue, yellow=yellow, seed=args.seed, render=render,
                          render_fps=args.render_fps, render_width_px=args.render_width, progress=not args.quiet,
-                         **common)
+                         team_processes=args.team_processes, **common)
         print(match_line(res) + (f"  | video -> {render}" if render else ""))
         if args.json:
             atomic_write_json(args.json, res.to_dict())

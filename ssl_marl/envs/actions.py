@@ -39,17 +39,23 @@ def fit_action(action: np.ndarray, dim: int) -> np.ndarray:
     """``action`` with ``dim`` entries: a 5-entry action in a chip env (``dim`` 6) gets a
     flat chip entry (0); an action of ``dim`` entries is returned as it is."""
     a = np.asarray(action, np.float32)
-    return a if a.shape[-1] == dim else np.append(a, np.zeros(dim - a.shape[-1], np.float32))
+    if a.shape[-1] == dim:
+        return a
+    out = np.zeros(a.shape[:-1] + (dim,), np.float32)
+    out[..., :a.shape[-1]] = a
+    return out
 
 
 def make_action(vx: float = 0.0, vy: float = 0.0, omega: float = 0.0, dribble: bool = False,
                 kick: float = 0.0, chip: float | None = None) -> np.ndarray:
     """Build a normalised (5,) action, clipping each entry to [-1, 1]; with ``chip`` (the
     chip entry: elevation fraction of ``chip_angle_max``, <= 0 flat) a (6,) action."""
-    a = np.array([vx, vy, omega, 1.0 if dribble else -1.0, kick if kick > 0 else -1.0], dtype=np.float32)
+    entries = [vx, vy, omega, 1.0 if dribble else -1.0, kick if kick > 0 else -1.0]
     if chip is not None:
-        a = np.append(a, np.float32(chip))
-    return np.clip(a, -1.0, 1.0)
+        entries.append(chip)
+    a = np.array(entries, dtype=np.float32)
+    # np.clip(a, -1, 1) without its per-call overhead (the same float32 values, NaN kept)
+    return np.array([min(max(v, -1.0), 1.0) for v in a.tolist()], dtype=np.float32)
 
 
 def validate_actions(actions: np.ndarray, names: list[str]) -> None:

@@ -13,11 +13,15 @@ holding them all costs ~1.3 GB of RSS, see docs/BENCHMARKS.md).
 * GIF: written with Pillow's GIF encoder one frame at a time
   (``PIL.GifImagePlugin.getheader`` / ``getdata``, Pillow's documented helpers for
   writing animations piece by piece). Like Pillow's own ``save_all``, a frame only
-  stores the rectangle that changed since the previous frame (each with its own
-  adaptive palette; unchanged pixels inside it are transparent, so the previous
-  frame shows through) and a frame identical to the previous one extends that
-  frame's duration instead of being stored again. Only the previous frame and
-  one pending frame are held in memory.
+  stores the rectangle that changed since the previous frame (unchanged pixels
+  inside it are transparent, so the previous frame shows through) and a frame
+  identical to the previous one extends that frame's duration instead of being
+  stored again. Frame 0 gets a 255-colour median-cut palette, the file's global
+  one; a later rectangle is mapped to that palette's nearest colours (about 20x
+  faster than a median cut per frame) unless a sampled pixel then lies more than
+  :data:`PALETTE_TOLERANCE` off in a channel (a colour frame 0 lacked), when it gets
+  its own adaptive palette. Only the previous frame and one pending frame are held
+  in memory.
 * MP4: frames are piped to ffmpeg (``imageio-ffmpeg``, libx264, yuv420p; odd sizes
   are padded by repeating the last row / column).
 
@@ -41,6 +45,10 @@ __all__ = ["VideoSink", "VIDEO_SUFFIXES", "write_animation"]
 
 VIDEO_SUFFIXES = (".gif", ".mp4")
 TRANSPARENT = 255  # GIF: palette index of "unchanged since the previous frame"
+#: GIF: largest error (0-255, any channel) of a sampled pixel mapped to frame 0's palette
+#: before a changed rectangle gets its own palette
+PALETTE_TOLERANCE = 48
+_SAMPLE = 3  # GIF: the tolerance is checked on every 3rd pixel of every 3rd row
 
 
 class VideoSink:
@@ -69,6 +77,8 @@ class VideoSink:
         self._ffmpeg = None  # MP4: the imageio-ffmpeg generator
         self._fp: IO[bytes] | None = None  # GIF: the open temporary file
         self._prev: np.ndarray | None = None  # GIF: previous RGB frame
+        self._palette: Any = None  # GIF: frame 0's P image (the global palette)
+        self._palette_rgb: np.ndarray | None = None  # GIF: (256, 3) uint8, the same palette
         self._pending: list[Any] | None = None  # GIF: [P image, offset, duration ms, first?]
 
     # ------------------------------------------------------------------ API
@@ -164,10 +174,17 @@ class VideoSink:
 
         duration_ms = 1000.0 / self.fps
         if self._prev is None:
-            self._pending = [Image.fromarray(frame).quantize(256), (0, 0), duration_ms, True]
+            first = Image.fromarray(frame).quantize(255)
+            pal = (first.getpalette()[:3 * 255] + [0, 0, 0] * 255)[:3 * 255]
+            pal += pal[:3]  # entry 255 (transparent in later frames) repeats entry 0's colour
+            first.putpalette(pal)
+            self._palette = first
+            self._palette_rgb = np.asarray(pal, np.uint8).reshape(256, 3)
+            self._pending = [first, (0, 0), duration_ms, True, False]
             self._prev = frame
             return
-        changed = np.any(frame != self._prev, axis=2)
+        diff = frame != self._prev
+        changed = diff[..., 0] | diff[..., 1] | diff[..., 2]  # 10x faster than .any(axis=2)
         if not changed.any():  # identical: show the pending frame longer
             self._pending[2] += duration_ms
             return
@@ -175,15 +192,24 @@ class VideoSink:
         cols = np.flatnonzero(changed.any(axis=0))
         y0, y1, x0, x1 = int(rows[0]), int(rows[-1]) + 1, int(cols[0]), int(cols[-1]) + 1
         self._flush_pending()
+        rect = np.ascontiguousarray(frame[y0:y1, x0:x1])
         # the changed rectangle in 255 colours; its unchanged pixels become the
         # transparent index 255 (the previous frame shows through: smaller files)
-        crop = Image.fromarray(np.ascontiguousarray(frame[y0:y1, x0:x1])).quantize(255)
-        idx = np.asarray(crop).copy()
+        mapped = Image.fromarray(rect).quantize(palette=self._palette, dither=Image.Dither.NONE)
+        idx = np.asarray(mapped).copy()
+        idx[idx == TRANSPARENT] = 0  # the same colour as entry 0
+        err = np.abs(self._palette_rgb[idx[::_SAMPLE, ::_SAMPLE]].astype(np.int16) - rect[::_SAMPLE, ::_SAMPLE])
+        own = bool(err.max() > PALETTE_TOLERANCE)
+        if own:  # a colour frame 0's palette lacks: this rectangle's own palette
+            crop = Image.fromarray(rect).quantize(255)
+            idx = np.asarray(crop).copy()
+            pal = crop.getpalette()[:3 * 255] + [0, 0, 0]
+        else:
+            pal = None
         idx[~changed[y0:y1, x0:x1]] = TRANSPARENT
-        pal = crop.getpalette()[:3 * 255] + [0, 0, 0]
         crop = Image.fromarray(idx, mode="P")
-        crop.putpalette(pal)
-        self._pending = [crop, (x0, y0), duration_ms, False]
+        crop.putpalette(pal if pal is not None else self._palette.getpalette())
+        self._pending = [crop, (x0, y0), duration_ms, False, own]
         self._prev = frame
 
     def _flush_pending(self) -> None:
@@ -191,15 +217,15 @@ class VideoSink:
             return
         from PIL import GifImagePlugin
 
-        im, offset, duration_ms, first = self._pending
+        im, offset, duration_ms, first, own_palette = self._pending
         self._pending = None
         if first:  # global header: canvas size, frame 0's palette, loop forever
             header, _ = GifImagePlugin.getheader(im, info={"loop": 0, "duration": duration_ms})
             for chunk in header:
                 self._fp.write(chunk)
             params: dict[str, Any] = {"duration": duration_ms}
-        else:  # a changed rectangle over the previous frame, with its own palette
-            params = {"duration": duration_ms, "include_color_table": True, "disposal": 1,
+        else:  # a changed rectangle over the previous frame (own palette or the global one)
+            params = {"duration": duration_ms, "include_color_table": own_palette, "disposal": 1,
                       "transparency": TRANSPARENT}
         for chunk in GifImagePlugin.getdata(im, offset, **params):
             self._fp.write(chunk)

@@ -219,6 +219,10 @@ class EnvConfig:
             (``robot.kick_on_contact`` is set: an armed kicker fires when the ball reaches
             its face, as an SSL robot's kicker fires when its light barrier sees the ball;
             needed for one-touch redirects). Off: the ball never leaves the ground.
+        observations: False: ``reset`` and ``step`` return an empty observation dict
+            instead of computing every agent's vector, for runners whose controllers
+            read ``vision_state()`` (the match runner's STP teams); True (default) for
+            every learner and API client.
     """
 
     n_blue: int = 6
@@ -241,10 +245,12 @@ class EnvConfig:
     render_team_labels: Mapping[str, str] | None = None
     randomization: Any = None
     chip_kicks: bool = False
+    observations: bool = True
 
     def __post_init__(self) -> None:
-        if not isinstance(self.chip_kicks, bool):
-            raise ValueError(f"chip_kicks must be True or False, got {self.chip_kicks!r}")
+        for name in ("chip_kicks", "observations"):
+            if not isinstance(getattr(self, name), bool):
+                raise ValueError(f"{name} must be True or False, got {getattr(self, name)!r}")
         if self.chip_kicks and not self.robot.kick_on_contact:
             object.__setattr__(self, "robot", replace(self.robot, kick_on_contact=True))
         if isinstance(self.realism, str) and self.realism == "randomized" and self.randomization is None:

@@ -289,6 +289,8 @@ class SSLParallelEnv(ParallelEnv, EzPickle):
     # ------------------------------------------------------------ observations
     def _observations(self) -> dict[str, np.ndarray]:
         cfg = self.config
+        if not cfg.observations:  # the runner's controllers read vision_state()
+            return {}
         ob = all_observations(self._seen, self.field, cfg.obs_max_teammates, cfg.obs_max_opponents, cfg.chip_kicks)
         return dict(zip(self.possible_agents, clip_to_bounds(ob, self._obs_low, self._obs_high)))
 

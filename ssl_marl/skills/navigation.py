@@ -100,11 +100,23 @@ def push_out_of_rect(p: np.ndarray, rect: tuple[float, float, float, float]) -> 
 
 def sanitize_target(target: np.ndarray, field: FieldGeometry, params: NavParams) -> np.ndarray:
     """Clamp ``target`` into the playing area and out of the defense areas ``params`` forbids."""
-    p = field.clamp_to_field(target)
+    # the numbers of clamp_to_field / push_out_of_rect / clamp_to_field, on Python floats
+    x, y = np.asarray(target, dtype=float).tolist()
+    hx, hy = field.half_length, field.half_width
+    x, y = min(max(x, -hx), hx), min(max(y, -hy), hy)
     for side, avoid in ((-1, params.avoid_own_defense), (1, params.avoid_opp_defense)):
         if avoid:
-            p = push_out_of_rect(p, defense_rect(field, side, params.defense_margin))
-    return field.clamp_to_field(p)
+            x0, x1, y0, y1 = defense_rect(field, side, params.defense_margin)
+            if x0 < x < x1 and y0 < y < y1:
+                d = (x - x0, x1 - x, y - y0, y1 - y)
+                k = d.index(min(d))
+                if k == 0:
+                    x = x0
+                elif k == 1:
+                    x = x1
+                else:
+                    y = y0 if k == 2 else y1
+    return np.array([min(max(x, -hx), hx), min(max(y, -hy), hy)])
 
 
 def _segment_hits_rect(a: np.ndarray, b: np.ndarray, rect: tuple[float, float, float, float]) -> bool:
