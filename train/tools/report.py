@@ -376,6 +376,9 @@ ATTACK_DRILL_44000 = [("hand-coded", "attack_drill_handcoded_44000"),
                       ("`mappo_attack_drill_ft_s1` at 7,098 decisions (not shipped)",
                        "attack_drill_learned_ft_s1_7098_44000")]
 
+#: the README's first command over seeds 0-19: its match length and the lengths around it
+README_GOAL_RATE = ["readme_match_selfplay_300", "readme_match_selfplay_450", "readme_match_selfplay_600"]
+
 TABLES: dict[str, Callable[[Path], list[str]]] = {
     "skills_paper": lambda r: t.skills(r, SKILLS_PAPER),
     "skills_tracker_div_a": lambda r: t.skills(r, SKILLS_TRACKER),
@@ -397,6 +400,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "chip_pass_selection": lambda r: t.selection(r, ["chip_pass_bc2k_s0", "chip_pass_bc100_s0"]),
     "passing_series": lambda r: m.series(r, PASSING_SERIES),
     "series_600_formats": lambda r: m.series_600(r, SERIES_600_SSL),
+    "readme_goal_rate": lambda r: m.goal_rate(r, README_GOAL_RATE),
     "attack_series": lambda r: m.series_600(r, ATTACK_SERIES),
     "decision_series": lambda r: m.series_600(r, DECISION_SERIES),
     "decision_series_fair": lambda r: m.series_600(r, DECISION_SERIES_FAIR),

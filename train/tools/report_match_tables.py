@@ -89,6 +89,25 @@ def series_600(results: Path, names: Iterable[str]) -> Lines:
     return rows
 
 
+def goal_rate(results: Path, names: Iterable[str]) -> Lines:
+    """One row per match series (``results/<name>.json``): match length, seeds, in how many
+    matches at least one goal fell, goals in all and per match (the README's first command's
+    check: a goal on >= 70 % of 20 seeds)."""
+    rows = _head("series", "blue vs yellow", "match (s)", "seeds", "matches", "matches with a goal",
+                 "goals (per match)")
+    for n in names:
+        d = load_result(results / f"{n}.json")
+        s, ms = d["summary"], d["matches"]
+        seeds = [m["seed"] for m in ms]
+        scored = sum(1 for m in ms if m["goals"])
+        goals = sum(len(m["goals"]) for m in ms)
+        k = max(len(ms), 1)
+        rows.append(f"| `{n}` | {_team_label(s['blue'])} vs {_team_label(s['yellow'])} | "
+                    f"{ms[0]['config']['seconds']:.0f} | {min(seeds)}-{max(seeds)} | {len(ms)} | "
+                    f"{scored} ({100 * scored / k:.0f} %) | {goals} ({goals / k:.2f}) |")
+    return rows
+
+
 def league(results: Path, name: str) -> Lines:
     """The ratings table of a league folder (``results/<name>/league.json``), as
     :func:`ssl_marl.runners.league.ratings_markdown` writes it."""
