@@ -329,6 +329,11 @@ SKILLS_99100_LANE_POOLED = [
     ("all 60", ((SKILLS_99100_LANE[0], "blue"), (SKILLS_99100_LANE[1], "yellow"),
                 (SKILLS_99110[0], "blue"), (SKILLS_99110[1], "yellow"),
                 (SKILLS_99120[0], "blue"), (SKILLS_99120[1], "yellow")))]
+#: "learned skills pay" again with the restart placement of 6c366aa (commit 1c05c72's worktree; seeds 104300-104359)
+SKILLS_104300 = ["match_attack_learned_vs_attack_baseline_600_104300",
+                 "match_attack_baseline_vs_attack_learned_600_104330"]
+SKILLS_104300_POOLED = [m.both_colours("attack-learned vs attack-baseline (commit 1c05c72)",
+                                       SKILLS_104300[0], SKILLS_104300[1])]
 SKILLS_97200 = ["match_attack_learned_vs_attack_baseline_600_97200", "match_attack_baseline_vs_attack_learned_600_97230"]
 SKILLS_97200_POOLED = [m.both_colours("attack-learned vs attack-baseline (commit e395ab2)",
                                       SKILLS_97200[0], SKILLS_97200[1])]
@@ -436,6 +441,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "skills_99100_lane_pooled": lambda r: m.pooled_sides(r, SKILLS_99100_LANE_POOLED),
     "skills_99200": lambda r: m.series_600(r, SKILLS_99200),
     "skills_99200_pooled": lambda r: m.pooled_sides(r, SKILLS_99200_POOLED),
+    "skills_104300": lambda r: m.series_600(r, SKILLS_104300),
+    "skills_104300_pooled": lambda r: m.pooled_sides(r, SKILLS_104300_POOLED),
     "skills_97200": lambda r: m.series_600(r, SKILLS_97200),
     "skills_97200_pooled": lambda r: m.pooled_sides(r, SKILLS_97200_POOLED),
     "attack_targets": lambda r: m.series_600(r, ATTACK_TARGETS),
