@@ -24,6 +24,7 @@ raised in the caller with the child's traceback.
 from __future__ import annotations
 
 import multiprocessing as mp
+import pickle
 import signal
 import time
 import traceback
@@ -101,7 +102,12 @@ def _serve(conn: Any, factory: Any, args: tuple, kwargs: dict) -> None:
         pass
     try:
         ctrl = factory(*args, **kwargs)
-        conn.send(("ready", {"agents": list(ctrl.agents), "skills": getattr(ctrl, "skills", None)}))
+        skills = getattr(ctrl, "skills", None)
+        try:
+            pickle.dumps(skills)
+        except Exception:  # noqa: BLE001 - a label is enough for the match record
+            skills = repr(skills)
+        conn.send(("ready", {"agents": list(ctrl.agents), "skills": skills}))
     except BaseException:  # noqa: BLE001 - reported to the parent
         conn.send(("error", traceback.format_exc()))
         return

@@ -329,6 +329,12 @@ SKILLS_99100_LANE_POOLED = [
     ("all 60", ((SKILLS_99100_LANE[0], "blue"), (SKILLS_99100_LANE[1], "yellow"),
                 (SKILLS_99110[0], "blue"), (SKILLS_99110[1], "yellow"),
                 (SKILLS_99120[0], "blue"), (SKILLS_99120[1], "yellow")))]
+#: the learned decision vs the cost decision, 11v11 Division A, with the restart placement (seeds 104400-104409)
+DECISION_SERIES_DIV_A_104 = ["match_attack_learned_decision_vs_attack_learned_600_div_a_11v11_104400",
+                             "match_attack_learned_vs_attack_learned_decision_600_div_a_11v11_104405"]
+DECISION_DIV_A_104_POOLED = [
+    m.both_colours("attack-learned, learned decision vs attack-learned, 11v11 Division A (commit 1c05c72)",
+                   DECISION_SERIES_DIV_A_104[0], DECISION_SERIES_DIV_A_104[1])]
 #: "learned skills pay" again with the restart placement of 6c366aa (commit 1c05c72's worktree; seeds 104300-104359)
 SKILLS_104300 = ["match_attack_learned_vs_attack_baseline_600_104300",
                  "match_attack_baseline_vs_attack_learned_600_104330"]
@@ -441,6 +447,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "skills_99100_lane_pooled": lambda r: m.pooled_sides(r, SKILLS_99100_LANE_POOLED),
     "skills_99200": lambda r: m.series_600(r, SKILLS_99200),
     "skills_99200_pooled": lambda r: m.pooled_sides(r, SKILLS_99200_POOLED),
+    "decision_series_div_a_104": lambda r: m.series_600(r, DECISION_SERIES_DIV_A_104),
+    "decision_div_a_104_pooled": lambda r: m.pooled_sides(r, DECISION_DIV_A_104_POOLED),
     "skills_104300": lambda r: m.series_600(r, SKILLS_104300),
     "skills_104300_pooled": lambda r: m.pooled_sides(r, SKILLS_104300_POOLED),
     "skills_97200": lambda r: m.series_600(r, SKILLS_97200),
