@@ -43,7 +43,7 @@ def test_team_view_carries_what_a_team_reads():
 
 
 def test_team_process_reports_the_childs_error_and_refuses_misuse():
-    with pytest.raises(RuntimeError, match="unknown controller 'no-such-team'"):
+    with pytest.raises(ValueError, match="unknown controller 'no-such-team'"):  # the child's own error
         TeamProcess(make_controller, "no-such-team", "yellow", 2, "div_b").agents
     with TeamProcess(make_controller, "baseline", "yellow", 2, "div_b") as tp:
         assert tp.agents == ["yellow_0", "yellow_1"]
@@ -56,9 +56,10 @@ def test_team_process_reports_the_childs_error_and_refuses_misuse():
             tp.submit(team_view(env, "yellow"))
         actions, seconds = tp.result()
         assert sorted(actions) == ["yellow_0", "yellow_1"] and seconds >= 0.0
-        with pytest.raises(RuntimeError, match="failed while computing actions"):
+        with pytest.raises(TypeError, match="expects an SSL env or a WorldState") as info:
             tp.submit("not a view")
             tp.result()
+        assert "raised in the team's process while computing actions" in "".join(info.value.__notes__)
 
 
 def test_team_processes_mode_is_checked():

@@ -18,7 +18,8 @@ A :class:`TeamView` carries exactly what
 as it would in the caller's process and returns the same actions: a match played
 with one team in a :class:`TeamProcess` is the same match, bit for bit, as one
 played in one process (``tests/test_team_process.py``). An error in the child is
-raised in the caller with the child's traceback.
+raised in the caller as the same exception (a ``ValueError`` for a bad team spec stays
+one), with the child's traceback as a note.
 """
 
 from __future__ import annotations
@@ -91,6 +92,16 @@ def _wait(conn: Any, spin_s: float = SPIN_S) -> bool:
     return True
 
 
+def _error(exc: BaseException) -> tuple[Exception | None, str]:
+    """(the exception if it pickles, else None; its traceback) for the parent."""
+    tb = traceback.format_exc()
+    try:
+        pickle.loads(pickle.dumps(exc))
+    except Exception:  # noqa: BLE001 - the traceback says what it was
+        return None, tb
+    return (exc if isinstance(exc, Exception) else None), tb
+
+
 def _serve(conn: Any, factory: Any, args: tuple, kwargs: dict) -> None:
     """Child process: build ``factory(*args, **kwargs)`` and answer requests until told to stop."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle; it closes us
@@ -108,8 +119,8 @@ def _serve(conn: Any, factory: Any, args: tuple, kwargs: dict) -> None:
         except Exception:  # noqa: BLE001 - a label is enough for the match record
             skills = repr(skills)
         conn.send(("ready", {"agents": list(ctrl.agents), "skills": skills}))
-    except BaseException:  # noqa: BLE001 - reported to the parent
-        conn.send(("error", traceback.format_exc()))
+    except BaseException as exc:  # noqa: BLE001 - reported to the parent
+        conn.send(("error", _error(exc)))
         return
     while True:
         try:
@@ -131,8 +142,8 @@ def _serve(conn: Any, factory: Any, args: tuple, kwargs: dict) -> None:
                 conn.send(("ok", None))
             else:
                 conn.send(("error", f"TeamProcess: unknown request {kind!r}"))
-        except BaseException:  # noqa: BLE001 - reported to the parent
-            conn.send(("error", traceback.format_exc()))
+        except BaseException as exc:  # noqa: BLE001 - reported to the parent
+            conn.send(("error", _error(exc)))
 
 
 class TeamProcess:
@@ -185,7 +196,11 @@ class TeamProcess:
             raise RuntimeError(f"TeamProcess: the team's process ended (exit code {code}) while {what}") from None
         if status == "error":
             self.close()
-            raise RuntimeError(f"TeamProcess: the team's controller failed while {what}:\n{payload}")
+            exc, tb = payload
+            if exc is None:
+                raise RuntimeError(f"TeamProcess: the team's controller failed while {what}:\n{tb}")
+            exc.add_note(f"(raised in the team's process while {what}; its traceback:)\n{tb}")
+            raise exc  # the same error as in one process (a ValueError stays a ValueError)
         return payload
 
     def reset(self) -> None:
