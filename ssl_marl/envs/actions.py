@@ -53,9 +53,13 @@ def make_action(vx: float = 0.0, vy: float = 0.0, omega: float = 0.0, dribble: b
     entries = [vx, vy, omega, 1.0 if dribble else -1.0, kick if kick > 0 else -1.0]
     if chip is not None:
         entries.append(chip)
-    a = np.array(entries, dtype=np.float32)
-    # np.clip(a, -1, 1) without its per-call overhead (the same float32 values, NaN kept)
-    return np.array([min(max(v, -1.0), 1.0) for v in a.tolist()], dtype=np.float32)
+    return clip_unit(np.array(entries, dtype=np.float32).tolist())
+
+
+def clip_unit(values: list[float]) -> np.ndarray:
+    """``np.clip(np.float32(values), -1, 1)`` without numpy's per-call overhead (the same
+    float32 values, NaN kept): the hot path of every action a tactic or skill builds."""
+    return np.array([min(max(v, -1.0), 1.0) for v in values], dtype=np.float32)
 
 
 def validate_actions(actions: np.ndarray, names: list[str]) -> None:

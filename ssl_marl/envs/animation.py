@@ -77,8 +77,8 @@ class VideoSink:
         self._ffmpeg = None  # MP4: the imageio-ffmpeg generator
         self._fp: IO[bytes] | None = None  # GIF: the open temporary file
         self._prev: np.ndarray | None = None  # GIF: previous RGB frame
-        self._palette: Any = None  # GIF: frame 0's P image (the global palette)
-        self._palette_rgb: np.ndarray | None = None  # GIF: (256, 3) uint8, the same palette
+        self._palette: Any = None  # GIF: frame 0's P image (its palette is the global one)
+        self._palette_rgb: np.ndarray | None = None  # GIF: (256, 3) uint8, that palette
         self._pending: list[Any] | None = None  # GIF: [P image, offset, duration ms, first?]
 
     # ------------------------------------------------------------------ API
@@ -200,15 +200,14 @@ class VideoSink:
         idx[idx == TRANSPARENT] = 0  # the same colour as entry 0
         err = np.abs(self._palette_rgb[idx[::_SAMPLE, ::_SAMPLE]].astype(np.int16) - rect[::_SAMPLE, ::_SAMPLE])
         own = bool(err.max() > PALETTE_TOLERANCE)
+        pal = self._palette_rgb.ravel().tolist()
         if own:  # a colour frame 0's palette lacks: this rectangle's own palette
             crop = Image.fromarray(rect).quantize(255)
             idx = np.asarray(crop).copy()
             pal = crop.getpalette()[:3 * 255] + [0, 0, 0]
-        else:
-            pal = None
         idx[~changed[y0:y1, x0:x1]] = TRANSPARENT
         crop = Image.fromarray(idx, mode="P")
-        crop.putpalette(pal if pal is not None else self._palette.getpalette())
+        crop.putpalette(pal)
         self._pending = [crop, (x0, y0), duration_ms, False, own]
         self._prev = frame
 

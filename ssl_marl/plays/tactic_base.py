@@ -31,6 +31,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from ..envs.actions import clip_unit
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..physics.state import WorldState
@@ -150,8 +151,7 @@ class Tactic:
         if entries is None or not all(map(math.isfinite, entries)):
             raise ValueError(f"{type(self).__name__} in state {self.state.name} produced an invalid action "
                              f"for robot {robot}: {a!r}")
-        # np.clip(a, -1, 1) without its per-call overhead (the same float32 values)
-        a = np.array([min(max(v, -1.0), 1.0) for v in entries], dtype=np.float32)
+        a = clip_unit(entries)
         self._kicked = bool(a[4] > 0.0)
         self._kicks += int(self._kicked)
         return a

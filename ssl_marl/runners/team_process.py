@@ -224,12 +224,6 @@ class TeamProcess:
         self._pending = False
         return self._receive("computing actions")
 
-    def act(self, env: Any) -> dict[str, np.ndarray]:
-        """``submit`` and ``result`` in one call (no overlap): the controller protocol."""
-        team = self.agents[0].rsplit("_", 1)[0]
-        self.submit(team_view(env, team))
-        return self.result()[0]
-
     def close(self) -> None:
         """Stop the child process. Idempotent."""
         if getattr(self, "_proc", None) is None:

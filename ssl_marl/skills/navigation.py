@@ -83,19 +83,23 @@ def _in_rect(p: np.ndarray, rect: tuple[float, float, float, float]) -> bool:
     return rect[0] < p[0] < rect[1] and rect[2] < p[1] < rect[3]
 
 
-def push_out_of_rect(p: np.ndarray, rect: tuple[float, float, float, float]) -> np.ndarray:
-    """Nearest point on the boundary of ``rect`` if p is inside it, else p."""
-    x, y = float(p[0]), float(p[1])
+def _push_out_xy(x: float, y: float, rect: tuple[float, float, float, float]) -> tuple[float, float]:
+    """(x, y) moved to the nearest point on the boundary of ``rect`` if inside it."""
     x0, x1, y0, y1 = rect
     if not (x0 < x < x1 and y0 < y < y1):
-        return np.array([x, y])
+        return x, y
     d = (x - x0, x1 - x, y - y0, y1 - y)
     k = d.index(min(d))
     if k == 0:
-        return np.array([x0, y])
+        return x0, y
     if k == 1:
-        return np.array([x1, y])
-    return np.array([x, y0 if k == 2 else y1])
+        return x1, y
+    return x, (y0 if k == 2 else y1)
+
+
+def push_out_of_rect(p: np.ndarray, rect: tuple[float, float, float, float]) -> np.ndarray:
+    """Nearest point on the boundary of ``rect`` if p is inside it, else p."""
+    return np.array(_push_out_xy(float(p[0]), float(p[1]), rect))
 
 
 def sanitize_target(target: np.ndarray, field: FieldGeometry, params: NavParams) -> np.ndarray:
@@ -106,16 +110,7 @@ def sanitize_target(target: np.ndarray, field: FieldGeometry, params: NavParams)
     x, y = min(max(x, -hx), hx), min(max(y, -hy), hy)
     for side, avoid in ((-1, params.avoid_own_defense), (1, params.avoid_opp_defense)):
         if avoid:
-            x0, x1, y0, y1 = defense_rect(field, side, params.defense_margin)
-            if x0 < x < x1 and y0 < y < y1:
-                d = (x - x0, x1 - x, y - y0, y1 - y)
-                k = d.index(min(d))
-                if k == 0:
-                    x = x0
-                elif k == 1:
-                    x = x1
-                else:
-                    y = y0 if k == 2 else y1
+            x, y = _push_out_xy(x, y, defense_rect(field, side, params.defense_margin))
     return np.array([min(max(x, -hx), hx), min(max(y, -hy), hy)])
 
 
