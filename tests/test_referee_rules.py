@@ -10,8 +10,8 @@ import pytest
 
 from ssl_marl.envs import parallel_env
 from ssl_marl.envs.actions import make_action
-from ssl_marl.envs.game_control import (FREE_KICK, KICKOFF, RUNNING, STOP, RefereeState, TouchWatch,
-                                        jittered_kickoff)
+from ssl_marl.envs.game_control import (DEFENDER_TOO_CLOSE_M, FREE_KICK, KICKOFF, RUNNING, STOP, RefereeState,
+                                        TouchWatch, jittered_kickoff, too_close_to_kick_point)
 from ssl_marl.envs.referee import kickoff_poses
 from ssl_marl.physics.field import FieldGeometry
 from ssl_marl.physics.state import WorldState, make_team_state, to_team_frame
@@ -115,6 +115,85 @@ def test_free_kick_goes_to_the_team_that_did_not_touch_last_after_a_stop():
     assert env.task.referee_state.command == RUNNING
 
 
+def test_defender_too_close_to_kick_point_helper():
+    spot = np.array([1.0, 0.5])
+    pos = np.array([[1.0, 1.2], [1.3, 0.5 + 0.35], [3.0, 0.0]])  # 0.70 m, 0.46 m, far
+    assert too_close_to_kick_point(pos, spot) == 1
+    assert too_close_to_kick_point(pos[[0, 2]], spot) is None
+    assert too_close_to_kick_point(np.array([[1.0, 0.5 + DEFENDER_TOO_CLOSE_M + 1e-6]]), spot) is None
+    assert too_close_to_kick_point(np.zeros((0, 2)), spot) is None
+
+
+def _walk_in(env, mover: str, heading: float, max_steps: int = 240):
+    """Step ``env`` with ``mover`` driving forward at 0.3 (normalised) until a foul event;
+    returns (the foul events, all referee commands seen)."""
+    fouls, commands = [], []
+    for _ in range(max_steps):
+        actions = _idle(env)
+        actions[mover] = make_action(vx=0.3)
+        _, _, _, _, infos = env.step(actions)
+        for e in infos[env.agents[0]]["events"]:
+            fouls += [e] if e["type"] == "foul" else []
+            commands += [e["command"]] if e["type"] == "referee" else []
+        if fouls:
+            return fouls, commands
+    return fouls, commands
+
+
+@pytest.mark.parametrize("fouls_on", [True, False])
+def test_a_defender_walking_into_the_kickoff_gets_the_kickoff_taken_again(fouls_on):
+    """Yellow drives at the ball during blue's kickoff: with fouls on, the referee calls
+    ``defender_too_close`` on yellow once it is within 0.48 m of the ball (centre), stops the
+    game, moves yellow out to 0.5 m and gives blue the kickoff again at the centre mark;
+    with fouls off nothing is called."""
+    env = _env(ssl_restarts=True, fouls=fouls_on, stop_s=0.5)
+    env.reset(seed=2, options={"ball": {"pos": (0.0, 0.0)},
+                               "robots": {"blue_0": (-1.0, 0.0, 0.0), "yellow_0": (0.7, 0.0, math.pi)}})
+    assert env.task.referee_state.command == KICKOFF and env.task.referee_state.team == "blue"
+    fouls, _ = _walk_in(env, "yellow_0", math.pi)
+    if not fouls_on:
+        assert fouls == []
+        return
+    assert [(e["foul"], e["team"], e["agent"]) for e in fouls] == [("defender_too_close", "yellow", "yellow_0")]
+    w = env.world_state()
+    assert env.task.referee_state.command == STOP
+    assert np.hypot(*w.yellow.pos[0]) >= 0.5 - 1e-6 and np.allclose(w.ball_pos, 0.0, atol=1e-6)
+    commands = []
+    for _ in range(40):
+        _, _, _, _, infos = env.step(_idle(env))
+        commands += [e["command"] for e in infos["blue_0"]["events"] if e["type"] == "referee"]
+    assert commands == [KICKOFF] and env.task.referee_state.team == "blue"
+    assert env.task.referee_state.position == (0.0, 0.0)
+
+
+def test_a_defender_walking_into_a_free_kick_gets_it_taken_again():
+    env = _env(ssl_restarts=True, fouls=True, stop_s=0.5)
+    W2 = FIELD.half_width
+    env.reset(seed=1, options={"ball": {"pos": (1.0, W2 - 0.12), "vel": (0.0, 2.0)},
+                               "robots": {"blue_0": (1.0, W2 - 0.22, math.pi / 2), "yellow_0": (-3.0, 0.0, 0.0)}})
+    for _ in range(120):  # blue kicks the ball out: STOP, free kick for yellow
+        env.step(_idle(env))
+        if env.task.referee_state.command == FREE_KICK:
+            break
+    st = env.task.referee_state
+    assert st.command == FREE_KICK and st.team == "yellow"
+    spot = np.array(st.position)
+    w = env.world_state()
+    # turn blue_0 to face the ball, then walk it in
+    d = spot - w.blue.pos[0]
+    env.unwrapped.place_robots(np.array([[*w.blue.pos[0], math.atan2(d[1], d[0])], [*w.yellow.pos[0], 0.0]]))
+    fouls, commands = _walk_in(env, "blue_0", 0.0)
+    assert [(e["foul"], e["team"]) for e in fouls] == [("defender_too_close", "blue")]
+    assert np.allclose(fouls[0]["placement"], spot)
+    for _ in range(40):
+        _, _, _, _, infos = env.step(_idle(env))
+        commands += [e["command"] for e in infos["blue_0"]["events"] if e["type"] == "referee"]
+    assert commands[-2:] == [STOP, FREE_KICK]
+    st = env.task.referee_state
+    assert st.team == "yellow" and np.allclose(st.position, spot)
+    assert np.hypot(*(env.world_state().blue.pos[0] - spot)) >= 0.5 - 1e-6
+
+
 def test_stop_keep_clear_moves_robots_away_and_the_kicker_plays():
     st = RefereeState(STOP, None, (0.0, 0.0))
     assert st.must_keep_clear("blue") and st.must_keep_clear("yellow")
@@ -128,6 +207,29 @@ def test_stop_keep_clear_moves_robots_away_and_the_kicker_plays():
     far = {"blue_0": make_action(vx=1.0)}
     keep_clear(far, ["blue_0"], to_team_frame(world([(-4.0, 0.0)], [(2.0, 0.0)], (0.0, 0.0)), "blue"), "blue", 3.0)
     assert far["blue_0"][0] == 1.0  # far away: untouched
+
+
+def test_keep_clear_brakes_a_robot_running_at_the_ball_whatever_its_sideways_command():
+    """A robot running at the ball at full speed when it must keep clear, its tactic asking
+    for a sideways turn (0.6, -0.8 of full speed in its body frame): ``keep_clear`` stops it
+    outside 0.5 m. (Capping only the command's speed towards the ball let the sideways part
+    take the acceleration: it stopped 0.43 m from the ball.)"""
+    env = parallel_env(n_blue=1, n_yellow=1, max_time_s=60.0, referee=False)
+    env.reset(seed=0, options={"ball": {"pos": (1.5, 0.0)},
+                               "robots": {"blue_0": (-2.5, 0.0, 0.0), "yellow_0": (-3.5, 2.0, 0.0)}})
+    worst, braking_from = np.inf, None
+    for _ in range(300):
+        w = env.world_state()
+        d = float(np.hypot(*(w.blue.pos[0] - w.ball_pos)))
+        worst = min(worst, d)
+        actions = {"blue_0": make_action(vx=1.0), "yellow_0": make_action()}
+        if d < 1.6:
+            braking_from = braking_from or float(np.hypot(*w.blue.vel[0]))
+            actions["blue_0"] = make_action(vx=0.6, vy=-0.8)
+            keep_clear(actions, ["blue_0"], to_team_frame(w, "blue"), "blue", env.config.robot.max_speed)
+        env.step(actions)
+    assert braking_from > 2.5  # it came in fast
+    assert worst >= 0.5
 
 
 def _played(env, ctrls):
@@ -166,15 +268,16 @@ def test_stop_is_obeyed_by_the_team_controller_in_a_match():
 def test_the_attacking_team_keeps_clear_of_the_opponents_free_kicks_in_a_match():
     """The attacking plays (both sides, chip env, SSL game control): while a kickoff or free
     kick for the other team is not taken yet, no robot of the defending side comes within
-    0.45 m of the ball (SSL's 0.5 m less 0.05 m of slack) once the command is 0.5 s old. The
-    referee does not call the distance: the teams keep it (DESIGN.md, "Referee")."""
+    0.45 m of the ball (SSL's 0.5 m less 0.05 m of slack) once the command is 0.5 s old, and
+    the referee never calls ``defender_too_close`` (DESIGN.md, "Referee")."""
     from ssl_marl.runners.controllers import make_controller
 
     env = parallel_env(n_blue=6, n_yellow=6, max_time_s=60.0, ssl_restarts=True, fouls=True, chip_kicks=True)
     ctrls = [make_controller("attack-baseline", t, 6, env.field) for t in ("blue", "yellow")]
     env.reset(seed=1)
-    worst, ticks = np.inf, 0
-    for _ in _played(env, ctrls):
+    worst, ticks, fouls = np.inf, 0, []
+    for infos in _played(env, ctrls):
+        fouls += [e["foul"] for e in infos["blue_0"]["events"] if e["type"] == "foul"]
         st, w = env.task.referee_state, env.world_state()
         if st.command in (FREE_KICK, KICKOFF) and w.t - st.since > 0.5:
             defending = w.yellow.pos if st.team == "blue" else w.blue.pos
@@ -182,6 +285,7 @@ def test_the_attacking_team_keeps_clear_of_the_opponents_free_kicks_in_a_match()
             ticks += 1
     assert ticks > 60  # set pieces were played (1 s or more of them)
     assert worst >= 0.45
+    assert "defender_too_close" not in fouls
 
 
 def test_half_time_keeps_the_score_and_swaps_ends():

@@ -116,8 +116,9 @@ class MatchRules:
             kicks to the team that did not touch the ball last, the referee's command
             in ``MatchTask.referee_state`` and ``referee`` events. False (default):
             play restarts at once, the ball placed and nearby robots moved out.
-        fouls: call excessive dribbling, double touch and an attacker touching the
-            ball in the opponent's defense area (event ``foul``; with
+        fouls: call excessive dribbling, double touch, an attacker touching the
+            ball in the opponent's defense area and, with ``ssl_restarts``, a defender
+            within 0.48 m of a kickoff's or free kick's ball (event ``foul``; with
             ``ssl_restarts`` a free kick for the other team, without it the ball-out
             restart at the foul's spot). Default False.
         restart_jitter_m: every restart's robot placement is drawn from the env's

@@ -32,6 +32,13 @@ free kick for the other team at the foul's spot)
     robot that took a kickoff or free kick touches the ball again (after letting go of
     it) before any other robot has. ``attacker_in_defense_area``: a robot touches the
     ball while the ball is inside the opponent's defense area.
+    ``defender_too_close``: while a kickoff or free kick is not taken yet, a robot of
+    the other team comes closer to the ball than :data:`DEFENDER_TOO_CLOSE_M` (the
+    rules' "Defender Too Close To Ball"). The centre distance is measured, as the
+    placement measures its 0.5 m (the rules measure from the robot's body; the
+    placement would break that at once), less 0.02 m of tolerance (TIGERs' autoref
+    margin). Consequence: STOP, then the same kickoff or free kick again (ER-Force's
+    autoref, docs/references.md), robots within 0.5 m moved out as at every restart.
 """
 
 from __future__ import annotations
@@ -43,7 +50,7 @@ import numpy as np
 from ..physics.field import FieldGeometry
 from ..physics.params import RobotParams
 from ..physics.state import WorldState
-from .referee import placement_spot
+from .referee import RESTART_CLEARANCE, placement_spot
 
 RUNNING, STOP, KICKOFF, FREE_KICK = "RUNNING", "STOP", "KICKOFF", "FREE_KICK"
 COMMANDS = (RUNNING, STOP, KICKOFF, FREE_KICK)
@@ -51,6 +58,8 @@ IN_PLAY_DISTANCE = 0.05  #: m the ball moves from its spot for a kickoff / free 
 MAX_DRIBBLE_M = 1.0  #: m: the rules' limit on dribbling the ball
 TOUCH_MARGIN = 0.01  #: m of slack on body contact (solver slop and one tick of motion)
 TOUCH_MAX_HEIGHT_M = 0.15  #: m: a ball higher than this passes over the robots (rules: robots fit under 0.15 m)
+#: m, ball to robot centre: closer than this at the other team's kickoff or free kick is a foul
+DEFENDER_TOO_CLOSE_M = RESTART_CLEARANCE - 0.02
 
 
 def touch_reach(robot_radius: float, ball_radius: float) -> float:
@@ -65,7 +74,17 @@ def touching_robots(pos: np.ndarray, ball_pos: np.ndarray, ball_height: float, o
     :data:`TOUCH_MAX_HEIGHT_M` within ``reach`` (:func:`touch_reach`) of the robot's centre."""
     d = pos - ball_pos[None, :]
     return ((d[:, 0] ** 2 + d[:, 1] ** 2 <= reach ** 2) & (ball_height <= TOUCH_MAX_HEIGHT_M)) | on_dribbler
-FOULS = ("excessive_dribbling", "double_touch", "attacker_in_defense_area")
+FOULS = ("excessive_dribbling", "double_touch", "attacker_in_defense_area", "defender_too_close")
+
+
+def too_close_to_kick_point(pos: np.ndarray, spot: np.ndarray, limit: float = DEFENDER_TOO_CLOSE_M) -> int | None:
+    """Index of the robot of ``pos`` (n, 2; m, the defending team) nearest the ball's
+    ``spot`` (2,) if it is closer than ``limit`` (m, centre distance), else None."""
+    if len(pos) == 0:
+        return None
+    d2 = (pos[:, 0] - spot[0]) ** 2 + (pos[:, 1] - spot[1]) ** 2
+    i = int(np.argmin(d2))
+    return i if d2[i] < limit * limit else None
 
 
 def other(team: str) -> str:
@@ -228,5 +247,6 @@ def jittered_kickoff(poses: np.ndarray, n_blue: int, field: FieldGeometry, jitte
     return out
 
 
-__all__ = ["RefereeState", "TouchWatch", "jittered_clearance", "jittered_kickoff", "COMMANDS", "FOULS", "RUNNING",
+__all__ = ["RefereeState", "TouchWatch", "jittered_clearance", "jittered_kickoff", "too_close_to_kick_point",
+           "COMMANDS", "FOULS", "DEFENDER_TOO_CLOSE_M", "RUNNING",
            "STOP", "KICKOFF", "FREE_KICK", "IN_PLAY_DISTANCE", "MAX_DRIBBLE_M", "other"]

@@ -226,7 +226,10 @@ def keep_clear(actions: dict[str, np.ndarray], agents: Sequence[str], world: Wor
     """Edit ``actions`` in place so that ``team``'s robots obey STOP (SSL rules: 0.5 m
     from the ball). A robot's commanded speed towards the ball is capped at
     sqrt(2 ``brake`` (d - ``clearance``)) (m/s; d its distance to the ball, m), so it
-    can stop short of the ``clearance``; within it the robot moves straight away at
+    can stop short of the ``clearance``; a robot already moving towards the ball faster
+    than that is commanded its present sideways velocity and the capped speed towards
+    the ball (a sideways command would take the acceleration that the braking needs:
+    the velocity controller limits the acceleration's norm); within it the robot moves straight away at
     half ``max_speed``; kicking and dribbling are switched off. ``world`` is in the
     team's frame, actions are normalised body-frame (vx, vy, omega, dribble, kick),
     ``max_speed`` (m/s) is the speed of a normalised 1."""
@@ -243,7 +246,11 @@ def keep_clear(actions: dict[str, np.ndarray], agents: Sequence[str], world: Wor
         v = max_speed * np.array([c * a[0] - s_ * a[1], s_ * a[0] + c * a[1]])  # body -> team frame, m/s
         inward = -float(v @ u)
         allowed = float(np.sqrt(2 * brake * max(dist - clearance, 0.0)))
-        if inward > allowed:
+        vel = ours.vel[i]
+        inward_now = -float(vel[0] * u[0] + vel[1] * u[1])
+        if inward_now > allowed:  # braking: keep the present sideways velocity, so that
+            v = vel + (inward_now - allowed) * u  # the robot's acceleration all goes to slowing down
+        elif inward > allowed:
             v = v + (inward - allowed) * u
         if dist < clearance:
             v = 0.5 * max_speed * u

@@ -40,7 +40,7 @@ import numpy as np
 
 from ..config import MatchRules
 from ..game_control import (FREE_KICK, IN_PLAY_DISTANCE, KICKOFF, RUNNING, STOP, RefereeState, TouchWatch,
-                            jittered_clearance, jittered_kickoff, other)
+                            jittered_clearance, jittered_kickoff, other, too_close_to_kick_point)
 from ..referee import RESTART_CLEARANCE, NoProgressWatch, clear_robots_from, judge, kickoff_poses, placement_point
 from .base import Task
 from .engine import Engine
@@ -68,6 +68,7 @@ class MatchTask(Task):
         self._touch: TouchWatch | None = None
         self._half_time_now = False
         self._pending_free_kick: str | None = None
+        self._pending_command = FREE_KICK  #: what follows the STOP (a repeated kickoff stays one)
         self._spot = np.zeros(2)
         self._event_mark = 0
 
@@ -222,10 +223,20 @@ class MatchTask(Task):
             if np.hypot(*(truth.ball_pos - self._spot)) > 0.01:
                 env.place_ball(self._spot)
             if truth.t - st.since >= r.stop_s - 1e-9:
-                self._command(FREE_KICK, self._pending_free_kick, self._spot, truth.t, events)
+                self._command(self._pending_command, self._pending_free_kick, self._spot, truth.t, events)
             return False
         self._touch.update(truth, touch, f, False, kicked)  # KICKOFF / FREE_KICK: who touches, no fouls
         taken = np.hypot(*(truth.ball_pos - self._spot)) > IN_PLAY_DISTANCE
+        if not taken and r.fouls:
+            defending = other(st.team)
+            rows = np.flatnonzero(self._touch.teams == defending)
+            near = too_close_to_kick_point(np.concatenate([truth.blue.pos, truth.yellow.pos])[rows], self._spot)
+            if near is not None:  # the same set piece again after a STOP (module docstring of game_control)
+                events.append({"type": "foul", "foul": "defender_too_close", "team": defending,
+                               "agent": env.possible_agents[int(rows[near])], "t": truth.t,
+                               "placement": self._spot.tolist()})
+                self._restart(env, self._spot.copy(), st.team, truth.t, events, command=st.command)
+                return False
         if taken or truth.t - st.since >= r.free_kick_timeout_s - 1e-9:
             taker = self._touch.last_robot if taken else None
             self._command(RUNNING, None, None, truth.t, events)
@@ -241,14 +252,16 @@ class MatchTask(Task):
             return other(last)
         return "blue" if truth.ball_pos[0] < 0 else "yellow"
 
-    def _restart(self, env: Engine, place: np.ndarray, team: str, t: float, events: list[dict]) -> None:
-        """Ball placed at ``place``; with ``ssl_restarts`` a STOP, then a free kick for ``team``."""
+    def _restart(self, env: Engine, place: np.ndarray, team: str, t: float, events: list[dict],
+                 command: str = FREE_KICK) -> None:
+        """Ball placed at ``place``; with ``ssl_restarts`` a STOP, then ``command`` (a free
+        kick, or the kickoff that is taken again) for ``team``."""
         self._restart_play(env, place)
         self._touch.reset()
         if not self.rules.ssl_restarts:
             return
-        self._pending_free_kick = team
+        self._pending_free_kick, self._pending_command = team, command
         if self.rules.stop_s > 0:
             self._command(STOP, None, place, t, events)
         else:
-            self._command(FREE_KICK, team, place, t, events)
+            self._command(command, team, place, t, events)
