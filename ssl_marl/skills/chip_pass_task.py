@@ -16,7 +16,7 @@ import gymnasium
 import numpy as np
 from gymnasium.utils import EzPickle
 
-from ..envs.actions import make_action
+from ..envs.actions import fit_action, make_action
 from ..envs.ssl_env import SSLParallelEnv
 from ..envs.tracking import with_tracker
 from ..physics.field import FieldGeometry
@@ -44,7 +44,7 @@ class ChipLayoutDriver:
         self.driver.reset()
 
     def act(self, env: Any) -> dict[str, np.ndarray]:
-        return {k: (a if len(a) == 6 else np.append(a, np.float32(0.0))) for k, a in self.driver.act(env).items()}
+        return {k: fit_action(a, 6) for k, a in self.driver.act(env).items()}
 
 
 class ChipPassTask(PassTask):
