@@ -349,6 +349,55 @@ def set_piece_series(results: Path, names: Iterable[str]) -> Lines:
     return rows
 
 
+def ssl_fouls_series(results: Path, rows_spec: Iterable[tuple[str, str]]) -> Lines:
+    """One row per SSL-format series (label, name of ``results/<name>.json``): the code's
+    commit, W-D-L, goals, goal difference per 600 s with its 95 % interval, blue's set pieces
+    (awarded; shots and passes as their first kick) and the fouls the referee called on each
+    side (the matches' ``stats.fouls``), per match."""
+    names = ("defender_too_close", "double_touch", "excessive_dribbling", "attacker_in_defense_area")
+    rows = _head("code (commit)", "series", "blue vs yellow", "seeds", "matches", "W-D-L (blue)", "goals for-against",
+                 "goal diff per 600 s [95% CI]", "blue set pieces: awarded / passes / shots",
+                 "fouls on blue per match: too close / double touch / dribbling / defense area",
+                 "fouls on yellow per match: the same")
+    for label, n in rows_spec:
+        d = load_result(results / f"{n}.json")
+        s, st = d["summary"], d["summary"]["statistics"]
+        manifest = json.loads((results / json.loads((results / f"{n}.json").read_text())["manifest_file"]).read_text())
+        seeds = [m["seed"] for m in d["matches"]]
+        b = s["stats"]["blue"]
+        lo, hi = st["goal_diff_per_600s_ci95"]
+        k = len(d["matches"])
+        fouls = {side: " / ".join(f"{sum(m['stats']['fouls'][side].get(f, 0) for m in d['matches']) / k:.1f}"
+                                  for f in names) for side in ("blue", "yellow")}
+        rows.append(f"| {label} ({manifest['git']['commit'][:7]}) | `{n}` | {s['blue']} vs {s['yellow']} | "
+                    f"{min(seeds)}-{max(seeds)} | {k} | {s['wins']}-{s['draws']}-{s['losses']} | "
+                    f"{s['goals_for']}-{s['goals_against']} | {st['goal_diff_per_600s']:+.2f} [{lo:+.2f}, {hi:+.2f}] | "
+                    f"{b['set_pieces']} / {b['set_piece_passes']} / {b['set_piece_shots']} | "
+                    f"{fouls['blue']} | {fouls['yellow']} |")
+    return rows
+
+
+def set_piece_probe(results: Path, files: Iterable[str]) -> Lines:
+    """``benchmarks/set_piece_probe.py`` records (``results/tuning/<file>``): per team, how
+    its free kicks were taken (kicked; released by a bump; carried off in contact, a double
+    touch by the rules; timed out)."""
+    rows = _head("teams", "seeds", "commit", "team", "free kicks", "kicked", "released", "carried (double touch by the rules)",
+                 "timed out")
+    for file in files:
+        d = json.loads((results / "tuning" / file).read_text())
+        s, man = d["summary"], d["manifest"]
+        seeds = man["seeds"]["seeds"]
+        rules = man["rules"]
+        for team in ("blue", "yellow"):
+            c = {how: s.get(f"{team}_free_kick_{how}", 0) for how in ("kick", "released", "carried", "timeout")}
+            n = sum(c.values())
+            pct = lambda k: f"{c[k]} ({100 * c[k] / max(n, 1):.0f} %)"  # noqa: E731
+            rows.append(f"| {rules['blue']} vs {rules['yellow']} | {min(seeds)}-{max(seeds)} | "
+                        f"{man['git']['commit'][:7]} | {rules[team]} ({team}) | {n} | {pct('kick')} | "
+                        f"{pct('released')} | {pct('carried')} | {pct('timeout')} |")
+    return rows
+
+
 def _side_matches(results: Path, label: str, parts: Iterable[tuple[str, str]]) -> tuple[list[dict], list[str], float]:
     """The matches of ``parts`` ((series name, side), ...) with each side's stats and score
     turned to the named side's point of view ("own" / "opp"), their series' commits and
