@@ -288,6 +288,29 @@ def test_the_attacking_team_keeps_clear_of_the_opponents_free_kicks_in_a_match()
     assert "defender_too_close" not in fouls
 
 
+def test_every_kickoff_command_is_among_the_step_events():
+    """The match's first kickoff (with the first step's events), the kickoff after a goal (with the
+    goal's step) and the second half's (with the half-time step) are reported as ``referee``
+    events, so the statistics count them among the set pieces."""
+    from ssl_marl.plays.stats import MatchStatsTracker
+
+    env = parallel_env(n_blue=1, n_yellow=1, max_time_s=3.0, ssl_restarts=True, half_time_s=2.0)
+    L2 = FIELD.half_length
+    env.reset(seed=0, options={"ball": {"pos": (L2 - 0.3, 0.0), "vel": (3.0, 0.0)},
+                               "robots": {"blue_0": (-1.0, 0.0, 0.0), "yellow_0": (-3.0, 1.0, 0.0)}})
+    stats = MatchStatsTracker(env.field, env.config.ball)
+    seen = []
+    while env.agents:
+        _, _, _, _, infos = env.step(_idle(env))
+        ev = infos["blue_0"]["events"]
+        stats.observe(env.world_state(), ev)
+        seen += [(e["type"], e.get("command"), e.get("team")) for e in ev if e["type"] in ("referee", "goal", "half_time")]
+    kickoffs = [x for x in seen if x[1] == KICKOFF]
+    assert kickoffs == [("referee", KICKOFF, "blue"), ("referee", KICKOFF, "yellow"), ("referee", KICKOFF, "yellow")]
+    assert seen.index(("goal", None, "blue")) < seen.index(kickoffs[1])
+    assert stats.teams["yellow"].set_pieces == 2 and stats.teams["blue"].set_pieces == 1
+
+
 def test_half_time_keeps_the_score_and_swaps_ends():
     env = parallel_env(n_blue=2, n_yellow=2, max_time_s=2.0, ssl_restarts=True, half_time_s=1.0)
     env.reset(seed=0)

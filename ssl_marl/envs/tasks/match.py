@@ -71,6 +71,11 @@ class MatchTask(Task):
         self._pending_command = FREE_KICK  #: what follows the STOP (a repeated kickoff stays one)
         self._spot = np.zeros(2)
         self._event_mark = 0
+        #: the referee events of commands given outside a tick go out with a step's events: the
+        #: match's first kickoff with the first step's, a kickoff after a goal or at half-time
+        #: with the events of the step that placed it (the current step's list, from after_tick)
+        self._pending_events: list[dict] = []
+        self._step_events: list[dict] | None = None
 
     def bind(self, env: Engine) -> None:
         super().bind(env)
@@ -91,9 +96,10 @@ class MatchTask(Task):
         self._game = r.ssl_restarts or r.fouls or r.half_time_s is not None
         self._touch = (TouchWatch(env.config.n_blue, env.config.n_yellow, env.config.robot.radius,
                                   env.config.ball.radius) if self._game else None)
+        self._pending_events, self._step_events = [], None
         if r.ssl_restarts:
             w = env.world_state()
-            self._command(KICKOFF, "blue", w.ball_pos, w.t, None)
+            self._command(KICKOFF, "blue", w.ball_pos, w.t, self._pending_events)
 
     def _restart_watch(self, env: Engine) -> None:
         w = env.world_state()
@@ -104,6 +110,10 @@ class MatchTask(Task):
         self._event_mark = 0
 
     def after_tick(self, env: Engine, events: list[dict]) -> bool:
+        if self._pending_events:
+            events.extend(self._pending_events)
+            self._pending_events = []
+        self._step_events = events
         if not self.rules.referee:
             return False
         truth, f = env.world_state(), env.field
@@ -175,7 +185,8 @@ class MatchTask(Task):
                 self._touch.reset()
             if self.rules.ssl_restarts:
                 team = "yellow" if half_time else other(self.goal_for)
-                self._command(KICKOFF, team, np.zeros(2), env.world_state().t, None)
+                self._command(KICKOFF, team, np.zeros(2), env.world_state().t,
+                              self._pending_events if self._step_events is None else self._step_events)
 
     # ------------------------------------------------------------ SSL game control
     def _command(self, command: str, team: str | None, position: np.ndarray | None, t: float,
