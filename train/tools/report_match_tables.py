@@ -332,21 +332,28 @@ def set_piece_series(results: Path, names: Iterable[str]) -> Lines:
                  "goal diff per 600 s [95% CI]", "blue set pieces: awarded / passes (chips) / shots",
                  "blue goals from set pieces", "blue shots", "blue passes completed")
     for n in names:
-        d = load_result(results / f"{n}.json")
-        s, st = d["summary"], d["summary"]["statistics"]
-        manifest = json.loads((results / json.loads((results / f"{n}.json").read_text())["manifest_file"]).read_text())
-        seeds = [m["seed"] for m in d["matches"]]
-        b = s["stats"]["blue"]
-        lo, hi = st["goal_diff_per_600s_ci95"]
+        d, commit, cells = _series_cells(results, n)
+        b = d["summary"]["stats"]["blue"]
         counted = any("set_pieces" in m["stats"]["blue"] for m in d["matches"])
         sp = (f"{b['set_pieces']} / {b['set_piece_passes']} ({b['set_piece_chips']}) / {b['set_piece_shots']}"
               if counted else "-")
-        rows.append(f"| `{n}` | {manifest['git']['commit'][:7]} | {s['blue']} vs {s['yellow']} | "
-                    f"{min(seeds)}-{max(seeds)} | {s['matches']} | {s['wins']}-{s['draws']}-{s['losses']} | "
-                    f"{s['goals_for']}-{s['goals_against']} | {st['goal_diff_per_600s']:+.2f} [{lo:+.2f}, {hi:+.2f}] | "
-                    f"{sp} | {b['goals_set_piece'] if counted else '-'} | {b['shots']} | "
+        rows.append(f"| `{n}` | {commit} | {cells} | {sp} | {b['goals_set_piece'] if counted else '-'} | {b['shots']} | "
                     f"{b['passes_completed']} of {b['passes_attempted']} |")
     return rows
+
+
+def _series_cells(results: Path, n: str) -> tuple[dict, str, str]:
+    """A series record (``results/<n>.json``), the short commit of its manifest and its row cells
+    "blue vs yellow | seeds | matches | W-D-L | goals | goal diff per 600 s [95% CI]"."""
+    d = load_result(results / f"{n}.json")
+    s, st = d["summary"], d["summary"]["statistics"]
+    manifest = json.loads((results / json.loads((results / f"{n}.json").read_text())["manifest_file"]).read_text())
+    seeds = [m["seed"] for m in d["matches"]]
+    lo, hi = st["goal_diff_per_600s_ci95"]
+    cells = (f"{s['blue']} vs {s['yellow']} | {min(seeds)}-{max(seeds)} | {s['matches']} | "
+             f"{s['wins']}-{s['draws']}-{s['losses']} | {s['goals_for']}-{s['goals_against']} | "
+             f"{st['goal_diff_per_600s']:+.2f} [{lo:+.2f}, {hi:+.2f}]")
+    return d, manifest["git"]["commit"][:7], cells
 
 
 def ssl_fouls_series(results: Path, rows_spec: Iterable[tuple[str, str]]) -> Lines:
@@ -360,18 +367,11 @@ def ssl_fouls_series(results: Path, rows_spec: Iterable[tuple[str, str]]) -> Lin
                  "fouls on blue per match: too close / double touch / dribbling / defense area",
                  "fouls on yellow per match: the same")
     for label, n in rows_spec:
-        d = load_result(results / f"{n}.json")
-        s, st = d["summary"], d["summary"]["statistics"]
-        manifest = json.loads((results / json.loads((results / f"{n}.json").read_text())["manifest_file"]).read_text())
-        seeds = [m["seed"] for m in d["matches"]]
-        b = s["stats"]["blue"]
-        lo, hi = st["goal_diff_per_600s_ci95"]
-        k = len(d["matches"])
+        d, commit, cells = _series_cells(results, n)
+        b, k = d["summary"]["stats"]["blue"], len(d["matches"])
         fouls = {side: " / ".join(f"{sum(m['stats']['fouls'][side].get(f, 0) for m in d['matches']) / k:.1f}"
                                   for f in names) for side in ("blue", "yellow")}
-        rows.append(f"| {label} ({manifest['git']['commit'][:7]}) | `{n}` | {s['blue']} vs {s['yellow']} | "
-                    f"{min(seeds)}-{max(seeds)} | {k} | {s['wins']}-{s['draws']}-{s['losses']} | "
-                    f"{s['goals_for']}-{s['goals_against']} | {st['goal_diff_per_600s']:+.2f} [{lo:+.2f}, {hi:+.2f}] | "
+        rows.append(f"| {label} ({commit}) | `{n}` | {cells} | "
                     f"{b['set_pieces']} / {b['set_piece_passes']} / {b['set_piece_shots']} | "
                     f"{fouls['blue']} | {fouls['yellow']} |")
     return rows
