@@ -1,9 +1,10 @@
 """How SSL-format set pieces are taken: kicked, or carried off in contact (a double touch by the rules).
 
 Plays ``--format ssl`` matches (``ssl_marl.runners.match.play_match``) and classifies every
-free kick (and kickoff, where its command is among the step's events: the kickoffs at the
-start, after goals and at half-time are not) by the step in which the referee sees it taken
-(the ball 0.05 m from its spot) or lets it run on after its timeout:
+kickoff and free kick (``<team>_kickoff_<how>``, ``<team>_free_kick_<how>``; code before
+commit 85a739f announced no kickoff among the step's events, so its records count free kicks
+only) by the step in which the referee sees it taken (the ball 0.05 m from its spot) or lets
+it run on after its timeout:
 
 * ``kick``: the kicking team kicked the ball in that step;
 * ``released``: no kick, and the robot that moved the ball is no longer in contact, or the
