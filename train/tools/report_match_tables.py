@@ -367,7 +367,8 @@ def ssl_fouls_series(results: Path, rows_spec: Iterable[tuple[str, str]]) -> Lin
                  "fouls on blue per match: too close / double touch / dribbling / defense area",
                  "fouls on yellow per match: the same")
     for label, n in rows_spec:
-        d, commit, cells = _series_cells(results, n)
+        d, _, cells = _series_cells(results, n)
+        commit = ", ".join(sorted(set(_played_commits(load_manifest(results / f"{n}.json") or {}))))
         b, k = d["summary"]["stats"]["blue"], len(d["matches"])
         fouls = {side: " / ".join(f"{sum(m['stats']['fouls'][side].get(f, 0) for m in d['matches']) / k:.1f}"
                                   for f in names) for side in ("blue", "yellow")}
