@@ -41,7 +41,7 @@ def classify(truth, team: str, kicked_by_team: bool, reach: float) -> str:
 
     if kicked_by_team:
         return "kick"
-    ts = truth.team(team) if hasattr(truth, "team") else getattr(truth, team)
+    ts = truth.team(team)
     pos, vel = np.asarray(ts.pos), np.asarray(ts.vel)
     i = int(np.argmin(np.hypot(*(pos - truth.ball_pos).T)))
     touching = bool(touching_robots(pos[i:i + 1], truth.ball_pos, truth.ball_height, ts.ball_on_dribbler[i:i + 1],
@@ -61,7 +61,7 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int) -> Counter:
 
     counts: Counter = Counter()
     reach = touch_reach(RobotParams().radius, BallParams().radius)
-    state = {"set_piece": None}  # (command, team) of the kickoff / free kick not yet taken
+    state = {"set_piece": None, "spot": None}  # (command, team) of the set piece not yet taken, its ball spot
     original = match_runner.MatchStats.record
 
     def record(self, events, truth):
@@ -75,15 +75,14 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int) -> Counter:
                 state["set_piece"] = (e["command"], e["team"])
             elif e["command"] == RUNNING and pending is not None:
                 command, team = pending
-                spot_left = float(np.hypot(*(truth.ball_pos - np.asarray(self._spot)))) > 0.05 \
-                    if getattr(self, "_spot", None) is not None else True
+                spot_left = state["spot"] is None or float(np.hypot(*(truth.ball_pos - state["spot"]))) > 0.05
                 how = classify(truth, team, team in kickers, reach) if spot_left else "timeout"
                 counts[f"{team}_{command.lower()}_{how}"] += 1
                 state["set_piece"] = None
             else:
                 state["set_piece"] = None
             if e["command"] in (KICKOFF, FREE_KICK) and e.get("position") is not None:
-                self._spot = tuple(e["position"])
+                state["spot"] = np.asarray(e["position"], float)
 
     match_runner.MatchStats.record = record
     try:

@@ -124,7 +124,7 @@ def test_defender_too_close_to_kick_point_helper():
     assert too_close_to_kick_point(np.zeros((0, 2)), spot) is None
 
 
-def _walk_in(env, mover: str, heading: float, max_steps: int = 240):
+def _walk_in(env, mover: str, max_steps: int = 240):
     """Step ``env`` with ``mover`` driving forward at 0.3 (normalised) until a foul event;
     returns (the foul events, all referee commands seen)."""
     fouls, commands = [], []
@@ -150,7 +150,7 @@ def test_a_defender_walking_into_the_kickoff_gets_the_kickoff_taken_again(fouls_
     env.reset(seed=2, options={"ball": {"pos": (0.0, 0.0)},
                                "robots": {"blue_0": (-1.0, 0.0, 0.0), "yellow_0": (0.7, 0.0, math.pi)}})
     assert env.task.referee_state.command == KICKOFF and env.task.referee_state.team == "blue"
-    fouls, _ = _walk_in(env, "yellow_0", math.pi)
+    fouls, _ = _walk_in(env, "yellow_0")
     if not fouls_on:
         assert fouls == []
         return
@@ -182,7 +182,7 @@ def test_a_defender_walking_into_a_free_kick_gets_it_taken_again():
     # turn blue_0 to face the ball, then walk it in
     d = spot - w.blue.pos[0]
     env.unwrapped.place_robots(np.array([[*w.blue.pos[0], math.atan2(d[1], d[0])], [*w.yellow.pos[0], 0.0]]))
-    fouls, commands = _walk_in(env, "blue_0", 0.0)
+    fouls, commands = _walk_in(env, "blue_0")
     assert [(e["foul"], e["team"]) for e in fouls] == [("defender_too_close", "blue")]
     assert np.allclose(fouls[0]["placement"], spot)
     for _ in range(40):

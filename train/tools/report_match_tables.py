@@ -332,7 +332,8 @@ def set_piece_series(results: Path, names: Iterable[str]) -> Lines:
                  "goal diff per 600 s [95% CI]", "blue set pieces: awarded / passes (chips) / shots",
                  "blue goals from set pieces", "blue shots", "blue passes completed")
     for n in names:
-        d, commit, cells = _series_cells(results, n)
+        d, manifest, cells = _series_cells(results, n)
+        commit = manifest["git"]["commit"][:7]
         b = d["summary"]["stats"]["blue"]
         counted = any("set_pieces" in m["stats"]["blue"] for m in d["matches"])
         sp = (f"{b['set_pieces']} / {b['set_piece_passes']} ({b['set_piece_chips']}) / {b['set_piece_shots']}"
@@ -342,18 +343,18 @@ def set_piece_series(results: Path, names: Iterable[str]) -> Lines:
     return rows
 
 
-def _series_cells(results: Path, n: str) -> tuple[dict, str, str]:
-    """A series record (``results/<n>.json``), the short commit of its manifest and its row cells
+def _series_cells(results: Path, n: str) -> tuple[dict, dict, str]:
+    """A series record (``results/<n>.json``), its manifest and its row cells
     "blue vs yellow | seeds | matches | W-D-L | goals | goal diff per 600 s [95% CI]"."""
     d = load_result(results / f"{n}.json")
     s, st = d["summary"], d["summary"]["statistics"]
-    manifest = json.loads((results / json.loads((results / f"{n}.json").read_text())["manifest_file"]).read_text())
+    manifest = load_manifest(results / f"{n}.json") or {}
     seeds = [m["seed"] for m in d["matches"]]
     lo, hi = st["goal_diff_per_600s_ci95"]
     cells = (f"{s['blue']} vs {s['yellow']} | {min(seeds)}-{max(seeds)} | {s['matches']} | "
              f"{s['wins']}-{s['draws']}-{s['losses']} | {s['goals_for']}-{s['goals_against']} | "
              f"{st['goal_diff_per_600s']:+.2f} [{lo:+.2f}, {hi:+.2f}]")
-    return d, manifest["git"]["commit"][:7], cells
+    return d, manifest, cells
 
 
 def ssl_fouls_series(results: Path, rows_spec: Iterable[tuple[str, str]]) -> Lines:
@@ -367,8 +368,8 @@ def ssl_fouls_series(results: Path, rows_spec: Iterable[tuple[str, str]]) -> Lin
                  "fouls on blue per match: too close / double touch / dribbling / defense area",
                  "fouls on yellow per match: the same")
     for label, n in rows_spec:
-        d, _, cells = _series_cells(results, n)
-        commit = ", ".join(sorted(set(_played_commits(load_manifest(results / f"{n}.json") or {}))))
+        d, manifest, cells = _series_cells(results, n)
+        commit = ", ".join(sorted(set(_played_commits(manifest))))
         b, k = d["summary"]["stats"]["blue"], len(d["matches"])
         fouls = {side: " / ".join(f"{sum(m['stats']['fouls'][side].get(f, 0) for m in d['matches']) / k:.1f}"
                                   for f in names) for side in ("blue", "yellow")}

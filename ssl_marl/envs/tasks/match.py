@@ -75,7 +75,7 @@ class MatchTask(Task):
         #: match's first kickoff with the first step's, a kickoff after a goal or at half-time
         #: with the events of the step that placed it (the current step's list, from after_tick)
         self._pending_events: list[dict] = []
-        self._step_events: list[dict] | None = None
+        self._step_events: list[dict] | None = None  #: set by every after_tick, before after_step
 
     def bind(self, env: Engine) -> None:
         super().bind(env)
@@ -185,8 +185,7 @@ class MatchTask(Task):
                 self._touch.reset()
             if self.rules.ssl_restarts:
                 team = "yellow" if half_time else other(self.goal_for)
-                self._command(KICKOFF, team, np.zeros(2), env.world_state().t,
-                              self._pending_events if self._step_events is None else self._step_events)
+                self._command(KICKOFF, team, np.zeros(2), env.world_state().t, self._step_events)
 
     # ------------------------------------------------------------ SSL game control
     def _command(self, command: str, team: str | None, position: np.ndarray | None, t: float,
@@ -240,11 +239,11 @@ class MatchTask(Task):
         taken = np.hypot(*(truth.ball_pos - self._spot)) > IN_PLAY_DISTANCE
         if not taken and r.fouls:
             defending = other(st.team)
-            rows = np.flatnonzero(self._touch.teams == defending)
-            near = too_close_to_kick_point(np.concatenate([truth.blue.pos, truth.yellow.pos])[rows], self._spot)
+            near = too_close_to_kick_point(truth.team(defending).pos, self._spot)
             if near is not None:  # the same set piece again after a STOP (module docstring of game_control)
+                row = near + (env.config.n_blue if defending == "yellow" else 0)  # blue's rows come first
                 events.append({"type": "foul", "foul": "defender_too_close", "team": defending,
-                               "agent": env.possible_agents[int(rows[near])], "t": truth.t,
+                               "agent": env.possible_agents[row], "t": truth.t,
                                "placement": self._spot.tolist()})
                 self._restart(env, self._spot.copy(), st.team, truth.t, events, command=st.command)
                 return False
