@@ -6,15 +6,16 @@ commit 85a739f announced no kickoff among the step's events, so its records coun
 only) by the step in which the referee sees it taken (the ball 0.05 m from its spot) or lets
 it run on after its timeout:
 
-* ``kick``: the kicking team kicked the ball in that step;
-* ``released``: no kick, and the robot that moved the ball is no longer in contact, or the
-  ball leaves it faster than ``SEPARATING_M_S`` (a bump that lets the ball go);
-* ``carried``: no kick, and that robot still holds the ball (on its dribbler, or in body
+* ``kick``: the kicking team kicked the ball in that step or since the command (a pass
+  kicked at 2-3 m/s moves less than 0.05 m in its first step);
+* ``released``: no kick, and the team's robot nearest the ball is no longer in contact, or
+  the ball leaves it faster than ``SEPARATING_M_S`` (a bump that lets the ball go);
+* ``carried``: no kick, and that robot still holds the ball
+  (:meth:`~ssl_marl.envs.game_control.TouchWatch.carries`: on its dribbler, or in body
   contact with the ball not leaving it): the ball has moved 0.05 m in the kicker's contact,
   which the SSL rules count as a double touch ("Remaining in contact with the ball for more
   than 0.05 meters also counts as double touch", the rules' text as TIGERs' autoref quotes it;
-  docs/references.md). This project's referee calls a double touch only when the kicker
-  touches the ball again after letting go of it, so a carried set piece plays on here;
+  docs/references.md) and the referee calls (``fouls``);
 * ``timeout``: nobody took it within the free kick's timeout.
 
     python benchmarks/set_piece_probe.py --seeds 61910-61911 --out results/tuning/set_piece_probe.json
@@ -31,52 +32,43 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from ball_out_probe import probe_args, write_probe  # noqa: E402  (the probes' shared command line)
 
-#: m/s: a ball leaving the robot faster than this (radially, relative to the robot) is let go
-SEPARATING_M_S = 0.3
-
-
-def classify(truth, team: str, kicked_by_team: bool, reach: float) -> str:
-    """How the set piece of ``team`` was taken in the step whose ground truth is ``truth``."""
-    from ssl_marl.envs.game_control import touching_robots
-
+def classify(truth, team: str, kicked_by_team: bool, watch) -> str:
+    """How the set piece of ``team`` was taken in the step whose ground truth is ``truth``
+    (``watch``: a :class:`~ssl_marl.envs.game_control.TouchWatch` of the match's robots)."""
     if kicked_by_team:
         return "kick"
     ts = truth.team(team)
-    pos, vel = np.asarray(ts.pos), np.asarray(ts.vel)
-    i = int(np.argmin(np.hypot(*(pos - truth.ball_pos).T)))
-    touching = bool(touching_robots(pos[i:i + 1], truth.ball_pos, truth.ball_height, ts.ball_on_dribbler[i:i + 1],
-                                    reach)[0])
-    if not touching:
-        return "released"
-    d = truth.ball_pos - pos[i]
-    radial = float((truth.ball_vel - vel[i]) @ d) / max(float(np.hypot(*d)), 1e-9)
-    return "carried" if bool(ts.ball_on_dribbler[i]) or radial < SEPARATING_M_S else "released"
+    i = int(np.argmin(np.hypot(*(np.asarray(ts.pos) - truth.ball_pos).T)))
+    row = i + (truth.blue.n if team == "yellow" else 0)  # blue's rows come first
+    return "carried" if watch.carries(truth, row) else "released"
 
 
 def probe_match(blue: str, yellow: str, seconds: float, seed: int) -> Counter:
     """The counts of one SSL-format match (module docstring): ``<team>_<kind>_<how>``."""
-    from ssl_marl.envs.game_control import FREE_KICK, KICKOFF, RUNNING, touch_reach
+    from ssl_marl.envs.game_control import FREE_KICK, KICKOFF, RUNNING, TouchWatch
     from ssl_marl.physics.params import BallParams, RobotParams
     from ssl_marl.runners import match as match_runner
 
     counts: Counter = Counter()
-    reach = touch_reach(RobotParams().radius, BallParams().radius)
-    state = {"set_piece": None, "spot": None}  # (command, team) of the set piece not yet taken, its ball spot
+    watch = TouchWatch(6, 6, RobotParams().radius, BallParams().radius)
+    # (command, team) of the set piece not yet taken, its ball spot, the teams that kicked since its command
+    state = {"set_piece": None, "spot": None, "kicked": set()}
     original = match_runner.MatchStats.record
 
     def record(self, events, truth):
         original(self, events, truth)
         kickers = {e["agent"].split("_")[0] for e in events if e["type"] == "kick"}
+        state["kicked"] |= kickers
         for e in events:
             if e["type"] != "referee":
                 continue
             pending = state["set_piece"]
             if e["command"] in (KICKOFF, FREE_KICK):
-                state["set_piece"] = (e["command"], e["team"])
+                state["set_piece"], state["kicked"] = (e["command"], e["team"]), set(kickers)
             elif e["command"] == RUNNING and pending is not None:
                 command, team = pending
                 spot_left = state["spot"] is None or float(np.hypot(*(truth.ball_pos - state["spot"]))) > 0.05
-                how = classify(truth, team, team in kickers, reach) if spot_left else "timeout"
+                how = classify(truth, team, team in state["kicked"], watch) if spot_left else "timeout"
                 counts[f"{team}_{command.lower()}_{how}"] += 1
                 state["set_piece"] = None
             else:

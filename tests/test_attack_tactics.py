@@ -186,7 +186,8 @@ def test_attack_team_plays_a_short_match_in_a_chip_env():
 
 
 def test_behind_ball_waypoint_walks_round_the_ball_to_the_pass_line():
-    from ssl_marl.plays.pass_tactic import BESIDE_M, PassParams, behind_ball_waypoint
+    from ssl_marl.plays.pass_tactic import PassParams
+    from ssl_marl.plays.set_piece_kick import BESIDE_M, behind_ball_waypoint
 
     rp, p = _chip_env(1)[1], PassParams()
     ball, target = np.array([0.0, 0.0]), np.array([3.0, 0.0])

@@ -30,7 +30,11 @@ free kick for the other team at the foul's spot)
     ``excessive_dribbling``: a robot keeps touching the ball while it has moved more
     than ``MAX_DRIBBLE_M`` (1 m) from where the robot gained it. ``double_touch``: the
     robot that took a kickoff or free kick touches the ball again (after letting go of
-    it) before any other robot has. ``attacker_in_defense_area``: a robot touches the
+    it) before any other robot has, or is still in contact with the ball when it has
+    moved ``IN_PLAY_DISTANCE`` from its spot (the rules: "remaining in contact with the
+    ball for more than 0.05 m counts as double touch"): on its dribbler, or in body
+    contact with the ball not leaving it faster than ``SEPARATING_M_S`` (radially,
+    relative to the robot; a kick in that step lets go). ``attacker_in_defense_area``: a robot touches the
     ball while the ball is inside the opponent's defense area.
     ``defender_too_close``: while a kickoff or free kick is not taken yet, a robot of
     the other team comes closer to the ball than :data:`DEFENDER_TOO_CLOSE_M` (the
@@ -55,6 +59,8 @@ from .referee import RESTART_CLEARANCE, placement_spot
 RUNNING, STOP, KICKOFF, FREE_KICK = "RUNNING", "STOP", "KICKOFF", "FREE_KICK"
 COMMANDS = (RUNNING, STOP, KICKOFF, FREE_KICK)
 IN_PLAY_DISTANCE = 0.05  #: m the ball moves from its spot for a kickoff / free kick to be taken (rules)
+#: m/s: a ball leaving a robot faster than this (radially, relative to it) is let go, not carried
+SEPARATING_M_S = 0.3
 MAX_DRIBBLE_M = 1.0  #: m: the rules' limit on dribbling the ball
 TOUCH_MARGIN = 0.01  #: m of slack on body contact (solver slop and one tick of motion)
 TOUCH_MAX_HEIGHT_M = 0.15  #: m: a ball higher than this passes over the robots (rules: robots fit under 0.15 m)
@@ -189,6 +195,21 @@ class TouchWatch:
         """A kickoff / free kick was taken by ``robot`` (row): guard against its double touch."""
         self.guard, self.guard_released = robot, False
 
+    def carries(self, ws: WorldState, robot: int, kicked: list[int] | tuple[int, ...] = ()) -> bool:
+        """Whether ``robot`` (row) holds the ball in snapshot ``ws`` (field frame): the ball
+        on its dribbler, or in body contact not leaving it faster than
+        :data:`SEPARATING_M_S`; never when it kicked the ball this step (``kicked`` rows)."""
+        if robot in kicked:
+            return False
+        pos = np.concatenate([ws.blue.pos, ws.yellow.pos])[robot]
+        vel = np.concatenate([ws.blue.vel, ws.yellow.vel])[robot]
+        on = bool(np.concatenate([ws.blue.ball_on_dribbler, ws.yellow.ball_on_dribbler])[robot])
+        if not touching_robots(pos[None, :], ws.ball_pos, ws.ball_height, np.array([on]), self.reach)[0]:
+            return False
+        d = ws.ball_pos - pos
+        radial = float((ws.ball_vel - vel) @ d) / max(float(np.hypot(*d)), 1e-9)
+        return on or radial < SEPARATING_M_S
+
     @staticmethod
     def _in_opponent_defense(ball_pos: np.ndarray, field: FieldGeometry, team: str) -> bool:
         return bool(field.in_defense_area(ball_pos, 1 if team == "blue" else -1))
@@ -249,4 +270,4 @@ def jittered_kickoff(poses: np.ndarray, n_blue: int, field: FieldGeometry, jitte
 
 __all__ = ["RefereeState", "TouchWatch", "jittered_clearance", "jittered_kickoff", "too_close_to_kick_point",
            "COMMANDS", "FOULS", "DEFENDER_TOO_CLOSE_M", "RUNNING",
-           "STOP", "KICKOFF", "FREE_KICK", "IN_PLAY_DISTANCE", "MAX_DRIBBLE_M", "other"]
+           "STOP", "KICKOFF", "FREE_KICK", "IN_PLAY_DISTANCE", "SEPARATING_M_S", "MAX_DRIBBLE_M", "other"]

@@ -23,7 +23,10 @@ pass/receive handshake; restart, offense and defense plays) with three changes:
   redirect and its shot after a reception;
 * restarts are set pieces under SSL game control (``decide_at_restart``): the kick is
   decided before the kicker reaches the ball and the passer walks up behind the ball on
-  the pass line (``approach_behind``).
+  the pass line (``approach_behind``) and kicks it from there without the dribbler
+  (``strike``: the set piece's kicker may not stay in contact with the ball); a set
+  piece with no pass opened the attacker takes with one kick
+  (:class:`~ssl_marl.plays.set_piece_kick.SetPieceKick`).
 
 The coordinator's setup check of the flat lane is off (``abort_margin_s = -inf``): a
 chip is chosen exactly when the flat lane is blocked.
@@ -192,9 +195,9 @@ def chip_passer_role(coord: PassCoordinator, decider: AttackDecider, priority: i
         o = _plan_option(coord, decider)
         redirect = o is not None and o.kind is AttackChoice.REDIRECT
         decision = coord.params.restart_decision if plan.restart else coord.params.decision
-        return dict(chip=o is not None and o.kind is AttackChoice.CHIP,
-                    approach_behind=plan.restart, arrival_speed=decider.params.redirect_arrive_speed
-                    if redirect else decision.pass_arrive_speed)
+        arrival = decider.params.redirect_arrive_speed if redirect else decision.pass_arrive_speed
+        return dict(chip=o is not None and o.kind is AttackChoice.CHIP, approach_behind=plan.restart,
+                    strike=plan.restart, arrival_speed=arrival)
 
     return passer_role(coord, priority, ChipPass, extra)
 

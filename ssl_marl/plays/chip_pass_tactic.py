@@ -7,7 +7,9 @@ chip-pass skill instead of the pass skill (learned or baseline,
 :mod:`ssl_marl.plays.skillset`; :mod:`ssl_marl.skills.chip_pass`), told the same target
 point: the skill turns with the ball and chooses the chip's speed and elevation over
 the robot standing in the lane itself (the hand-coded skill passes flat where no chip
-fits). The skill's status ends KICK as the pass skill's does.
+fits). The skill's status ends KICK as the pass skill's does. A set piece's chip
+(``strike``) is the hand-coded chip of :func:`~ssl_marl.skills.chip_pass.lane_chip`,
+kicked from behind the ball without the dribbler (:meth:`ChipPass.strike_kick`).
 
 Actions are the env's 6-entry chip layout (``parallel_env(chip_kicks=True)``; index 5
 the chip, 0 for a flat kick): the tactic runs only in a chip env.
@@ -20,7 +22,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..physics.state import WorldState
-from .pass_tactic import Pass, PassParams
+from ..skills.chip_pass import lane_chip
+from .pass_tactic import Pass, PassParams, PassState
 
 
 @dataclass(frozen=True)
@@ -50,9 +53,23 @@ class ChipPass(Pass):
         """The skill the KICK state runs: the chip-pass skill with ``chip`` set, else the pass skill."""
         return self.chip_skill if self.params.chip else self.pass_skill
 
+    def strike_kick(self, world: WorldState) -> tuple[float, float]:
+        """The set piece's STRIKE (:meth:`Pass.strike_kick`): with ``chip`` set, the
+        hand-coded chip over the lane's blocker (:func:`~ssl_marl.skills.chip_pass.lane_chip`:
+        speed and elevation), flat where no chip fits."""
+        if self.params.chip:
+            c = lane_chip(world.ball_pos, np.asarray(self.params.target_point, float),
+                          world.opponents(world.frame).pos, self.rp, self.bp)
+            if c is not None:
+                return min(c.speed / self.rp.kick_speed_max, 1.0), c.angle / self.rp.chip_angle_max
+        return super().strike_kick(world)
+
     def execute(self, world: WorldState, robot: int, inputs) -> np.ndarray:
         a = np.asarray(super().execute(world, robot, inputs), dtype=np.float32)
-        self._chip = float(a[5]) if a.shape == (6,) else 0.0
+        if self.state is PassState.STRIKE:
+            self._chip = self.strike_kick(world)[1]
+        else:
+            self._chip = float(a[5]) if a.shape == (6,) else 0.0
         return a[:5]
 
     def act(self, world: WorldState, robot: int) -> np.ndarray:

@@ -8,6 +8,8 @@ State machine (team frame; d_{d-b}: dribbler-ball distance)::
     HOLD --(waited max_wait_s)--> FAILED
     KICK --(kick commanded / pass skill SUCCEEDED)--> DONE
     KICK --(pass skill FAILED: ball lost before the kick)--> FAILED
+    GET_BALL --(strike, a target set)--> STRIKE
+    STRIKE --(the ball has left its spot)--> DONE
     DONE, FAILED: terminal until :meth:`~ssl_marl.plays.tactic_base.Tactic.reset`
 
 The play sets the parameters every tick: ``target_robot`` (teammate index),
@@ -19,6 +21,15 @@ it commits once it faces the target within ``kick_align_tol`` and moves slower t
 ``settle_speed``, so the pass skill has little turning left. KICK runs the pass skill
 (learned or baseline, :mod:`ssl_marl.plays.skillset`), which chooses the kick speed
 from the ball model. The play reads :attr:`status` (``state``; ``kicks``).
+
+A set piece's pass (``strike``, with ``approach_behind``) never takes the ball onto the
+dribbler: the kicker may not touch the ball again before another robot has, and
+remaining in contact with it for more than 0.05 m counts as that double touch (SSL
+rules). STRIKE runs :class:`~ssl_marl.plays.set_piece_kick.SetPieceKick` towards the
+receive point: it walks behind the ball on the line, waits there (``hold``) until the
+receiver is ready, then drives at the ball with the kicker armed; the kick's speed chosen
+from the ball model for ``arrival_speed`` at the receive point as the hand-coded pass
+skill does (:meth:`strike_kick`).
 """
 
 from __future__ import annotations
@@ -29,11 +40,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..physics import ball_model
 from ..physics.state import WorldState, wrap_angle
 from ..skills.base import SkillStatus, make_action
 from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance
 from ..skills.motion import velocity_command
-from ..skills.navigation import NavigateToPoint, NavParams, facing_towards, line_frame
+from ..skills.passing import DEFAULT_ARRIVAL_SPEED
+from ..skills.navigation import NavigateToPoint, NavParams, facing_towards
+from .set_piece_kick import SetPieceKick, SetPieceState, behind_ball_waypoint
 from .shoot import govern_approach
 from .tactic_base import NEAR_BALL_M, Tactic, check_field_point, skill_status
 
@@ -42,6 +56,7 @@ class PassState(enum.Enum):
     GET_BALL = "get_ball"
     HOLD = "hold"
     KICK = "kick"
+    STRIKE = "strike"
     DONE = "done"
     FAILED = "failed"
 
@@ -80,6 +95,8 @@ class PassParams:
         behind_tol_m: the robot counts as behind the ball (go-to-ball takes over) within
             this lateral offset from the line (m) and facing the target within
             ``kick_align_tol``.
+        strike: with ``approach_behind``, kick from behind the ball without taking it onto
+            the dribbler (STRIKE; a set piece, module docstring).
     """
 
     target_robot: int | None = None
@@ -100,13 +117,16 @@ class PassParams:
     approach_behind: bool = False
     behind_gap_m: float = 0.08
     behind_tol_m: float = 0.05
+    strike: bool = False
 
 
 @dataclass(frozen=True)
 class PassInputs:
     """Attributes: d_db (m), skill_status (the pass skill's, KICK state), kicked (a kick
     was commanded on the previous tick), receiver_ready, has_target, time_in_state (s),
-    aim_err (|heading error| to the target, rad), speed (m/s)."""
+    aim_err (|heading error| to the target, rad), speed (m/s), strike_state (the
+    STRIKE kick's :class:`~ssl_marl.plays.set_piece_kick.SetPieceState` after its last
+    tick, or None)."""
 
     d_db: float
     skill_status: SkillStatus = SkillStatus.RUNNING
@@ -116,6 +136,7 @@ class PassInputs:
     time_in_state: float = 0.0
     aim_err: float = 0.0
     speed: float = 0.0
+    strike_state: SetPieceState | None = None
 
 
 class Pass(Tactic):
@@ -127,6 +148,7 @@ class Pass(Tactic):
     Inputs = PassInputs
     initial_state = PassState.GET_BALL
     uses_skills = ("go_to_ball", "pass")
+    takes_ball = True
 
     def __init__(self, field, robot=None, ball=None, skills="baseline", dt: float = 1.0 / 60.0, **params) -> None:
         self.go_to_ball = None
@@ -134,7 +156,15 @@ class Pass(Tactic):
         self.go_to_ball = self._skill("go_to_ball")
         self.pass_skill = self._skill("pass")
         self.nav = NavigateToPoint(self.field, self.rp, self.bp, NavParams(), tolerance=0.03)
+        self.striker = SetPieceKick(self.field, self.rp, self.bp, dt=self.dt)
         self.on_enter(self.state)
+
+    @property
+    def wants_ball(self) -> bool:
+        """Only before an open-play kick (GET_BALL, HOLD, KICK): a STRIKE's kick takes the
+        set piece and its robot walks no more to the ball, nor once the pass is kicked or
+        given up (DONE, FAILED: the robot stands still)."""
+        return self.state in (PassState.GET_BALL, PassState.HOLD, PassState.KICK)
 
     def kick_skill(self):
         """The skill the KICK state runs: the pass skill."""
@@ -152,11 +182,13 @@ class Pass(Tactic):
         p = self.params
         status = skill_status(self.kick_skill()) if self.state is PassState.KICK else SkillStatus.RUNNING
         has_target = p.target_point is not None and p.target_robot is not None
+        ts = world.team(world.frame)
         return PassInputs(d_db=dribbler_ball_distance(world, robot, self.rp, self.bp), skill_status=status,
                           kicked=self._kicked, receiver_ready=bool(p.receiver_ready), has_target=has_target,
                           time_in_state=self._time_in_state,
                           aim_err=heading_error_to(world, robot, p.target_point) if has_target else math.pi,
-                          speed=float(np.hypot(*world.team(world.frame).vel[robot])))
+                          speed=float(np.hypot(*ts.vel[robot])),
+                          strike_state=self.striker.state if self.state is PassState.STRIKE else None)
 
     @staticmethod
     def transition(state: PassState, inputs: PassInputs, params: PassParams) -> PassState:
@@ -164,7 +196,11 @@ class Pass(Tactic):
         if state in (S.DONE, S.FAILED):
             return state
         if state is S.GET_BALL:
+            if params.strike and params.approach_behind and inputs.has_target:
+                return S.STRIKE
             return S.HOLD if inputs.d_db <= params.near_ball_m else S.GET_BALL
+        if state is S.STRIKE:
+            return S.DONE if inputs.strike_state is SetPieceState.DONE else S.STRIKE
         if state is S.HOLD:
             if inputs.d_db > params.lost_ball_m:
                 return S.GET_BALL
@@ -187,6 +223,8 @@ class Pass(Tactic):
             self.go_to_ball.reset()
         elif state is PassState.KICK:
             self.kick_skill().reset()
+        elif state is PassState.STRIKE:
+            self.striker.reset()
 
     def execute(self, world: WorldState, robot: int, inputs: PassInputs) -> np.ndarray:
         S, p = PassState, self.params
@@ -217,6 +255,10 @@ class Pass(Tactic):
             w0 = float(ts.omega[robot])  # change the turn rate gently: the dribbler face would shed the ball
             omega = w0 + float(np.clip(omega - w0, -p.hold_alpha * self.dt, p.hold_alpha * self.dt))
             return velocity_command(world, robot, v, omega, self.rp, dribble=True)
+        if self.state is S.STRIKE:
+            self.striker.set_params(target_point=p.target_point, kick_strength=self.strike_kick(world)[0],
+                                    hold=not p.receiver_ready)
+            return self.striker.act(world, robot)
         if self.state is S.KICK:
             skill = self.kick_skill()
             skill.set_target(np.asarray(p.target_point, float))
@@ -225,38 +267,16 @@ class Pass(Tactic):
             return skill.act(world, robot)
         return make_action()
 
-
-#: m: a robot going round the ball to its staging point keeps this far off the pass line
-BESIDE_M = 0.35
-
-
-def behind_ball_waypoint(pos: np.ndarray, heading: float, ball: np.ndarray, target: np.ndarray, rp, bp,
-                         params: PassParams, wait: bool = False) -> np.ndarray | None:
-    """Where a robot at ``pos`` (heading rad) walks to take ``ball`` towards ``target``
-    (team frame, m): None once it stands behind the ball on the line (lateral offset
-    within ``behind_tol_m``, facing the target within ``kick_align_tol``) and need not
-    ``wait`` (for the receiver): then the go-to-ball skill drives straight on. Else the
-    staging point ``behind_gap_m`` behind the ball (front face to ball surface); a robot
-    not yet as far back as that goes round the ball at ``BESIDE_M`` off the pass line on
-    its own side: first straight sideways while nearer the line than that, then back
-    level with the staging point, so that it never pushes the ball on its way."""
-    ball = np.asarray(ball, float)
-    frame = line_frame(ball, target, pos)
-    if frame is None:
-        return None
-    u, _, along, lateral = frame
-    along, lateral = float(along), float(lateral)
-    back = rp.front_distance + bp.radius + params.behind_gap_m
-    face = abs(wrap_angle(math.atan2(u[1], u[0]) - heading))
-    if along < -rp.front_distance and abs(lateral) <= params.behind_tol_m and face <= params.kick_align_tol \
-            and not wait:
-        return None
-    if along > -back + params.behind_tol_m:
-        side = np.array([-u[1], u[0]]) * (1.0 if lateral >= 0.0 else -1.0)
-        if abs(lateral) < BESIDE_M - 0.05:
-            return ball + BESIDE_M * side + along * u  # sideways first
-        return ball + BESIDE_M * side - back * u  # then back, beside the ball
-    return ball - back * u
+    def strike_kick(self, world: WorldState) -> tuple[float, float]:
+        """(kick strength (fraction of ``kick_speed_max``), chip entry (elevation fraction of
+        ``chip_angle_max``, 0 flat)) of the STRIKE: flat, at the speed that reaches the
+        receiver's face at ``arrival_speed`` (default 1.5 m/s), by the ball model."""
+        p = self.params
+        reach = self.rp.front_distance + self.bp.radius
+        d = max(float(np.hypot(*(np.asarray(p.target_point, float) - world.ball_pos))) - reach, 0.0)
+        arrive = DEFAULT_ARRIVAL_SPEED if p.arrival_speed is None else float(p.arrival_speed)
+        speed = ball_model.kick_speed_for_arrival(d, arrive, self.bp, self.rp.kick_speed_max)
+        return min(max(speed / self.rp.kick_speed_max, 1e-3), 1.0), 0.0
 
 
 def heading_error_to(world: WorldState, robot: int, point) -> float:
@@ -265,4 +285,4 @@ def heading_error_to(world: WorldState, robot: int, point) -> float:
     return abs(wrap_angle(facing_towards(ts.pos[robot], np.asarray(point, float)) - float(ts.heading[robot])))
 
 
-__all__ = ["PassState", "PassParams", "PassInputs", "Pass", "BESIDE_M", "behind_ball_waypoint", "heading_error_to"]
+__all__ = ["PassState", "PassParams", "PassInputs", "Pass", "heading_error_to"]

@@ -85,7 +85,9 @@ def receiver_role(coord: PassCoordinator, priority: int = 94, tactic: type[Tacti
 def passing_attacker_role(coord: PassCoordinator, priority: int = 90, aim_open_goal: bool = False) -> RoleDef:
     """The carrier: :class:`~ssl_marl.plays.shoot.Attacker` steered by the coordinator's
     decision (hold fire, keep target and speed); ``aim_open_goal``: its shots aim at the
-    widest open part of the goal mouth (:class:`~ssl_marl.plays.shoot.ShootParams`)."""
+    widest open part of the goal mouth (:class:`~ssl_marl.plays.shoot.ShootParams`). A set
+    piece the coordinator opens no pass for it takes with one kick at the open goal
+    (``set_piece``, :class:`~ssl_marl.plays.shoot.AttackerParams`)."""
 
     def target(ctx: PlayContext) -> np.ndarray | None:
         return None if coord.plan is not None else np.asarray(ctx.ball, float)
@@ -94,7 +96,7 @@ def passing_attacker_role(coord: PassCoordinator, priority: int = 90, aim_open_g
         t.set_params(hold_fire=coord.hold_fire(), drive_forward_s=coord.params.settle_s,
                      keep_target=coord.keep_target(), keep_speed=coord.keep_speed(),
                      snap_shot=coord.params.snap_shot, aim_open_goal=aim_open_goal,
-                     aim_reach=coord.params.aim_reach, keep_tap_m=coord.params.keep_tap_m)
+                     aim_reach=coord.params.aim_reach, keep_tap_m=coord.params.keep_tap_m, set_piece=ctx.set_piece)
 
     return RoleDef("attacker", priority, Attacker, target, update=update)
 

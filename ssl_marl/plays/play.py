@@ -211,7 +211,13 @@ def goalie_role(priority: int = 100) -> RoleDef:
 
 
 def attacker_role(priority: int = 90) -> RoleDef:
-    return RoleDef("attacker", priority, Attacker, lambda ctx: np.asarray(ctx.ball, float))
+    """Go for the ball and shoot (:class:`~ssl_marl.plays.shoot.Attacker`); our set piece
+    it takes with one kick (``ctx.set_piece``)."""
+
+    def update(t: Tactic, ctx: PlayContext, a: Assignment) -> None:
+        t.set_params(set_piece=ctx.set_piece)
+
+    return RoleDef("attacker", priority, Attacker, lambda ctx: np.asarray(ctx.ball, float), update=update)
 
 
 # Cost (s of travel time) of leaving a mark or support role empty: far below the

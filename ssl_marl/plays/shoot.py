@@ -43,6 +43,7 @@ from ..skills.baseline import DriveForward
 from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance, heading_between_posts
 from ..skills.navigation import NavigateToPoint, NavParams, defense_rect, facing_towards, push_out_of_rect
 from .pass_decision import DecisionParams, open_goal_interval
+from .set_piece_kick import SetPieceKick, SetPieceState
 from .shot_lines import SHOT_REACTION_S, goal_line_targets, heading_goal_point, shot_line_margins
 from .tactic_base import NEAR_BALL_M, Tactic, skill_status
 
@@ -394,17 +395,53 @@ def govern_approach(action: np.ndarray, world: WorldState, robot: int, rp, bp, v
     return a
 
 
+@dataclass(frozen=True)
+class AttackerParams(ShootParams):
+    """:class:`ShootParams` and:
+
+    Attributes:
+        set_piece: the referee gave our team a kickoff or free kick not taken yet; the
+            attacker takes it with one kick
+            (:class:`~ssl_marl.plays.set_piece_kick.SetPieceKick`, aimed at the open goal)
+            instead of its machine, which would carry the ball off on the dribbler (a
+            double touch by the rules). Plays set it every tick from ``ctx.set_piece``.
+    """
+
+    set_piece: bool = False
+
+
 class Attacker(GoToBallAndShoot):
     """Attacker role: :class:`GoToBallAndShoot` that waits outside the own defense area
-    while the ball is in it (the goalie clears it) and does not drive the ball over the
-    lines in DRIVE_FORWARD (``safe_drive_forward``)."""
+    while the ball is in it (the goalie clears it), does not drive the ball over the
+    lines in DRIVE_FORWARD (``safe_drive_forward``) and takes our set pieces with one
+    kick (``set_piece``); when the set piece ends the machine starts again from
+    GO_TO_BALL. The team controller keeps a set piece's kicker off the ball-taking roles
+    until another robot has touched the ball (the double-touch rule)."""
 
     name = "attacker"
+    Params = AttackerParams
+    takes_ball = True
 
     def __init__(self, field, robot=None, ball=None, skills="baseline", dt: float = 1.0 / 60.0, **params) -> None:
         params.setdefault("keep_out_of_own_defense_area", True)
         params.setdefault("safe_drive_forward", True)
+        self._in_set_piece = False
         super().__init__(field, robot, ball, skills, dt, **params)
+        self.set_piece_kick = SetPieceKick(self.field, self.rp, self.bp, dt=self.dt)
+
+    def act(self, world: WorldState, robot: int) -> np.ndarray:
+        if not self.params.set_piece:
+            if self._in_set_piece:
+                self._in_set_piece = False
+                self.set_piece_kick.reset()
+                self.reset()
+            return super().act(world, robot)
+        self._in_set_piece = True
+        before = self.set_piece_kick.state
+        a = self.set_piece_kick.act(world, robot)
+        self._kicked = before is not SetPieceState.DONE and self.set_piece_kick.state is SetPieceState.DONE
+        self._kicks += int(self._kicked)
+        return a
 
 
 def free_distance_ahead(point: np.ndarray, heading: float, field) -> float:
@@ -427,5 +464,5 @@ def free_distance_ahead(point: np.ndarray, heading: float, field) -> float:
     return float(t)
 
 
-__all__ = ["ShootState", "ShootParams", "ShootInputs", "GoToBallAndShoot", "Attacker",
+__all__ = ["ShootState", "ShootParams", "ShootInputs", "GoToBallAndShoot", "AttackerParams", "Attacker",
            "free_distance_ahead"]

@@ -78,6 +78,10 @@ class Tactic:
     #: skills (names in :func:`~ssl_marl.plays.skillset.swappable_skills`) the tactic builds;
     #: a team checks that they can be built (e.g. a learned actor exists) before kickoff.
     uses_skills: ClassVar[tuple[str, ...]] = ()
+    #: the tactic goes for the ball (attacker, passer): the team controller keeps the robot
+    #: that took our set piece off such roles until another robot has touched the ball
+    #: (but lets it keep one whose tactic is done with the ball: :attr:`wants_ball`)
+    takes_ball: ClassVar[bool] = False
     State: ClassVar[type[enum.Enum]]
     Params: ClassVar[type]
     initial_state: ClassVar[enum.Enum]
@@ -119,6 +123,11 @@ class Tactic:
     @property
     def status(self) -> TacticStatus:
         return TacticStatus(self.state, self._time_in_state, self._kicks, self._kicked, self._transitions)
+
+    @property
+    def wants_ball(self) -> bool:
+        """Whether the tactic will still go for the ball (default: :attr:`takes_ball`)."""
+        return self.takes_ball
 
     def reset(self) -> None:
         """Back to ``initial_state``, counters cleared, skills reset (params kept)."""

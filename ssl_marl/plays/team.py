@@ -19,7 +19,11 @@ Each tick:
 5. while the referee (an env's ``task.referee_state``, :mod:`ssl_marl.envs.game_control`)
    says STOP, or a kickoff / free kick for the other team, :func:`keep_clear` makes
    every robot keep 0.5 m from the ball (the kicking team's robots play on, so its
-   nearest robot takes the kick).
+   nearest robot takes the kick); during our kickoff or free kick the robots but its
+   kicker (the ``takes_ball`` tactic: attacker or passer) keep clear of the ball too. The
+   robot that took our set piece gets no role whose tactic goes for the ball
+   (``takes_ball``) until another robot has touched the ball
+   (:attr:`TeamController.set_piece_guard`; the rules' double touch).
 
 Every team outside unit tests is built by :func:`build_team` from a :class:`TeamSpec`:
 its plays (a :class:`PlaysFactory`), its skill set, and its ball carrier's decision
@@ -31,10 +35,11 @@ from there).
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import Any, Protocol, Sequence
+from typing import Any, Collection, Protocol, Sequence
 
 import numpy as np
 
+from ..envs.game_control import RUNNING, touch_reach, touching_robots
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..physics.state import TEAMS, WorldState, to_team_frame
@@ -57,6 +62,11 @@ def required_skills(plays: Sequence[Play]) -> tuple[str, ...]:
                 if name not in names:
                     names.append(name)
     return tuple(names)
+
+
+#: m of slack on the touch reach when the team looks for its set piece's taker: the world
+#: it sees lags (vision latency) a robot driving into the ball by a tick or two
+TAKER_SLACK_M = 0.04
 
 
 class TeamController:
@@ -107,6 +117,14 @@ class TeamController:
         self.assignment: Assignment | None = None
         self.play: Play | None = None
         self.context: PlayContext | None = None
+        self._forget_set_piece()
+
+    def _forget_set_piece(self) -> None:
+        #: our robot that took our last set piece and may not touch the ball before another
+        #: robot has (None: nobody guarded); it takes no ``takes_ball`` role meanwhile
+        self.set_piece_guard: int | None = None
+        self._set_piece_taker: int | None = None
+        self._was_set_piece = False
 
     def new_episode(self) -> None:
         """The env was reset (detected from simulated time going back): drop tactics,
@@ -114,6 +132,7 @@ class TeamController:
         self._tactics = {}
         self._previous = {}
         self.assignment = self.play = self.context = None
+        self._forget_set_piece()
         self.selector.new_episode()
 
     # ------------------------------------------------------------- queries
@@ -143,6 +162,36 @@ class TeamController:
             for _ in range(max(score.get(other, 0) - self._score_seen.get(other, 0), 0)):
                 self.notify_goal(False)
         self._score_seen = dict(score)
+
+    # ------------------------------------------------------- double touch
+    def _watch_set_piece_kicker(self, world: WorldState, referee: Any, set_piece: bool) -> None:
+        """Keep :attr:`set_piece_guard`: the robot of ours that took our last kickoff or
+        free kick (the last of ours within a touch of the ball, plus ``TAKER_SLACK_M``,
+        while the set piece lasted), until another robot (either team's) touches the ball
+        or the referee gives a new command; the SSL rules call the kicker's second touch
+        before that a double touch. Without a referee nothing is guarded."""
+        running = referee is not None and referee.command == RUNNING
+        ours = world.team(self.team)
+        reach = touch_reach(self.rp.radius, self.bp.radius)
+        touching = touching_robots(ours.pos, world.ball_pos, world.ball_height, ours.ball_on_dribbler, reach)
+        if set_piece:  # the taker: ours nearest the ball, within a touch and the tracker's error
+            d = np.hypot(*(ours.pos - world.ball_pos).T)
+            i = int(np.argmin(d))
+            if d[i] <= reach + TAKER_SLACK_M:
+                self._set_piece_taker = i
+            self.set_piece_guard = None
+        elif self._was_set_piece and running:
+            self.set_piece_guard, self._set_piece_taker = self._set_piece_taker, None
+        elif not running:
+            self.set_piece_guard, self._set_piece_taker = None, None
+        self._was_set_piece = set_piece
+        g = self.set_piece_guard
+        if g is not None and not set_piece:
+            theirs = world.opponents(self.team)
+            others = np.delete(touching, g).any() or touching_robots(
+                theirs.pos, world.ball_pos, world.ball_height, theirs.ball_on_dribbler, reach).any()
+            if others:
+                self.set_piece_guard = None
 
     # ----------------------------------------------------------------- tick
     def team_world(self, env_or_world: Any) -> WorldState:
@@ -179,10 +228,11 @@ class TeamController:
         if ours.n != self.n:
             raise ValueError(f"TeamController({self.team!r}) was built for {self.n} robots, the world has {ours.n}")
         referee = getattr(getattr(env_or_world, "task", None), "referee_state", None)
+        set_piece = referee is not None and referee.is_set_piece_for(self.team)
+        self._watch_set_piece_kicker(world, referee, set_piece)
         ctx = make_context(world, self.team, self.field, self.rp)
         ctx = replace(ctx, role_status={role: tactic.status for role, _, tactic in self._tactics.values()},
-                      role_holders={role: i for i, (role, _, _) in self._tactics.items()},
-                      set_piece=referee is not None and referee.is_set_piece_for(self.team))
+                      role_holders={role: i for i, (role, _, _) in self._tactics.items()}, set_piece=set_piece)
         play = self.selector.select(ctx, world.t)
         if play.prepare is not None:
             play.prepare(ctx)
@@ -190,7 +240,12 @@ class TeamController:
         slots = [RoleSlot(r.name, r.priority, r.unfilled_cost) for r, _ in active]
         cost = np.vstack([r.costs(ctx, tgt) for r, tgt in active]) if active else np.zeros((0, self.n))
         fixed = {r.name: r.fixed_robot for r, _ in active if r.fixed_robot is not None}
-        assignment = assign(range(self.n), slots, cost, fixed=fixed, previous=self._previous,
+        guard = self.set_piece_guard
+        held = self._tactics.get(guard) if guard is not None else None
+        kept = held[0] if held is not None and not held[2].wants_ball else None  # e.g. a passer that has kicked
+        forbidden = [(r.name, guard) for r, _ in active if guard is not None and r.name != kept
+                     and getattr(r.tactic, "takes_ball", False) and r.fixed_robot != guard]
+        assignment = assign(range(self.n), slots, cost, fixed=fixed, forbidden=forbidden, previous=self._previous,
                             stickiness=self.stickiness)
         self._previous = dict(assignment.roles)
         self.play, self.context, self.assignment = play, ctx, assignment
@@ -213,6 +268,9 @@ class TeamController:
             actions[self.agents[i]] = tactic.act(world, i)
         if referee is not None and referee.must_keep_clear(self.team):
             keep_clear(actions, self.agents, world, self.team, self.rp.max_speed)
+        elif set_piece:  # our set piece: only its kicker goes to the ball
+            kickers = [i for i, (_, _, tactic) in self._tactics.items() if tactic.takes_ball]
+            keep_clear(actions, self.agents, world, self.team, self.rp.max_speed, exempt=kickers)
         return actions
 
 
@@ -222,7 +280,8 @@ KEEP_CLEAR_M = 0.6
 
 
 def keep_clear(actions: dict[str, np.ndarray], agents: Sequence[str], world: WorldState, team: str,
-               max_speed: float, brake: float = 2.0, clearance: float = KEEP_CLEAR_M) -> None:
+               max_speed: float, brake: float = 2.0, clearance: float = KEEP_CLEAR_M,
+               exempt: Collection[int] = ()) -> None:
     """Edit ``actions`` in place so that ``team``'s robots obey STOP (SSL rules: 0.5 m
     from the ball). A robot's commanded speed towards the ball is capped at
     sqrt(2 ``brake`` (d - ``clearance``)) (m/s; d its distance to the ball, m), so it
@@ -232,10 +291,13 @@ def keep_clear(actions: dict[str, np.ndarray], agents: Sequence[str], world: Wor
     the velocity controller limits the acceleration's norm); within it the robot moves straight away at
     half ``max_speed``; kicking and dribbling are switched off. ``world`` is in the
     team's frame, actions are normalised body-frame (vx, vy, omega, dribble, kick),
-    ``max_speed`` (m/s) is the speed of a normalised 1."""
+    ``max_speed`` (m/s) is the speed of a normalised 1; robots whose indices are in
+    ``exempt`` (our set piece's kicker) keep their actions."""
     ours = world.team(team)
     reach = clearance + max_speed ** 2 / (2 * brake)
     for i, name in enumerate(agents):
+        if i in exempt:
+            continue
         d = ours.pos[i] - world.ball_pos
         dist = float(np.hypot(d[0], d[1]))
         if dist >= reach:

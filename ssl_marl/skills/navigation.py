@@ -55,6 +55,9 @@ class NavParams:
         avoid_own_defense: keep out of the own defense area (False for the goalie).
         avoid_opp_defense: keep out of the opponent's defense area (SSL rule for
             positioning; the attacker's ball skills ignore it).
+        run_off: targets may lie this far beyond the field lines, in the run-off area
+            between the lines and the wall (m; 0: inside the lines). A set piece's kicker
+            stands behind a ball placed 0.2 m inside them.
     """
 
     clearance: float = 0.25
@@ -64,6 +67,7 @@ class NavParams:
     defense_margin: float = 0.12
     avoid_own_defense: bool = True
     avoid_opp_defense: bool = True
+    run_off: float = 0.0
 
 
 def defense_rect(field: FieldGeometry, side: int, margin: float) -> tuple[float, float, float, float]:
@@ -103,10 +107,11 @@ def push_out_of_rect(p: np.ndarray, rect: tuple[float, float, float, float]) -> 
 
 
 def sanitize_target(target: np.ndarray, field: FieldGeometry, params: NavParams) -> np.ndarray:
-    """Clamp ``target`` into the playing area and out of the defense areas ``params`` forbids."""
+    """Clamp ``target`` into the playing area (grown by ``params.run_off``) and out of the
+    defense areas ``params`` forbids."""
     # the numbers of clamp_to_field / push_out_of_rect / clamp_to_field, on Python floats
     x, y = np.asarray(target, dtype=float).tolist()
-    hx, hy = field.half_length, field.half_width
+    hx, hy = field.half_length + params.run_off, field.half_width + params.run_off
     x, y = min(max(x, -hx), hx), min(max(y, -hy), hy)
     for side, avoid in ((-1, params.avoid_own_defense), (1, params.avoid_opp_defense)):
         if avoid:

@@ -252,6 +252,12 @@ class MatchTask(Task):
             self._command(RUNNING, None, None, truth.t, events)
             self._touch.taken_by(taker)
             self._restart_watch(env)
+            if r.fouls and taker is not None and self._touch.carries(truth, taker, kicked):
+                offender = str(self._touch.teams[taker])  # in contact over the 0.05 m: a double touch
+                place = placement_point(truth.ball_pos, f)
+                events.append({"type": "foul", "foul": "double_touch", "team": offender,
+                               "agent": env.possible_agents[taker], "t": truth.t, "placement": place.tolist()})
+                self._restart(env, place, other(offender), truth.t, events)
         return False
 
     def _free_kick_team(self, truth) -> str:
