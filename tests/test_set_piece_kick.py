@@ -201,3 +201,37 @@ def test_the_kicker_takes_no_ball_role_until_another_robot_touches_the_ball():
             break
     assert kicker is not None and guarded_ticks > 0 and yellow.set_piece_guard is None
     assert "double_touch" not in fouls
+
+
+def test_a_wall_stands_between_the_opponents_free_kick_and_our_goal():
+    """Blue (the baseline team, three robots) defends yellow's free kick: within 3 s of the
+    command a blue robot stands within 0.1 m of the wall spot (0.65 m from the ball towards
+    blue's goal), and seen from the ball no part of blue's goal mouth is left open."""
+    from ssl_marl.plays.pass_decision import open_goal_interval
+    from ssl_marl.plays.set_piece_kick import SHOT_OPEN_MIN_RAD
+    from ssl_marl.plays.wall import wall_spot
+    from ssl_marl.runners.controllers import make_controller
+
+    env = parallel_env(n_blue=3, n_yellow=1, max_time_s=30.0, ssl_restarts=True, fouls=True, stop_s=0.5)
+    W2 = F.half_width
+    env.reset(seed=1, options={"ball": {"pos": (1.0, W2 - 0.12), "vel": (0.0, 2.0)},
+                               "robots": {"blue_0": (-4.0, 0.0, 0.0), "blue_1": (1.0, W2 - 0.22, math.pi / 2),
+                                          "blue_2": (-1.0, -1.0, 0.0), "yellow_0": (3.0, 0.0, math.pi)}})
+    blue = make_controller("baseline", "blue", 3, F)
+    since = None  # blue idles until the ball has gone out off it and yellow has the free kick
+    while env.agents and env.world_state().t < 10.0:
+        st = env.task.referee_state
+        if st.command == FREE_KICK and st.team == "yellow":
+            since = st.since if since is None else since
+            if env.world_state().t - since >= 3.0:
+                break
+        idle = {a: make_action() for a in env.agents}
+        env.step({**idle, **(blue.act(env) if since is not None else {})})
+    assert since is not None and env.task.referee_state.command == FREE_KICK
+    w = to_team_frame(env.world_state(), "blue")
+    spot = wall_spot(w.ball_pos, F)
+    assert float(np.min(np.hypot(*(w.blue.pos - spot).T))) < 0.1
+    assert "wall_0" in blue.roles.values()
+    mirrored = np.array([-1.0, -1.0])  # open_goal_interval looks at the +x goal: turn the field round
+    open_angle, _ = open_goal_interval(w.ball_pos * mirrored, w.blue.pos * mirrored, F, RP, BP)
+    assert open_angle < SHOT_OPEN_MIN_RAD

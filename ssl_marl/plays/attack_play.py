@@ -53,7 +53,7 @@ from .pass_decision import Choice, Decision, PassOption
 from .passing_play import restart_applicable
 from .passing_roles import passer_role, passing_attacker_role, receiver_role
 from .play import (OPTIONAL_ROLE_UNFILLED_COST, Play, PlayContext, RoleDef, defender_role, defense_play, goalie_role,
-                   mark_role, offense_applicable)
+                   mark_role, offense_applicable, wall_role)
 from .receive_tactic import ReceiveState
 from .redirect_tactic import Redirect
 from .spot_rating import SpotParams, assign_spots, candidate_grid
@@ -233,8 +233,8 @@ def spot_support_role(k: int, planner: SpotPlanner, priority: int) -> RoleDef:
 def attack_roles(coord: PassCoordinator, decider: AttackDecider, planner: SpotPlanner) -> tuple[RoleDef, ...]:
     """The roles of the attacking plays, in priority order (as the passing plays')."""
     return (goalie_role(100), chip_passer_role(coord, decider, 95), redirect_receiver_role(coord, decider, 94),
-            passing_attacker_role(coord, 90, aim_open_goal=True), defender_role(0, 80),
-            spot_support_role(0, planner, 80), spot_support_role(1, planner, 70), defender_role(1, 70),
+            passing_attacker_role(coord, 90, aim_open_goal=True), wall_role(0, 85), defender_role(0, 80),
+            spot_support_role(0, planner, 80), wall_role(1, 75), spot_support_role(1, planner, 70), defender_role(1, 70),
             mark_role(0, 60, ball_bias=0.0), spot_support_role(2, planner, 60), mark_role(1, 50, ball_bias=0.0),
             defender_role(2, 50), spot_support_role(3, planner, 40), mark_role(2, 40, ball_bias=0.0))
 

@@ -17,7 +17,7 @@ import numpy as np
 from .assignment import Assignment
 from .pass_coordinator import PassCoordinator, PassPhase, PassPlan
 from .pass_tactic import Pass
-from .play import PlayContext, RoleDef, defender_role, goalie_role, mark_role, _filled_index, _support_band
+from .play import PlayContext, RoleDef, defender_role, goalie_role, mark_role, wall_role, _filled_index, _support_band
 from .receive_tactic import Receive, ReceiveState
 from .shoot import Attacker
 from .support import Support
@@ -121,9 +121,9 @@ def passing_support_role(k: int, priority: int) -> RoleDef:
 def passing_roles(coord: PassCoordinator) -> tuple[RoleDef, ...]:
     """The roles of the passing plays, in priority order, sharing ``coord``."""
     return (goalie_role(100), passer_role(coord, 95), receiver_role(coord, 94), passing_attacker_role(coord, 90),
-            defender_role(0, 80), passing_support_role(0, 80), passing_support_role(1, 70), defender_role(1, 70),
-            mark_role(0, 60), passing_support_role(2, 60), mark_role(1, 50), defender_role(2, 50),
-            passing_support_role(3, 40), mark_role(2, 40))
+            wall_role(0, 85), defender_role(0, 80), passing_support_role(0, 80), wall_role(1, 75),
+            passing_support_role(1, 70), defender_role(1, 70), mark_role(0, 60), passing_support_role(2, 60),
+            mark_role(1, 50), defender_role(2, 50), passing_support_role(3, 40), mark_role(2, 40))
 
 
 __all__ = ["PROHIBITIVE_COST", "passer_role", "receiver_role", "passing_attacker_role", "passing_support_role",

@@ -40,6 +40,7 @@ from .assignment import DEFAULT_UNFILLED_COST, Assignment
 from .defense import Defender, Goalie, Mark, MarkParams, block_position, goalie_guard_position, mark_position
 from .shoot import Attacker
 from .support import Support, SupportParams
+from .wall import Wall, wall_spot
 from .tactic_base import Tactic, TacticStatus
 
 HAS_BALL_MARGIN_S = 0.25  # overlap band of the offense/defense predicates (s of time-to-ball)
@@ -68,6 +69,7 @@ class PlayContext:
         set_piece: the referee gave us a kickoff or free kick that is not taken yet (the
             opponents keep 0.5 m from the ball until it is; SSL game control, filled by
             the team controller from the env's referee state; False without one).
+        their_set_piece: the same for the opponents (we keep 0.5 m; the wall roles exist).
     """
 
     team: str
@@ -84,6 +86,7 @@ class PlayContext:
     role_status: Mapping[str, TacticStatus] = field(default_factory=dict)
     role_holders: Mapping[str, int] = field(default_factory=dict)
     set_piece: bool = False
+    their_set_piece: bool = False
 
     @property
     def ball(self) -> np.ndarray:
@@ -259,6 +262,35 @@ def mark_role(k: int, priority: int, ball_bias: float = MarkParams.ball_bias) ->
     return RoleDef(name, priority, Mark, target, update=update, unfilled_cost=OPTIONAL_ROLE_UNFILLED_COST)
 
 
+#: a second wall robot stands while the ball is this close to our goal centre (m): from
+#: farther out one robot shadows the whole Division B goal (plays/wall.py)
+SECOND_WALL_M = 3.5
+
+
+def wall_role(k: int, priority: int) -> RoleDef:
+    """The ``k``-th robot (0 or 1) of the wall against the opponents' set piece
+    (:class:`~ssl_marl.plays.wall.Wall`), only while ``ctx.their_set_piece``; the second
+    only while the ball lies within :data:`SECOND_WALL_M` of our goal, the two side by side
+    (a robot diameter plus 1 cm apart)."""
+    name = f"wall_{k}"
+
+    def wanted(ctx: PlayContext) -> bool:
+        near = float(np.hypot(*(ctx.ball - ctx.field.goal_center(-1)))) < SECOND_WALL_M
+        return ctx.their_set_piece and (k == 0 or near)
+
+    def offset(ctx: PlayContext) -> float:
+        two = ctx.their_set_piece and float(np.hypot(*(ctx.ball - ctx.field.goal_center(-1)))) < SECOND_WALL_M
+        return ((k - 0.5) * (2 * ctx.robot.radius + 0.01)) if two else 0.0
+
+    def target(ctx: PlayContext) -> np.ndarray | None:
+        return wall_spot(ctx.ball, ctx.field, offset(ctx)) if wanted(ctx) else None
+
+    def update(t: Tactic, ctx: PlayContext, a: Assignment) -> None:
+        t.set_params(lane_offset=offset(ctx))
+
+    return RoleDef(name, priority, Wall, target, update=update, unfilled_cost=OPTIONAL_ROLE_UNFILLED_COST)
+
+
 def _support_band(field: FieldGeometry, i: int, m: int) -> tuple[float, float]:
     w = field.width / m
     lo = -field.half_width + i * w
@@ -303,8 +335,8 @@ def kickoff_applicable(ctx: PlayContext) -> bool:
 
 def offense_play() -> Play:
     """Attacker, supports in the opponent half, defenders, goalie."""
-    roles = (goalie_role(100), attacker_role(90), defender_role(0, 80), support_role(0, 80),
-             support_role(1, 70), defender_role(1, 70), mark_role(0, 60), support_role(2, 60),
+    roles = (goalie_role(100), attacker_role(90), wall_role(0, 85), defender_role(0, 80), support_role(0, 80),
+             wall_role(1, 75), support_role(1, 70), defender_role(1, 70), mark_role(0, 60), support_role(2, 60),
              mark_role(1, 50), defender_role(2, 50), support_role(3, 40), mark_role(2, 40))
     return Play("offense", offense_applicable, roles)
 
@@ -313,16 +345,16 @@ def defense_play(mark_ball_bias: float = MarkParams.ball_bias) -> Play:
     """Goalie, two defenders on the shot lane, marks on the most dangerous opponents
     (``mark_ball_bias``: :func:`mark_role`), an attacker pressing the ball."""
     b = mark_ball_bias
-    roles = (goalie_role(100), attacker_role(90), defender_role(0, 80), defender_role(1, 80),
-             mark_role(0, 70, b), mark_role(1, 70, b), mark_role(2, 60, b), defender_role(2, 60),
+    roles = (goalie_role(100), attacker_role(90), wall_role(0, 85), defender_role(0, 80), defender_role(1, 80),
+             wall_role(1, 75), mark_role(0, 70, b), mark_role(1, 70, b), mark_role(2, 60, b), defender_role(2, 60),
              mark_role(3, 50, b), support_role(0, 50), mark_role(4, 40, b), support_role(1, 40))
     return Play("defense", defense_applicable, roles)
 
 
 def kickoff_play() -> Play:
     """Neutral restart: attacker goes for the ball, a balanced shape behind it."""
-    roles = (goalie_role(100), attacker_role(90), defender_role(0, 80), support_role(0, 80),
-             defender_role(1, 70), support_role(1, 70), mark_role(0, 60), support_role(2, 60),
+    roles = (goalie_role(100), attacker_role(90), wall_role(0, 85), defender_role(0, 80), support_role(0, 80),
+             wall_role(1, 75), defender_role(1, 70), support_role(1, 70), mark_role(0, 60), support_role(2, 60),
              mark_role(1, 50), defender_role(2, 50), support_role(3, 40), mark_role(2, 40))
     return Play("kickoff", kickoff_applicable, roles, priority=1)
 
@@ -442,6 +474,6 @@ class PlaySelector:
 
 
 __all__ = ["PlayContext", "make_context", "time_to_reach", "RoleDef", "Play", "PlaySelector", "PlayStats",
-           "goalie_role", "attacker_role", "defender_role", "mark_role", "support_role", "offense_play",
+           "goalie_role", "attacker_role", "wall_role", "SECOND_WALL_M", "defender_role", "mark_role", "support_role", "offense_play",
            "defense_play", "kickoff_play", "standard_plays", "offense_applicable", "defense_applicable",
            "kickoff_applicable"]

@@ -39,7 +39,7 @@ from typing import Any, Collection, Protocol, Sequence
 
 import numpy as np
 
-from ..envs.game_control import RUNNING, touch_reach, touching_robots
+from ..envs.game_control import RUNNING, other, touch_reach, touching_robots
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 from ..physics.state import TEAMS, WorldState, to_team_frame
@@ -232,7 +232,8 @@ class TeamController:
         self._watch_set_piece_kicker(world, referee, set_piece)
         ctx = make_context(world, self.team, self.field, self.rp)
         ctx = replace(ctx, role_status={role: tactic.status for role, _, tactic in self._tactics.values()},
-                      role_holders={role: i for i, (role, _, _) in self._tactics.items()}, set_piece=set_piece)
+                      role_holders={role: i for i, (role, _, _) in self._tactics.items()}, set_piece=set_piece,
+                      their_set_piece=referee is not None and referee.is_set_piece_for(other(self.team)))
         play = self.selector.select(ctx, world.t)
         if play.prepare is not None:
             play.prepare(ctx)

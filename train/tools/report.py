@@ -189,6 +189,10 @@ SET_PIECE_SERIES = ["match_attack_learned_vs_baseline_600_ssl_058d181", "match_a
                     "match_attack_learned_vs_baseline_600_ssl_20261127"]
 SSL_FOULS_104100 = [("before the defender call and the braking fix", "match_attack_learned_vs_baseline_600_ssl_104100_8b7f0e3"),
                     ("with them", "match_attack_learned_vs_baseline_600_ssl_104100")]
+SSL_SET_PIECES_104100 = [("set pieces carried off, a kicker's second touch after letting go called",
+                          "match_attack_learned_vs_baseline_600_ssl_104100"),
+                         ("set pieces kicked, a kicker still in contact called too",
+                          "match_attack_learned_vs_baseline_600_ssl_104100_7e3a165")]
 KEEPAWAY = [("random", "keepaway_random"), ("always-hold", "keepaway_always-hold"),
             ("hand-coded", "keepaway_handcoded"), ("learned (shipped `keepaway.pt`, MAPPO seed 1)", "keepaway_learned")]
 ATTACK = [("hand-coded (cost decision, shot threshold 0.25)", "attack_3v2_handcoded_snap"),
@@ -481,7 +485,10 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "pass_options": lambda r: m.pass_options(r, ["pass_option_probe.json", "pass_option_probe_guard1.json"]),
     "set_piece_series": lambda r: m.set_piece_series(r, SET_PIECE_SERIES),
     "ssl_fouls_104100": lambda r: m.ssl_fouls_series(r, SSL_FOULS_104100),
-    "set_piece_probe": lambda r: m.set_piece_probe(r, ["set_piece_probe.json", "set_piece_probe_passing.json"]),
+    "set_piece_probe": lambda r: m.set_piece_probe(r, ["set_piece_probe_6b6ee3b.json",
+                                                       "set_piece_probe_passing_6b6ee3b.json"]),
+    "set_piece_probe_kicked": lambda r: m.set_piece_probe(r, ["set_piece_probe.json", "set_piece_probe_passing.json"]),
+    "ssl_set_pieces_104100": lambda r: m.ssl_fouls_series(r, SSL_SET_PIECES_104100),
     "attack_skill_swaps": lambda r: m.series_600(r, ATTACK_SKILL_SWAPS),
     "attack_skill_swaps_98": lambda r: m.series_600(r, ATTACK_SKILL_SWAPS_98),
     "go_to_ball_rolling_selection": lambda r: t.rolling_selection(r, {

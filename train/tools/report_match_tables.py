@@ -381,21 +381,24 @@ def ssl_fouls_series(results: Path, rows_spec: Iterable[tuple[str, str]]) -> Lin
 
 def set_piece_probe(results: Path, files: Iterable[str]) -> Lines:
     """``benchmarks/set_piece_probe.py`` records (``results/tuning/<file>``): per team, how
-    its free kicks were taken (kicked; released by a bump; carried off in contact, a double
-    touch by the rules; timed out)."""
-    rows = _head("teams", "seeds", "commit", "team", "free kicks", "kicked", "released", "carried (double touch by the rules)",
-                 "timed out")
+    its set pieces (free kicks and kickoffs; records of code that announced no kickoff count
+    none) were taken (kicked; released by a bump; carried off in contact, a double touch by
+    the rules; timed out)."""
+    rows = _head("teams", "seeds", "commit", "team", "set pieces (kickoffs)", "kicked", "released",
+                 "carried (double touch by the rules)", "timed out")
     for file in files:
         d = json.loads((results / "tuning" / file).read_text())
         s, man = d["summary"], d["manifest"]
         seeds = man["seeds"]["seeds"]
         rules = man["rules"]
         for team in ("blue", "yellow"):
-            c = {how: s.get(f"{team}_free_kick_{how}", 0) for how in ("kick", "released", "carried", "timeout")}
+            hows = ("kick", "released", "carried", "timeout")
+            c = {how: s.get(f"{team}_free_kick_{how}", 0) + s.get(f"{team}_kickoff_{how}", 0) for how in hows}
+            kickoffs = sum(s.get(f"{team}_kickoff_{how}", 0) for how in hows)
             n = sum(c.values())
             pct = lambda k: f"{c[k]} ({100 * c[k] / max(n, 1):.0f} %)"  # noqa: E731
             rows.append(f"| {rules['blue']} vs {rules['yellow']} | {min(seeds)}-{max(seeds)} | "
-                        f"{man['git']['commit'][:7]} | {rules[team]} ({team}) | {n} | {pct('kick')} | "
+                        f"{man['git']['commit'][:7]} | {rules[team]} ({team}) | {n} ({kickoffs}) | {pct('kick')} | "
                         f"{pct('released')} | {pct('carried')} | {pct('timeout')} |")
     return rows
 
