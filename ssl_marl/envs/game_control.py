@@ -8,8 +8,8 @@ Switched on by ``MatchRules.ssl_restarts`` (commands and free kicks) and
 Commands (:class:`RefereeState`, field frame)
     ``RUNNING``: play on. ``KICKOFF(team)``: after a goal (to the team that conceded)
     and at the start of each half (blue first, yellow after half-time). ``STOP``: before
-    every free kick, ``stop_s`` long; all robots keep ``RESTART_CLEARANCE`` (0.5 m) from
-    the ball. ``FREE_KICK(team)``: the kicking team's robots may approach the ball, the
+    every free kick, ``stop_s`` long, announcing it (``next_command``, ``next_team``); all
+    robots keep ``RESTART_CLEARANCE`` (0.5 m) from the ball. ``FREE_KICK(team)``: the kicking team's robots may approach the ball, the
     other team keeps 0.5 m. A kickoff or free kick is taken once the ball has moved
     ``IN_PLAY_DISTANCE`` (0.05 m, the rules' "ball in play") from its spot; after
     ``free_kick_timeout_s`` without that, play runs on (the rules' timeout for
@@ -106,12 +106,16 @@ class RefereeState:
         team: the team a KICKOFF / FREE_KICK is for (None for RUNNING and STOP).
         position: the designated ball position (m, field frame) of a restart, or None.
         since: simulated time (s) the command was given.
+        next_command, next_team: during a STOP, the set piece that follows it and its team
+            (the SSL referee message's ``next_command``), else None.
     """
 
     command: str = RUNNING
     team: str | None = None
     position: tuple[float, float] | None = None
     since: float = 0.0
+    next_command: str | None = None
+    next_team: str | None = None
 
     def must_keep_clear(self, team: str) -> bool:
         """True when ``team``'s robots must keep 0.5 m from the ball: STOP, or a
@@ -122,9 +126,15 @@ class RefereeState:
         """True during a kickoff or free kick for ``team`` (not yet taken)."""
         return self.command in (KICKOFF, FREE_KICK) and self.team == team
 
+    def set_piece_coming_for(self, team: str) -> bool:
+        """True during a kickoff or free kick for ``team``, or a STOP before one."""
+        return self.is_set_piece_for(team) or (self.command == STOP and self.next_command in (KICKOFF, FREE_KICK)
+                                               and self.next_team == team)
+
     def to_dict(self) -> dict:
         return {"command": self.command, "team": self.team,
-                "position": None if self.position is None else list(self.position), "since": self.since}
+                "position": None if self.position is None else list(self.position), "since": self.since,
+                "next_command": self.next_command, "next_team": self.next_team}
 
 
 class TouchWatch:

@@ -192,7 +192,9 @@ SSL_FOULS_104100 = [("before the defender call and the braking fix", "match_atta
 SSL_SET_PIECES_104100 = [("set pieces carried off, a kicker's second touch after letting go called",
                           "match_attack_learned_vs_baseline_600_ssl_104100"),
                          ("set pieces kicked, a kicker still in contact called too",
-                          "match_attack_learned_vs_baseline_600_ssl_104100_7e3a165")]
+                          "match_attack_learned_vs_baseline_600_ssl_104100_7e3a165"),
+                         ("and a wall against the other side's set pieces",
+                          "match_attack_learned_vs_baseline_600_ssl_104100_46fa628")]
 KEEPAWAY = [("random", "keepaway_random"), ("always-hold", "keepaway_always-hold"),
             ("hand-coded", "keepaway_handcoded"), ("learned (shipped `keepaway.pt`, MAPPO seed 1)", "keepaway_learned")]
 ATTACK = [("hand-coded (cost decision, shot threshold 0.25)", "attack_3v2_handcoded_snap"),

@@ -189,9 +189,9 @@ class MatchTask(Task):
 
     # ------------------------------------------------------------ SSL game control
     def _command(self, command: str, team: str | None, position: np.ndarray | None, t: float,
-                 events: list[dict] | None) -> None:
+                 events: list[dict] | None, next_command: str | None = None, next_team: str | None = None) -> None:
         pos = None if position is None else (float(position[0]), float(position[1]))
-        self.referee_state = RefereeState(command, team, pos, float(t))
+        self.referee_state = RefereeState(command, team, pos, float(t), next_command, next_team)
         if position is not None:
             self._spot = np.array(pos)
         if events is not None:
@@ -278,6 +278,6 @@ class MatchTask(Task):
             return
         self._pending_free_kick, self._pending_command = team, command
         if self.rules.stop_s > 0:
-            self._command(STOP, None, place, t, events)
+            self._command(STOP, None, place, t, events, next_command=command, next_team=team)
         else:
             self._command(command, team, place, t, events)
