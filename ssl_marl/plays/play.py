@@ -69,8 +69,8 @@ class PlayContext:
         set_piece: the referee gave us a kickoff or free kick that is not taken yet (the
             opponents keep 0.5 m from the ball until it is; SSL game control, filled by
             the team controller from the env's referee state; False without one).
-        their_set_piece: the opponents have a kickoff or free kick not taken yet, or the
-            STOP before one (we keep 0.5 m; the wall roles exist).
+        their_set_piece: the opponents have a kickoff or free kick not taken yet (we keep
+            0.5 m; the wall roles exist).
     """
 
     team: str

@@ -233,7 +233,7 @@ class TeamController:
         ctx = make_context(world, self.team, self.field, self.rp)
         ctx = replace(ctx, role_status={role: tactic.status for role, _, tactic in self._tactics.values()},
                       role_holders={role: i for i, (role, _, _) in self._tactics.items()}, set_piece=set_piece,
-                      their_set_piece=referee is not None and referee.set_piece_coming_for(other(self.team)))
+                      their_set_piece=referee is not None and referee.is_set_piece_for(other(self.team)))
         play = self.selector.select(ctx, world.t)
         if play.prepare is not None:
             play.prepare(ctx)
