@@ -491,6 +491,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
                                                        "set_piece_probe_passing_6b6ee3b.json"]),
     "set_piece_probe_kicked": lambda r: m.set_piece_probe(r, ["set_piece_probe.json", "set_piece_probe_passing.json"]),
     "ssl_set_pieces_104100": lambda r: m.ssl_fouls_series(r, SSL_SET_PIECES_104100),
+    "ssl_set_pieces_vs_passing_104500": lambda r: m.ssl_fouls_series(r, [(
+        "set pieces kicked, walls", "match_attack_learned_vs_passing_learned_600_ssl_104500")]),
     "attack_skill_swaps": lambda r: m.series_600(r, ATTACK_SKILL_SWAPS),
     "attack_skill_swaps_98": lambda r: m.series_600(r, ATTACK_SKILL_SWAPS_98),
     "go_to_ball_rolling_selection": lambda r: t.rolling_selection(r, {
