@@ -402,8 +402,9 @@ class AttackerParams(ShootParams):
     Attributes:
         set_piece: the referee gave our team a kickoff or free kick not taken yet; the
             attacker takes it with one kick
-            (:class:`~ssl_marl.plays.set_piece_kick.SetPieceKick`, aimed at the open goal)
-            instead of its machine, which would carry the ball off on the dribbler (a
+            (:class:`~ssl_marl.plays.set_piece_kick.SetPieceKick`: a shot at the open goal
+            or a pass, :func:`~ssl_marl.plays.set_piece_kick.set_piece_choice`) instead of
+            its machine, which would carry the ball off on the dribbler (a
             double touch by the rules). Plays set it every tick from ``ctx.set_piece``.
     """
 
