@@ -202,9 +202,6 @@ def test_stop_keep_clear_moves_robots_away_and_the_kicker_plays():
     assert st.must_keep_clear("blue") and st.must_keep_clear("yellow")
     fk = RefereeState(FREE_KICK, "blue", (0.0, 0.0))
     assert not fk.must_keep_clear("blue") and fk.must_keep_clear("yellow")
-    before = RefereeState(STOP, None, (0.0, 0.0), next_command=FREE_KICK, next_team="blue")
-    assert before.set_piece_coming_for("blue") and fk.set_piece_coming_for("blue")
-    assert not before.set_piece_coming_for("yellow") and not st.set_piece_coming_for("blue")
     ws = to_team_frame(world([(-0.3, 0.0), (-0.7, 0.0), (-2.0, 0.0)], [(2.0, 0.0)], (0.0, 0.0)), "blue")
     actions = {f"blue_{i}": make_action(vx=1.0, kick=1.0, dribble=True) for i in range(3)}  # all drive at the ball
     keep_clear(actions, list(actions), ws, "blue", max_speed=3.0)

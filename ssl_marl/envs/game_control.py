@@ -9,11 +9,11 @@ Commands (:class:`RefereeState`, field frame)
     ``RUNNING``: play on. ``KICKOFF(team)``: after a goal (to the team that conceded)
     and at the start of each half (blue first, yellow after half-time). ``STOP``: before
     every free kick, ``stop_s`` long, announcing it (``next_command``, ``next_team``); all
-    robots keep ``RESTART_CLEARANCE`` (0.5 m) from the ball. ``FREE_KICK(team)``: the kicking team's robots may approach the ball, the
-    other team keeps 0.5 m. A kickoff or free kick is taken once the ball has moved
-    ``IN_PLAY_DISTANCE`` (0.05 m, the rules' "ball in play") from its spot; after
-    ``free_kick_timeout_s`` without that, play runs on (the rules' timeout for
-    taking a free kick, 10 s in Division B). While STOP holds, a ball moved by a
+    robots keep ``RESTART_CLEARANCE`` (0.5 m) from the ball. ``FREE_KICK(team)``: the
+    kicking team's robots may approach the ball, the other team keeps 0.5 m. A kickoff or
+    free kick is taken once the ball has moved ``IN_PLAY_DISTANCE`` (0.05 m, the rules'
+    "ball in play") from its spot; after ``free_kick_timeout_s`` without that, play runs
+    on (the rules' timeout for taking a free kick, 10 s in Division B). While STOP holds, a ball moved by a
     robot is put back on its spot.
 Free kick after ball out, no progress or a foul
     To the team that did not touch the ball last. Ball placement is automatic: the
@@ -34,8 +34,8 @@ free kick for the other team at the foul's spot)
     moved ``IN_PLAY_DISTANCE`` from its spot (the rules: "remaining in contact with the
     ball for more than 0.05 m counts as double touch"): on its dribbler, or in body
     contact with the ball not leaving it faster than ``SEPARATING_M_S`` (radially,
-    relative to the robot; a kick in that step lets go). ``attacker_in_defense_area``: a robot touches the
-    ball while the ball is inside the opponent's defense area.
+    relative to the robot; a kick in that step lets go). ``attacker_in_defense_area``: a
+    robot touches the ball while the ball is inside the opponent's defense area.
     ``defender_too_close``: while a kickoff or free kick is not taken yet, a robot of
     the other team comes closer to the ball than :data:`DEFENDER_TOO_CLOSE_M` (the
     rules' "Defender Too Close To Ball"). The centre distance is measured, as the
@@ -125,11 +125,6 @@ class RefereeState:
     def is_set_piece_for(self, team: str) -> bool:
         """True during a kickoff or free kick for ``team`` (not yet taken)."""
         return self.command in (KICKOFF, FREE_KICK) and self.team == team
-
-    def set_piece_coming_for(self, team: str) -> bool:
-        """True during a kickoff or free kick for ``team``, or a STOP before one."""
-        return self.is_set_piece_for(team) or (self.command == STOP and self.next_command in (KICKOFF, FREE_KICK)
-                                               and self.next_team == team)
 
     def to_dict(self) -> dict:
         return {"command": self.command, "team": self.team,

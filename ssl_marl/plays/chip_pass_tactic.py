@@ -67,7 +67,7 @@ class ChipPass(Pass):
     def execute(self, world: WorldState, robot: int, inputs) -> np.ndarray:
         a = np.asarray(super().execute(world, robot, inputs), dtype=np.float32)
         if self.state is PassState.STRIKE:
-            self._chip = self.strike_kick(world)[1]
+            self._chip = self.strike_chip
         else:
             self._chip = float(a[5]) if a.shape == (6,) else 0.0
         return a[:5]

@@ -45,7 +45,7 @@ from ..physics.state import WorldState, wrap_angle
 from ..skills.base import SkillStatus, make_action
 from ..skills.features import BALL_LOST_DISTANCE, dribbler_ball_distance
 from ..skills.motion import velocity_command
-from ..skills.passing import DEFAULT_ARRIVAL_SPEED
+from ..skills.passing import DEFAULT_ARRIVAL_SPEED, face_distance
 from ..skills.navigation import NavigateToPoint, NavParams, facing_towards
 from .set_piece_kick import SetPieceKick, SetPieceState, behind_ball_waypoint
 from .shoot import govern_approach
@@ -157,6 +157,7 @@ class Pass(Tactic):
         self.pass_skill = self._skill("pass")
         self.nav = NavigateToPoint(self.field, self.rp, self.bp, NavParams(), tolerance=0.03)
         self.striker = SetPieceKick(self.field, self.rp, self.bp, dt=self.dt)
+        self.strike_chip = 0.0  #: the STRIKE's chip entry on the last tick (:meth:`strike_kick`)
         self.on_enter(self.state)
 
     @property
@@ -256,8 +257,8 @@ class Pass(Tactic):
             omega = w0 + float(np.clip(omega - w0, -p.hold_alpha * self.dt, p.hold_alpha * self.dt))
             return velocity_command(world, robot, v, omega, self.rp, dribble=True)
         if self.state is S.STRIKE:
-            self.striker.set_params(target_point=p.target_point, kick_strength=self.strike_kick(world)[0],
-                                    hold=not p.receiver_ready)
+            strength, self.strike_chip = self.strike_kick(world)
+            self.striker.set_params(target_point=p.target_point, kick_strength=strength, hold=not p.receiver_ready)
             return self.striker.act(world, robot)
         if self.state is S.KICK:
             skill = self.kick_skill()
@@ -272,8 +273,7 @@ class Pass(Tactic):
         ``chip_angle_max``, 0 flat)) of the STRIKE: flat, at the speed that reaches the
         receiver's face at ``arrival_speed`` (default 1.5 m/s), by the ball model."""
         p = self.params
-        reach = self.rp.front_distance + self.bp.radius
-        d = max(float(np.hypot(*(np.asarray(p.target_point, float) - world.ball_pos))) - reach, 0.0)
+        d = face_distance(world.ball_pos, p.target_point, self.rp, self.bp)
         arrive = DEFAULT_ARRIVAL_SPEED if p.arrival_speed is None else float(p.arrival_speed)
         speed = ball_model.kick_speed_for_arrival(d, arrive, self.bp, self.rp.kick_speed_max)
         return min(max(speed / self.rp.kick_speed_max, 1e-3), 1.0), 0.0

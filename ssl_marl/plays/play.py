@@ -275,19 +275,21 @@ def wall_role(k: int, priority: int) -> RoleDef:
     (a robot diameter plus 1 cm apart)."""
     name = f"wall_{k}"
 
-    def wanted(ctx: PlayContext) -> bool:
-        near = float(np.hypot(*(ctx.ball - ctx.field.goal_center(-1)))) < SECOND_WALL_M
-        return ctx.their_set_piece and (k == 0 or near)
+    def robots(ctx: PlayContext) -> int:
+        if not ctx.their_set_piece:
+            return 0
+        return 2 if float(np.hypot(*(ctx.ball - ctx.field.goal_center(-1)))) < SECOND_WALL_M else 1
 
     def offset(ctx: PlayContext) -> float:
-        two = ctx.their_set_piece and float(np.hypot(*(ctx.ball - ctx.field.goal_center(-1)))) < SECOND_WALL_M
-        return ((k - 0.5) * (2 * ctx.robot.radius + 0.01)) if two else 0.0
+        return (k - 0.5) * (2 * ctx.robot.radius + 0.01) if robots(ctx) == 2 else 0.0
 
     def target(ctx: PlayContext) -> np.ndarray | None:
-        return wall_spot(ctx.ball, ctx.field, offset(ctx)) if wanted(ctx) else None
+        return wall_spot(ctx.ball, ctx.field, offset(ctx)) if k < robots(ctx) else None
 
     def update(t: Tactic, ctx: PlayContext, a: Assignment) -> None:
-        t.set_params(lane_offset=offset(ctx))
+        if k < robots(ctx):
+            spot = ctx.field.clamp_to_field(wall_spot(ctx.ball, ctx.field, offset(ctx)))
+            t.set_params(spot=(float(spot[0]), float(spot[1])))
 
     return RoleDef(name, priority, Wall, target, update=update, unfilled_cost=OPTIONAL_ROLE_UNFILLED_COST)
 

@@ -173,7 +173,6 @@ class TeamController:
         running = referee is not None and referee.command == RUNNING
         ours = world.team(self.team)
         reach = touch_reach(self.rp.radius, self.bp.radius)
-        touching = touching_robots(ours.pos, world.ball_pos, world.ball_height, ours.ball_on_dribbler, reach)
         if set_piece:  # the taker: ours nearest the ball, within a touch and the tracker's error
             d = np.hypot(*(ours.pos - world.ball_pos).T)
             i = int(np.argmin(d))
@@ -186,11 +185,11 @@ class TeamController:
             self.set_piece_guard, self._set_piece_taker = None, None
         self._was_set_piece = set_piece
         g = self.set_piece_guard
-        if g is not None and not set_piece:
+        if g is not None:
             theirs = world.opponents(self.team)
-            others = np.delete(touching, g).any() or touching_robots(
-                theirs.pos, world.ball_pos, world.ball_height, theirs.ball_on_dribbler, reach).any()
-            if others:
+            touching = touching_robots(ours.pos, world.ball_pos, world.ball_height, ours.ball_on_dribbler, reach)
+            if np.delete(touching, g).any() or touching_robots(
+                    theirs.pos, world.ball_pos, world.ball_height, theirs.ball_on_dribbler, reach).any():
                 self.set_piece_guard = None
 
     # ----------------------------------------------------------------- tick

@@ -109,6 +109,12 @@ class PassSkill(KickSkill):
         raise NotImplementedError
 
 
+def face_distance(ball_pos: np.ndarray, target: np.ndarray, rp: RobotParams, bp: BallParams) -> float:
+    """Distance (m) the ball rolls from ``ball_pos`` to the face of a receiver centred at
+    ``target`` (team frame, m): the centre distance less its face reach."""
+    return max(float(np.hypot(*(np.asarray(target, float) - ball_pos))) - rp.front_distance - bp.radius, 0.0)
+
+
 class PassBaseline(PassSkill):
     """Hand-coded pass: turn (dribbler on, at most ``max_turn_rate`` rad/s so the ball
     stays on) towards the target, led by the target's velocity over the ball's travel
@@ -125,11 +131,10 @@ class PassBaseline(PassSkill):
 
     def plan(self, world: WorldState) -> tuple[np.ndarray, float]:
         """(aim point (team frame, m), kick speed (m/s)) for the current target."""
-        reach = self.rp.front_distance + self.bp.radius  # the receiver's face is this far in front of it
         aim = np.asarray(self.target, float)
         speed = self.rp.kick_speed_max
         for _ in range(3 if self.target_vel is not None else 1):
-            d = max(float(np.hypot(*(aim - world.ball_pos))) - reach, 0.0)
+            d = face_distance(world.ball_pos, aim, self.rp, self.bp)
             speed = ball_model.kick_speed_for_arrival(d, self.arrival_speed, self.bp, self.rp.kick_speed_max)
             if self.target_vel is None:
                 break
@@ -315,5 +320,5 @@ class LearnedReceive(ReceiveSkill):
         return expand_receive_action(a3)
 
 
-__all__ = ["DEFAULT_ARRIVAL_SPEED", "LearnedPass", "LearnedReceive", "PassBaseline", "PassSkill", "ReceiveBaseline",
-           "ReceiveSkill", "load_passing_policy", "SLOW_BALL"]
+__all__ = ["DEFAULT_ARRIVAL_SPEED", "face_distance", "LearnedPass", "LearnedReceive", "PassBaseline", "PassSkill",
+           "ReceiveBaseline", "ReceiveSkill", "load_passing_policy", "SLOW_BALL"]

@@ -217,12 +217,7 @@ class MatchTask(Task):
         if st.command == RUNNING:
             foul = self._touch.update(truth, touch, f, r.fouls, kicked)
             if foul is not None:
-                name, row = foul
-                offender = str(self._touch.teams[row])
-                place = placement_point(truth.ball_pos, f)
-                events.append({"type": "foul", "foul": name, "team": offender, "agent": env.possible_agents[row],
-                               "t": truth.t, "placement": place.tolist()})
-                self._restart(env, place, other(offender), truth.t, events)
+                self._call_foul(env, *foul, truth, events)
             elif self._watch.update(_WORLD, truth.ball_pos[None, :], np.array([truth.t]))[0]:
                 place = placement_point(truth.ball_pos, f)
                 team = self._free_kick_team(truth)
@@ -253,12 +248,17 @@ class MatchTask(Task):
             self._touch.taken_by(taker)
             self._restart_watch(env)
             if r.fouls and taker is not None and self._touch.carries(truth, taker, kicked):
-                offender = str(self._touch.teams[taker])  # in contact over the 0.05 m: a double touch
-                place = placement_point(truth.ball_pos, f)
-                events.append({"type": "foul", "foul": "double_touch", "team": offender,
-                               "agent": env.possible_agents[taker], "t": truth.t, "placement": place.tolist()})
-                self._restart(env, place, other(offender), truth.t, events)
+                self._call_foul(env, "double_touch", taker, truth, events)  # in contact over the 0.05 m
         return False
+
+    def _call_foul(self, env: Engine, name: str, row: int, truth, events: list[dict]) -> None:
+        """Foul ``name`` by the robot in engine row ``row``: the event, and the other team's
+        free kick where the ball is (placed by the rules)."""
+        offender = str(self._touch.teams[row])
+        place = placement_point(truth.ball_pos, env.field)
+        events.append({"type": "foul", "foul": name, "team": offender, "agent": env.possible_agents[row],
+                       "t": truth.t, "placement": place.tolist()})
+        self._restart(env, place, other(offender), truth.t, events)
 
     def _free_kick_team(self, truth) -> str:
         """The team that did not touch the ball last (no touch yet: the team defending
