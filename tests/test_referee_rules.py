@@ -118,6 +118,64 @@ def test_free_kick_goes_to_the_team_that_did_not_touch_last_after_a_stop():
     assert env.task.referee_state.command == RUNNING
 
 
+@pytest.mark.parametrize("ball, kw, spot", [
+    ((3.6, 0.5), {}, (2.5, 0.5)),  # in the defense area: 1 m out of its front line
+    ((2.8, -0.3), {}, (2.5, -0.3)),  # within 1 m of the front line
+    ((4.0, 1.5), {}, (4.0, 2.0)),  # beside the area: 1 m out of its side line, the nearer one
+    ((-3.9, -1.2), {}, (-3.9, -2.0)),
+    ((1.0, 3.1), {}, (1.0, 2.8)),  # over the touch line: 0.2 m inside it
+    ((4.6, 0.8), dict(goal_line=1), (4.3, 2.8)),  # corner kick
+    ((-4.6, -0.2), dict(goal_line=-1, goal_kick=True), (-3.5, -2.8)),  # goal kick: 1 m from the goal line
+])
+def test_ssl_free_kick_spots(ball, kw, spot):
+    from ssl_marl.envs.referee import free_kick_spot
+
+    assert np.allclose(free_kick_spot(np.array(ball), FIELD, **kw), spot)
+    with pytest.raises(ValueError, match="goal_line"):
+        free_kick_spot(np.array(ball), FIELD, goal_line=2)
+
+
+@pytest.mark.parametrize("toucher, over, spot", [("yellow", -1, (-3.5, 2.8)), ("blue", -1, (-4.3, 2.8)),
+                                                  ("blue", 1, (3.5, 2.8))])
+def test_ball_over_the_goal_line_gives_a_goal_kick_or_a_corner_kick(toucher, over, spot):
+    """A ball out over a team's own goal line last touched by the opponents is that team's goal
+    kick, 1 m from the line; last touched by the team itself, the opponents' corner kick."""
+    env = _env(ssl_restarts=True, stop_s=0.5)
+    L2 = FIELD.half_length
+    x = over * (L2 - 0.05)
+    heading = 0.0 if over > 0 else math.pi
+    other_robot = "yellow_0" if toucher == "blue" else "blue_0"
+    robots = {f"{toucher}_0": (x - over * 0.13, 2.0, heading), other_robot: (0.0, -2.0, 0.0)}
+    env.reset(seed=1, options={"ball": {"pos": (x, 2.0)}, "robots": robots})
+    for _ in range(60):  # the toucher pushes the ball over the line
+        _, _, _, _, infos = env.step({f"{toucher}_0": make_action(vx=1.0), other_robot: make_action()})
+        outs = [e for e in infos["blue_0"]["events"] if e["type"] == "ball_out"]
+        if outs:
+            break
+    assert outs and outs[0]["free_kick_for"] == ("yellow" if toucher == "blue" else "blue")
+    assert np.allclose(outs[0]["placement"], spot)
+
+
+def test_a_foul_in_the_defense_area_is_a_free_kick_1_m_outside_it():
+    """blue_0 takes the kickoff with a kick into the yellow defense area, where blue_1
+    touches it: attacker_in_defense_area, yellow's free kick 1 m outside the area."""
+    env = parallel_env(n_blue=2, n_yellow=1, max_time_s=60.0, ssl_restarts=True, fouls=True, stop_s=0.5)
+    L2 = FIELD.half_length
+    env.reset(seed=1, options={"ball": {"pos": (3.0, 0.3)},
+                               "robots": {"blue_0": (2.885, 0.3, 0.0), "blue_1": (L2 - 0.5, 0.3, math.pi),
+                                          "yellow_0": (-3.0, 0.0, 0.0)}})
+    fouls = []
+    for k in range(60):
+        kick = make_action(vx=0.3, kick=0.3) if k < 10 else make_action()
+        _, _, _, _, infos = env.step({"blue_0": kick, "blue_1": make_action(), "yellow_0": make_action()})
+        fouls += [e for e in infos["blue_0"]["events"] if e["type"] == "foul"]
+        if fouls:
+            break
+    assert fouls and (fouls[0]["foul"], fouls[0]["agent"]) == ("attacker_in_defense_area", "blue_1")
+    assert np.allclose(fouls[0]["placement"][0], L2 - FIELD.defense_depth - 1.0)
+    assert env.task.referee_state.next_team == "yellow"
+
+
 def test_defender_too_close_to_kick_point_helper():
     spot = np.array([1.0, 0.5])
     pos = np.array([[1.0, 1.2], [1.3, 0.5 + 0.35], [3.0, 0.0]])  # 0.70 m, 0.46 m, far

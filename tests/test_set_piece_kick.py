@@ -235,3 +235,51 @@ def test_a_wall_stands_between_the_opponents_free_kick_and_our_goal():
     mirrored = np.array([-1.0, -1.0])  # open_goal_interval looks at the +x goal: turn the field round
     open_angle, _ = open_goal_interval(w.ball_pos * mirrored, w.blue.pos * mirrored, F, RP, BP)
     assert open_angle < SHOT_OPEN_MIN_RAD
+
+
+def test_the_attacking_plays_shoot_a_set_piece_at_an_open_goal_and_pass_when_it_is_closed():
+    """``PassingParams.set_piece_shot``: with the goal open from the ball no pass plan opens
+    (the attacker's set-piece kick shoots); with it closed the decider's pass opens; the
+    judgement stands once the kicker is within KEEP_CHOICE_M of the ball."""
+    from dataclasses import replace
+
+    from ssl_marl.plays.pass_coordinator import PassCoordinator, PassingParams
+    from ssl_marl.plays.pass_decision import Choice, Decision, PassOption
+    from ssl_marl.plays.play import make_context
+    from ssl_marl.plays.scene import make_world
+    from ssl_marl.plays.set_piece_kick import KEEP_CHOICE_M, SHOT_OPEN_MIN_RAD, set_piece_shot_interval
+
+    option = PassOption(2, np.array([2.0, 2.0]), 3.0, 0.9, 0.9, 0.0, 0.5)
+
+    class PassDecider:  # always the pass
+        def decide(self, request):
+            return Decision(Choice.PASS, 0.1, 0.0, (option,), option)
+
+    def ctx(kicker_x, opponents, t):
+        w = make_world(blue=[(-4.2, 0.0, 0.0), (kicker_x, 0.0, 0.0), (2.0, 2.0, 0.0)], yellow=opponents,
+                       ball=(2.5, 0.0), t=t, frame="blue")
+        return replace(make_context(w, "blue", F, RP), role_holders={"attacker": 1}, set_piece=True)
+
+    open_goal = [(4.4, 0.9, math.pi)]
+    closed = [(3.3, -0.2, math.pi), (3.3, 0.0, math.pi), (3.3, 0.2, math.pi)]
+    ours = np.array([(-4.2, 0.0), (1.8, 0.0), (2.0, 2.0)])
+    assert set_piece_shot_interval(np.array([2.5, 0.0]), 1, ours, np.array(open_goal)[:, :2], F, RP, BP)[0] \
+        >= SHOT_OPEN_MIN_RAD
+    assert set_piece_shot_interval(np.array([2.5, 0.0]), 1, ours, np.array(closed)[:, :2], F, RP, BP)[0] \
+        < SHOT_OPEN_MIN_RAD
+    for shot, opponents, planned in ((True, open_goal, False), (True, closed, True), (False, open_goal, True)):
+        c = PassCoordinator(PassingParams(decide_at_restart=True, set_piece_shot=shot), decider=PassDecider())
+        for k in range(6):
+            c.prepare(ctx(1.8, opponents, 1.0 + k / 60), restart=True)
+        assert (c.plan is not None) is planned, (shot, opponents)
+    # judged open while the kicker walked up, the shot stands once it is near the ball
+    c = PassCoordinator(PassingParams(decide_at_restart=True, set_piece_shot=True), decider=PassDecider())
+    c.prepare(ctx(1.8, open_goal, 1.0), restart=True)
+    near = 2.5 - (KEEP_CHOICE_M - 0.05)
+    for k in range(1, 7):
+        c.prepare(ctx(near, closed, 1.0 + k / 60), restart=True)
+    assert c.plan is None
+    c.prepare(ctx(1.8, closed, 1.2), restart=True)  # the kicker backs off: judged again
+    for k in range(1, 4):
+        c.prepare(ctx(1.8, closed, 1.2 + k / 60), restart=True)
+    assert c.plan is not None

@@ -17,10 +17,14 @@ Commands (:class:`RefereeState`, field frame)
     robot is put back on its spot.
 Free kick after ball out, no progress or a foul
     To the team that did not touch the ball last. Ball placement is automatic: the
-    ball is put on the spot of :func:`~ssl_marl.envs.referee.placement_point` (where it
-    left the field, or where the foul or the stalled ball was: 0.2 m inside the
-    lines and out of both defense areas) and robots within 0.5 m are moved out to
-    0.5 m (plus up to ``restart_jitter_m``, at a seeded random angle offset).
+    ball is put on the spot of :func:`~ssl_marl.envs.referee.free_kick_spot` with
+    ``ssl_restarts`` (as the SSL game controller places it: where the foul or the
+    stalled ball was, or where the ball left over a touch line, 0.2 m inside the lines
+    and at least 1 m outside both defense areas; over a goal line, the corner spot 0.2 m
+    from the touch line and 0.2 m from the goal line, or 1 m from it for the goal kick
+    of the team defending that goal), else of :func:`~ssl_marl.envs.referee.placement_point`
+    (0.2 m inside the lines and out of both defense areas); robots within 0.5 m are
+    moved out to 0.5 m (plus up to ``restart_jitter_m``, at a seeded random angle offset).
 Touches
     A robot touches the ball when the ball is on its dribbler face or its centre is
     within robot radius + ball radius + ``TOUCH_MARGIN`` of the ball's centre, or when

@@ -26,6 +26,7 @@ ball last), its fouls and the seeded placement of restarts are
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -73,6 +74,46 @@ def placement_point(ball_pos: np.ndarray, field: FieldGeometry) -> np.ndarray:
     for side in (1, -1):
         if field.in_defense_area(p, side, margin=PLACEMENT_INSET):
             p[0] = side * (field.half_length - field.defense_depth - PLACEMENT_INSET)
+    return p
+
+
+#: m: an SSL free kick is placed at least this far outside both defense areas
+#: (ssl-game-controller's ``placement-offset-defense-area``, Divisions A and B)
+FREE_KICK_DEFENSE_OFFSET_M = 1.0
+#: m: an SSL goal kick is placed this far inside the goal line
+#: (ssl-game-controller's ``placement-offset-goal-line-goal-kick``)
+GOAL_KICK_OFFSET_M = 1.0
+
+
+def free_kick_spot(ball_pos: np.ndarray, field: FieldGeometry, goal_line: int = 0,
+                   goal_kick: bool = False) -> np.ndarray:
+    """The spot of an SSL free kick for a ball at ``ball_pos`` (field frame, m), as the
+    SSL game controller places it (docs/references.md, "SSL rules"):
+
+    * a ball out over the goal line at x = ``goal_line`` * L/2 (+1 / -1; 0: not over a
+      goal line): the corner spot on the ball's side, :data:`PLACEMENT_INSET` inside the
+      touch line and :data:`PLACEMENT_INSET` inside the goal line (a corner kick for the
+      attackers) or :data:`GOAL_KICK_OFFSET_M` inside it (``goal_kick``: the kick goes to
+      the team defending that goal);
+    * else the ball's spot, at least :data:`PLACEMENT_INSET` inside the lines;
+    * then, inside a defense area grown by :data:`FREE_KICK_DEFENSE_OFFSET_M`, moved to
+      the nearer of that grown area's front or side line.
+
+    :func:`placement_point` is the simpler spot of matches without SSL restarts."""
+    if goal_line not in (-1, 0, 1):
+        raise ValueError(f"free_kick_spot: goal_line must be -1, 0 or +1, got {goal_line!r}")
+    p = field.clamp_to_field(np.asarray(ball_pos, float), margin=PLACEMENT_INSET)
+    if goal_line:
+        inset = GOAL_KICK_OFFSET_M if goal_kick else PLACEMENT_INSET
+        p = np.array([goal_line * (field.half_length - inset), math.copysign(field.half_width - PLACEMENT_INSET,
+                                                                              float(p[1]))])
+    max_x = field.half_length - field.defense_depth - FREE_KICK_DEFENSE_OFFSET_M
+    min_y = field.defense_width / 2.0 + FREE_KICK_DEFENSE_OFFSET_M
+    if abs(p[0]) > max_x and abs(p[1]) < min_y:
+        if max_x - abs(p[0]) > abs(p[1]) - min_y:  # nearer the front line than the side line
+            p[0] = math.copysign(max_x, float(p[0]))
+        else:
+            p[1] = math.copysign(min_y, float(p[1]))
     return p
 
 

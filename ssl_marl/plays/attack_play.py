@@ -67,7 +67,7 @@ from .tactic_base import Tactic
 #: (``press_urgent_m``, ``contested_kick``; 20 tuning matches against the no-pass baseline,
 #: seeds 61500-61519: 23-7 goals and 403 passes tried against 17-11 and 292 without;
 #: docs/RESULTS.md, section 12, "What limits scoring")
-ATTACK_PASSING = PassingParams(abort_margin_s=-math.inf, decide_at_restart=True, dead_ball_s=0.6,
+ATTACK_PASSING = PassingParams(abort_margin_s=-math.inf, decide_at_restart=True, set_piece_shot=True, dead_ball_s=0.6,
                                contested_kick=True, press_urgent_m=0.6)
 #: the attacking team's decision parameters (chip, redirect; an :class:`AttackDecider` built
 #: without parameters reads them when it is built)

@@ -60,6 +60,7 @@ from .pass_decision import Choice, Decision, DecisionParams, decide, path_margin
 from .pass_tactic import PassState
 from .play import PlayContext
 from .receive_tactic import ReceiveState
+from .set_piece_kick import KEEP_CHOICE_M, SHOT_OPEN_MIN_RAD, set_piece_shot_interval
 from .shoot import ShootParams, ShootState
 
 #: attacker states in which the ball is settled on the dribbler and a decision is made
@@ -134,6 +135,12 @@ class PassingParams:
         set_piece_wait_s: a set piece's passer waits at most this long (s, from the plan)
             for the receiver's READY, then the plan turns urgent (it kicks once it faces
             the receive point).
+        set_piece_shot: with ``decide_at_restart``, a set piece whose ball sees the goal
+            open for a shot (:func:`~ssl_marl.plays.set_piece_kick.set_piece_shot_interval`
+            at least ``SHOT_OPEN_MIN_RAD`` wide, judged until the kicker is within
+            ``KEEP_CHOICE_M`` of the ball) is shot: no pass plan opens and the attacker's
+            set-piece kick takes it (it shoots at the open goal). False: the decider alone
+            chooses (its restart parameters shoot only a shot worth ``shoot_threshold``).
         dead_ball_s: in flight, a ball slower than 0.1 m/s this long (s) after the kick
             while the receiver neither receives nor fetches it drops the plan (the kick
             did not leave, or the pass died on the way); None: wait ``max_flight_s``.
@@ -169,6 +176,7 @@ class PassingParams:
     decide_at_restart: bool = False
     max_restart_setup_s: float = 5.0
     set_piece_wait_s: float = 2.0
+    set_piece_shot: bool = False
     dead_ball_s: float | None = None
     press_urgent_m: float | None = None
 
@@ -266,6 +274,7 @@ class PassCoordinator:
         self._carrier: int | None = None
         self._recv_on_since: float | None = None
         self._commit_until = -math.inf
+        self._set_piece_shot = False
 
     @property
     def active(self) -> bool:
@@ -298,6 +307,8 @@ class PassCoordinator:
             self.reset()
         self._last_t = t
         self._tick += 1
+        if not ctx.set_piece:
+            self._set_piece_shot = False
         if self.plan is not None:
             self._follow(ctx, t)
         if self.plan is None:
@@ -371,6 +382,9 @@ class PassCoordinator:
             kicker = self._restart_kicker(ctx)
             if kicker is not None:
                 if self.decision is None or self._tick % p.decide_every == 0:
+                    if p.set_piece_shot and self._set_piece_shot_open(ctx, kicker):
+                        self.decision = None
+                        return  # the attacker's set-piece kick shoots
                     self._request(ctx, t, kicker, restart=True, on_ball=False)
                 return
         if not holders:
@@ -397,6 +411,17 @@ class PassCoordinator:
         """``keep_shot_max_m``'s rule: the ball is near enough to the opponent goal (team frame)."""
         m = self.params.keep_shot_max_m
         return m is None or float(np.hypot(*(ctx.ball - ctx.field.goal_center(+1)))) <= m
+
+    def _set_piece_shot_open(self, ctx: PlayContext, kicker: int) -> bool:
+        """``set_piece_shot``'s rule: the goal is open for a shot from the ball, as judged
+        while the kicker is farther than ``KEEP_CHOICE_M`` from the ball; nearer, the
+        judgement stands (the set-piece kick keeps its choice there too)."""
+        near = float(np.hypot(*(ctx.our_pos[kicker] - ctx.ball))) < KEEP_CHOICE_M
+        if not near:
+            open_angle, _ = set_piece_shot_interval(ctx.ball, kicker, ctx.our_pos, ctx.opp_pos, ctx.field,
+                                                    ctx.robot, self.bp)
+            self._set_piece_shot = open_angle >= SHOT_OPEN_MIN_RAD
+        return self._set_piece_shot
 
     def _restart_kicker(self, ctx: PlayContext) -> int | None:
         """The set piece's kicker: the ``attacker`` role's robot, else our field robot

@@ -27,10 +27,9 @@ swappable skill: the walk is point navigation and the kick a fixed command.
 
 The walk keeps :data:`BALL_CLEARANCE_M` between body and ball (straight back first when
 nearer, round the ball when the straight path passes it) and may go into the run-off
-beyond the lines (a ball placed 0.2 m inside them) and into the own defense area (a ball
-placed 0.2 m outside it, kicked away from it, has its kicker's staging point 0.17 m behind
-it; the rules would have the kicker's body outside the area when it touches the ball,
-which the referee here does not call).
+beyond the lines (a ball placed 0.2 m inside them) and into the defense areas (SSL free
+kicks lie 1 m outside them, :func:`~ssl_marl.envs.referee.free_kick_spot`; a ball placed
+nearer, kicked away from the area, would have its kicker's staging point inside it).
 """
 
 from __future__ import annotations
@@ -118,6 +117,18 @@ class SetPieceChoice:
     teammate: int | None = None
 
 
+def set_piece_shot_interval(ball: np.ndarray, kicker: int, ours: np.ndarray, opponents: np.ndarray, field, rp,
+                            bp) -> tuple[float, float]:
+    """(open_angle, aim_angle) in rad (team frame) of a set-piece shot from ``ball`` by
+    robot ``kicker``: the widest part of the opponent goal mouth that no other robot
+    (``ours`` but the kicker, ``opponents``; (n, 2) and (k, 2) centres, m) shadows
+    (:func:`~ssl_marl.plays.pass_decision.open_goal_interval`). A set piece is shot when
+    ``open_angle`` is at least :data:`SHOT_OPEN_MIN_RAD`."""
+    ours = np.asarray(ours, float).reshape(-1, 2)
+    others = np.concatenate([np.delete(ours, kicker, axis=0), np.asarray(opponents, float).reshape(-1, 2)])
+    return open_goal_interval(np.asarray(ball, float), others, field, rp, bp)
+
+
 def set_piece_choice(ball: np.ndarray, kicker: int, ours: np.ndarray, opponents: np.ndarray, field, rp, bp,
                      receivers: tuple[int, ...] | None = None) -> SetPieceChoice:
     """The kick of a set piece taken by robot ``kicker`` (team frame, m; ``ours`` (n, 2) and
@@ -132,8 +143,7 @@ def set_piece_choice(ball: np.ndarray, kicker: int, ours: np.ndarray, opponents:
     ball = np.asarray(ball, float)
     ours = np.asarray(ours, float).reshape(-1, 2)
     opponents = np.asarray(opponents, float).reshape(-1, 2)
-    others = np.concatenate([np.delete(ours, kicker, axis=0), opponents])
-    open_angle, aim = open_goal_interval(ball, others, field, rp, bp)
+    open_angle, aim = set_piece_shot_interval(ball, kicker, ours, opponents, field, rp, bp)
     reach = max(field.half_length - float(ball[0]), 1.0) / max(math.cos(aim), 0.2)
     shot = SetPieceChoice("shot", ball + reach * np.array([math.cos(aim), math.sin(aim)]), 1.0)
     if open_angle >= SHOT_OPEN_MIN_RAD:
@@ -333,5 +343,6 @@ class SetPieceKick(Tactic):
 
 
 __all__ = ["BehindParams", "BESIDE_M", "behind_ball_waypoint", "SHOT_OPEN_MIN_RAD", "SAFE_MARGIN_S",
+           "set_piece_shot_interval",
            "SetPieceChoice", "set_piece_choice", "SetPieceState", "SetPieceKickParams", "SetPieceKickInputs",
            "SetPieceKick"]

@@ -41,12 +41,16 @@ import numpy as np
 from ..config import MatchRules
 from ..game_control import (FREE_KICK, IN_PLAY_DISTANCE, KICKOFF, RUNNING, STOP, RefereeState, TouchWatch,
                             jittered_clearance, jittered_kickoff, other, too_close_to_kick_point)
-from ..referee import RESTART_CLEARANCE, NoProgressWatch, clear_robots_from, judge, kickoff_poses, placement_point
+from ..referee import (RESTART_CLEARANCE, NoProgressWatch, clear_robots_from, free_kick_spot, judge, kickoff_poses,
+                       placement_point)
 from .base import Task
 from .engine import Engine
 from .scene import Scene, scene_from_options
 
 _WORLD = np.zeros(1, np.intp)  # the single env is world 0 of a one-world NoProgressWatch
+#: the side (sign of x, field frame) of each team's own goal: the ball out over that goal
+#: line gives the team a goal kick (the field frame keeps blue's goal at -x in both halves)
+_OWN_GOAL_SIDE = {"blue": -1, "yellow": 1}
 
 
 class MatchTask(Task):
@@ -210,16 +214,20 @@ class MatchTask(Task):
         st = self.referee_state
         if call.ball_out:
             team = self._free_kick_team(truth)
-            events.append({"type": "ball_out", "t": truth.t, "placement": call.placement.tolist(),
+            place = call.placement
+            if r.ssl_restarts:
+                over = int(np.sign(truth.ball_pos[0])) if abs(truth.ball_pos[0]) >= f.half_length else 0
+                place = free_kick_spot(truth.ball_pos, f, goal_line=over, goal_kick=over == _OWN_GOAL_SIDE[team])
+            events.append({"type": "ball_out", "t": truth.t, "placement": place.tolist(),
                            **({"free_kick_for": team} if r.ssl_restarts else {})})
-            self._restart(env, call.placement, team, truth.t, events)
+            self._restart(env, place, team, truth.t, events)
             return False
         if st.command == RUNNING:
             foul = self._touch.update(truth, touch, f, r.fouls, kicked)
             if foul is not None:
                 self._call_foul(env, *foul, truth, events)
             elif self._watch.update(_WORLD, truth.ball_pos[None, :], np.array([truth.t]))[0]:
-                place = placement_point(truth.ball_pos, f)
+                place = self._free_kick_point(truth.ball_pos, f)
                 team = self._free_kick_team(truth)
                 events.append({"type": "no_progress", "t": truth.t, "placement": place.tolist()})
                 self._restart(env, place, team, truth.t, events)
@@ -255,10 +263,16 @@ class MatchTask(Task):
         """Foul ``name`` by the robot in engine row ``row``: the event, and the other team's
         free kick where the ball is (placed by the rules)."""
         offender = str(self._touch.teams[row])
-        place = placement_point(truth.ball_pos, env.field)
+        place = self._free_kick_point(truth.ball_pos, env.field)
         events.append({"type": "foul", "foul": name, "team": offender, "agent": env.possible_agents[row],
                        "t": truth.t, "placement": place.tolist()})
         self._restart(env, place, other(offender), truth.t, events)
+
+    def _free_kick_point(self, ball_pos: np.ndarray, field) -> np.ndarray:
+        """Where a free kick after a foul or no progress is placed: the SSL spot
+        (:func:`~ssl_marl.envs.referee.free_kick_spot`) with ``ssl_restarts``, else
+        :func:`~ssl_marl.envs.referee.placement_point`."""
+        return free_kick_spot(ball_pos, field) if self.rules.ssl_restarts else placement_point(ball_pos, field)
 
     def _free_kick_team(self, truth) -> str:
         """The team that did not touch the ball last (no touch yet: the team defending
