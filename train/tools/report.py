@@ -101,6 +101,10 @@ def _seeds_99(name: str) -> str:
 ATTACK_TARGETS_99 = [_seeds_99(n) for n in ATTACK_TARGETS_FAIR]
 ATTACK_TARGETS_99_POOLED = [(label, tuple((_seeds_99(n), side) for n, side in parts))
                             for label, parts in ATTACK_TARGETS_FAIR_POOLED]
+#: the targets in SSL format with SSL free-kick spots and the set-piece shot (commit 9e6784a, seeds 104600-105009)
+ATTACK_TARGETS_SSL_104600 = ["match_attack_learned_vs_baseline_600_ssl_104600",
+                             "match_attack_learned_vs_passing_learned_600_ssl_104700",
+                             "match_attack_learned_selfplay_600_ssl_104800"]
 #: self-play series of one team, pooled: blue's surplus over yellow (a colour bias shows here)
 COLOUR_BALANCE = [("attacking team, the robot order decides a contested ball",
                    ("match_attack_learned_selfplay_600", "match_attack_learned_selfplay_600_85000",
@@ -491,6 +495,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
                                                        "set_piece_probe_passing_6b6ee3b.json"]),
     "set_piece_probe_kicked": lambda r: m.set_piece_probe(r, ["set_piece_probe.json", "set_piece_probe_passing.json"]),
     "ssl_set_pieces_104100": lambda r: m.ssl_fouls_series(r, SSL_SET_PIECES_104100),
+    "attack_targets_ssl_104600": lambda r: m.series_600(r, ATTACK_TARGETS_SSL_104600),
+    "attack_targets_ssl_104600_set_pieces": lambda r: m.set_piece_series(r, ATTACK_TARGETS_SSL_104600),
     "ssl_set_pieces_vs_passing_104500": lambda r: m.ssl_fouls_series(r, [(
         "set pieces kicked, walls", "match_attack_learned_vs_passing_learned_600_ssl_104500")]),
     "attack_skill_swaps": lambda r: m.series_600(r, ATTACK_SKILL_SWAPS),
