@@ -104,7 +104,9 @@ ATTACK_TARGETS_99_POOLED = [(label, tuple((_seeds_99(n), side) for n, side in pa
 #: the targets in SSL format with SSL free-kick spots and the set-piece shot (commit 9e6784a, seeds 104600-105009)
 ATTACK_TARGETS_SSL_104600 = ["match_attack_learned_vs_baseline_600_ssl_104600",
                              "match_attack_learned_vs_passing_learned_600_ssl_104700",
-                             "match_attack_learned_selfplay_600_ssl_104800"]
+                             "match_attack_learned_selfplay_600_ssl_104800",
+                             "match_attack_learned_vs_baseline_600_ssl_realistic_104900",
+                             "match_attack_learned_vs_baseline_600_ssl_div_a_11v11_105000"]
 #: self-play series of one team, pooled: blue's surplus over yellow (a colour bias shows here)
 COLOUR_BALANCE = [("attacking team, the robot order decides a contested ball",
                    ("match_attack_learned_selfplay_600", "match_attack_learned_selfplay_600_85000",
