@@ -1,6 +1,7 @@
 """The ssl-marl command line: bad arguments are rejected clearly; commands run."""
 
 import json
+from pathlib import Path
 
 import pytest
 
@@ -92,6 +93,30 @@ def test_python_dash_m_runs_the_command_line():
     out = subprocess.run([sys.executable, "-m", "ssl_marl.cli", "--version"], capture_output=True, text=True,
                          check=True).stdout
     assert out.strip() == f"ssl-marl {__version__}"
+
+
+def test_single_match_json_has_a_manifest_that_a_merge_keeps(tmp_path):
+    """A single match with ``--json`` writes its manifest (commit, rules, seed) beside it, and a
+    series merged from such parts lists each part's manifest."""
+    import subprocess
+    import sys
+
+    from ssl_marl.runners.result import load_manifest
+
+    parts = []
+    for seed in (7, 8):
+        out = tmp_path / f"m{seed}.json"
+        assert main(["match", "--blue", "baseline", "--yellow", "idle", "--robots", "1", "--seconds", "1",
+                     "--seed", str(seed), "--render", "none", "--quiet", "--json", str(out)]) == 0
+        man = load_manifest(out)
+        assert man is not None and man["seeds"] == {"seed": seed, "matches": 1}
+        assert man["rules"]["blue"] == "baseline" and "commit" in man["git"]
+        parts.append(str(out))
+    merged = tmp_path / "series.json"
+    root = Path(__file__).resolve().parents[1]
+    subprocess.run([sys.executable, str(root / "benchmarks" / "merge_match_series.py"), *parts, "--out", str(merged)],
+                   check=True, capture_output=True, cwd=root)
+    assert all(v is not None and v["seeds"]["matches"] == 1 for v in load_manifest(merged)["parts"].values())
 
 
 def test_match_series_resumes_from_its_partial_folder(tmp_path, capsys):

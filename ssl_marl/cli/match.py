@@ -70,7 +70,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         "default the cluster's CPUs)")
     add_backend(m, "the matches of a series")
     m.add_argument("--json", default=None, metavar="PATH",
-                   help="also write the result as JSON to PATH (missing folders are created); a series keeps "
+                   help="also write the result as JSON to PATH (missing folders are created) with its manifest "
+                        "(commit, actors' hashes, rules, seeds) beside it as <stem>.manifest.json; a series keeps "
                         "each finished match in PATH.partial/ until PATH is written, so the same command run "
                         "again after an interruption plays only the missing matches")
     m.add_argument("--quiet", action="store_true", help="no progress bar")
@@ -161,6 +162,8 @@ def run(args: argparse.Namespace) -> int:
             raise ValueError("--ssl-log records single plain-format matches of named teams (no --matches > 1, "
                              "--format ssl, --skill, --*-decision, --realtime, --no-progress-s or --restart-jitter-m)")
         prepare_output_file(args.ssl_log, None, "--ssl-log")
+    rules = {"runner": "match", "blue": args.blue, "yellow": args.yellow, **common,
+             "no_progress_s": common["env_kwargs"]["no_progress_s"]}
     if args.matches == 1:
         res = play_match(blue=blue, yellow=yellow, seed=args.seed, render=render,
                          render_fps=args.render_fps, render_width_px=args.render_width, progress=not args.quiet,
@@ -168,6 +171,8 @@ def run(args: argparse.Namespace) -> int:
         print(match_line(res) + (f"  | video -> {render}" if render else ""))
         if args.json:
             atomic_write_json(args.json, res.to_dict())
+            atomic_write_json(single_manifest_path(args.json),
+                              build_manifest(rules=rules, seeds={"seed": args.seed, "matches": 1}))
         if args.ssl_log:
             _write_ssl_log(args, res)
         return 0
@@ -196,11 +201,17 @@ def run(args: argparse.Namespace) -> int:
         print("  referee calls: " + ", ".join(f"{k} {v}" for k, v in sorted(referee.items())))
     if args.json:
         write_series_file(args.json, summary, [r.to_dict() for r in results], build_manifest(
-            rules={"runner": "match", "blue": args.blue, "yellow": args.yellow, **common,
-                   "no_progress_s": common["env_kwargs"]["no_progress_s"]},
-            seeds={"seed": args.seed, "matches": args.matches}))
+            rules=rules, seeds={"seed": args.seed, "matches": args.matches}))
         shutil.rmtree(keep_dir, ignore_errors=True)
     return 0
+
+
+def single_manifest_path(json_path: str) -> Path:
+    """Where a single match with ``--json PATH`` writes its manifest (commit, actors, rules,
+    seed): ``<stem>.manifest.json`` beside PATH, where ``runners.result.load_manifest`` and
+    ``benchmarks/merge_match_series.py`` look for a part's manifest."""
+    path = Path(json_path)
+    return path.with_name(f"{path.stem}.manifest.json")
 
 
 def partial_dir(json_path: str) -> Path:

@@ -357,6 +357,10 @@ SKILLS_104300_POOLED = [m.both_colours("attack-learned vs attack-baseline (commi
 SKILLS_97200 = ["match_attack_learned_vs_attack_baseline_600_97200", "match_attack_baseline_vs_attack_learned_600_97230"]
 SKILLS_97200_POOLED = [m.both_colours("attack-learned vs attack-baseline (commit e395ab2)",
                                       SKILLS_97200[0], SKILLS_97200[1])]
+SKILLS_SSL_105200 = ["match_attack_learned_vs_attack_baseline_600_ssl_105200",
+                     "match_attack_baseline_vs_attack_learned_600_ssl_105210"]
+SKILLS_SSL_105200_POOLED = [m.both_colours("attack-learned vs attack-baseline, SSL format (9e6784a's ssl_marl)",
+                                           SKILLS_SSL_105200[0], SKILLS_SSL_105200[1])]
 ATTACK_DRILL = [("hand-coded (the attacking plays' cost decision)", "attack_drill_handcoded"),
                 ("learned (shipped `attack_drill.pt`: cloned, then MAPPO `mappo_attack_drill_bc_s0`)",
                  "attack_drill_learned")]
@@ -467,6 +471,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "skills_104300_pooled": lambda r: m.pooled_sides(r, SKILLS_104300_POOLED),
     "skills_97200": lambda r: m.series_600(r, SKILLS_97200),
     "skills_97200_pooled": lambda r: m.pooled_sides(r, SKILLS_97200_POOLED),
+    "skills_ssl_105200": lambda r: m.series_600(r, SKILLS_SSL_105200),
+    "skills_ssl_105200_pooled": lambda r: m.pooled_sides(r, SKILLS_SSL_105200_POOLED),
     "attack_targets": lambda r: m.series_600(r, ATTACK_TARGETS),
     "attack_targets_skills": lambda r: m.series_600(r, ATTACK_TARGETS_SKILLS),
     "attack_targets_fair": lambda r: m.series_600(r, ATTACK_TARGETS_FAIR),
