@@ -358,9 +358,16 @@ SKILLS_97200 = ["match_attack_learned_vs_attack_baseline_600_97200", "match_atta
 SKILLS_97200_POOLED = [m.both_colours("attack-learned vs attack-baseline (commit e395ab2)",
                                       SKILLS_97200[0], SKILLS_97200[1])]
 SKILLS_SSL_105200 = ["match_attack_learned_vs_attack_baseline_600_ssl_105200",
-                     "match_attack_baseline_vs_attack_learned_600_ssl_105210"]
-SKILLS_SSL_105200_POOLED = [m.both_colours("attack-learned vs attack-baseline, SSL format (9e6784a's ssl_marl)",
-                                           SKILLS_SSL_105200[0], SKILLS_SSL_105200[1])]
+                     "match_attack_baseline_vs_attack_learned_600_ssl_105210",
+                     "match_attack_learned_vs_attack_baseline_600_ssl_105220",
+                     "match_attack_baseline_vs_attack_learned_600_ssl_105230"]
+SKILLS_SSL_105200_POOLED = [
+    m.both_colours("attack-learned vs attack-baseline, SSL format, seeds 105200-105219",
+                   SKILLS_SSL_105200[0], SKILLS_SSL_105200[1]),
+    m.both_colours("attack-learned vs attack-baseline, SSL format, seeds 105220-105239",
+                   SKILLS_SSL_105200[2], SKILLS_SSL_105200[3]),
+    ("attack-learned vs attack-baseline, SSL format, all", tuple(
+        (name, "blue" if i % 2 == 0 else "yellow") for i, name in enumerate(SKILLS_SSL_105200)))]
 ATTACK_DRILL = [("hand-coded (the attacking plays' cost decision)", "attack_drill_handcoded"),
                 ("learned (shipped `attack_drill.pt`: cloned, then MAPPO `mappo_attack_drill_bc_s0`)",
                  "attack_drill_learned")]
