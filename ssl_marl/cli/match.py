@@ -136,7 +136,7 @@ def run(args: argparse.Namespace) -> int:
     from ..io import atomic_write_json, prepare_output_file
     from ..runners.match import format_options, play_match
     from ..runners.provenance import build_manifest
-    from ..runners.result import write_series_file
+    from ..runners.result import manifest_path, write_series_file
     from ..runners.series import play_series
 
     if args.address is not None and args.backend != "ray":
@@ -171,7 +171,7 @@ def run(args: argparse.Namespace) -> int:
         print(match_line(res) + (f"  | video -> {render}" if render else ""))
         if args.json:
             atomic_write_json(args.json, res.to_dict())
-            atomic_write_json(single_manifest_path(args.json),
+            atomic_write_json(manifest_path(args.json),
                               build_manifest(rules=rules, seeds={"seed": args.seed, "matches": 1}))
         if args.ssl_log:
             _write_ssl_log(args, res)
@@ -204,14 +204,6 @@ def run(args: argparse.Namespace) -> int:
             rules=rules, seeds={"seed": args.seed, "matches": args.matches}))
         shutil.rmtree(keep_dir, ignore_errors=True)
     return 0
-
-
-def single_manifest_path(json_path: str) -> Path:
-    """Where a single match with ``--json PATH`` writes its manifest (commit, actors, rules,
-    seed): ``<stem>.manifest.json`` beside PATH, where ``runners.result.load_manifest`` and
-    ``benchmarks/merge_match_series.py`` look for a part's manifest."""
-    path = Path(json_path)
-    return path.with_name(f"{path.stem}.manifest.json")
 
 
 def partial_dir(json_path: str) -> Path:

@@ -150,6 +150,18 @@ def write_result_folder(out: str | os.PathLike, summary: dict[str, Any], manifes
     return out
 
 
+def result_stem(path: str | os.PathLike) -> str:
+    """A JSON result file's name without ``.json``: the stem of the files written beside it."""
+    name = Path(path).name
+    return name[:-5] if name.lower().endswith(".json") else name
+
+
+def manifest_path(path: str | os.PathLike) -> Path:
+    """The manifest beside a JSON result file (a series or a single match):
+    ``<stem>.manifest.json``."""
+    return Path(path).parent / f"{result_stem(path)}.manifest.json"
+
+
 def write_series_file(path: str | os.PathLike, summary: dict[str, Any], matches: list[dict[str, Any]],
                       manifest: dict[str, Any]) -> Path:
     """A match series as ``path`` (JSON: ``summary``, ``rows_file``, ``manifest_file``)
@@ -157,8 +169,7 @@ def write_series_file(path: str | os.PathLike, summary: dict[str, Any], matches:
     from ..io import atomic_write_bytes, atomic_write_json
 
     path = Path(path)
-    stem = path.name[:-5] if path.name.lower().endswith(".json") else path.name
-    rows_file, manifest_file = f"{stem}.matches.csv.gz", f"{stem}.manifest.json"
+    rows_file, manifest_file = f"{result_stem(path)}.matches.csv.gz", manifest_path(path).name
     atomic_write_bytes(path.parent / rows_file, encode_rows(matches))
     atomic_write_json(path.parent / manifest_file, manifest)
     atomic_write_json(path, {"summary": summary, "rows_key": "matches", "rows_file": rows_file,
@@ -186,7 +197,7 @@ def load_manifest(path: str | os.PathLike) -> dict[str, Any] | None:
     if path.is_dir():
         f = path / MANIFEST_FILE
     else:
-        f = path.parent / json.loads(path.read_text()).get("manifest_file", f"{path.stem}.manifest.json")
+        f = path.parent / json.loads(path.read_text()).get("manifest_file", manifest_path(path).name)
     return json.loads(f.read_text()) if f.exists() else None
 
 
