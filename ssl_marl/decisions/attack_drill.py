@@ -48,8 +48,10 @@ from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, 
                                     attack_decision_option, option_play_decision, request_features)
 from .attack_features import ATTACK_OBS_DIM, OBS_BOUND, attack_observation
 
-#: the drill's pass coordinator: the attacking plays' settings, asked every tick
-DRILL_PASSING = dataclasses.replace(ATTACK_PASSING, decide_every=1)
+#: the drill's pass coordinator: the attacking plays' settings, asked every tick; the drill
+#: calls no fouls and its shipped actors were trained with dribbles that run their time, so
+#: the match's dribble cut (``dribble_cut_m``) is off here
+DRILL_PASSING = dataclasses.replace(ATTACK_PASSING, decide_every=1, dribble_cut_m=None)
 
 
 class DrillAttackDecider(DrillDecider, AttackDecider):

@@ -32,6 +32,7 @@ match starts.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Any
 
@@ -42,8 +43,8 @@ from ..plays.attack_decision import AttackChoice, AttackParams
 from ..plays.attack_play import AttackDecider
 from ..plays.pass_decision import Choice, Decision
 from ..plays.pass_coordinator import CarrierRequest, CostDecider
-from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, attack_decision_option,
-                                    option_play_decision, request_features)
+from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, DRIBBLE_OPTIONS,
+                                    attack_decision_option, option_play_decision, request_features)
 from .attack_features import (ATTACK_OBS_DIM, ATTACK_OPTIONS, OBS_BOUND, attack_action_mask,
                               attack_observation, option_decision)
 
@@ -54,6 +55,9 @@ DRILL_TASK = "attack-drill"
 TASK_SPACES: dict[str, tuple[int, tuple[str, ...]]] = {TASK: (ATTACK_OBS_DIM, ATTACK_OPTIONS),
                                                        DRILL_TASK: (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS)}
 DECISION_CHOICES = ("handcoded", "learned", "improved")
+#: m: a learned attacking decider stops offering dribbles from this dribble distance on
+#: (:class:`PolicyAttackDecider`; SSL's limit is 1 m)
+DRIBBLE_MASK_M = 0.5
 AGENT = "attacker_0"
 
 
@@ -122,18 +126,35 @@ class PolicyAttackDecider(AttackDecider):
     """The attacking plays' carrier decision from a decision policy of the attack drill
     (module docstring); restarts (set pieces) stay with the cost decision.
 
+    SSL's dribbling limit: once the carrier has dribbled the ball ``dribble_mask_m`` or more
+    in its current dribble (:attr:`~ssl_marl.plays.play.PlayContext.dribbled_m`, as the
+    referee measures it), the dribble options are masked, so the policy shoots or passes
+    (a dribble option carries the ball about 0.3 m: 0.6 s at 0.5 m/s). With the attacking
+    plays' ``dribble_cut_m`` (0.8 m) a committed dribble is decided again before the
+    referee's 1 m. The drill calls no fouls, so its actors never learned the limit.
+
     Attributes:
         policy: the decision policy; asked only with a legal-option mask.
+        dribble_mask_m: the dribble distance (m) from which dribbling is not offered;
+            None: always offered (as in the drill).
         decisions: number of decisions the policy made.
+        dribbles_masked: decisions taken with the dribbles masked.
     """
 
-    def __init__(self, policy: Any, params: AttackParams | None = None) -> None:
+    def __init__(self, policy: Any, params: AttackParams | None = None,
+                 dribble_mask_m: float | None = DRIBBLE_MASK_M) -> None:
         if not callable(getattr(policy, "act", None)):
             raise TypeError(f"PolicyAttackDecider: policy must have act(env, agent, obs, info), got {policy!r}")
+        if dribble_mask_m is not None and not (isinstance(dribble_mask_m, (int, float))
+                                               and math.isfinite(dribble_mask_m) and dribble_mask_m >= 0):
+            raise ValueError(f"PolicyAttackDecider: dribble_mask_m must be None or a finite distance >= 0 (m), "
+                             f"got {dribble_mask_m!r}")
         super().__init__(params)
         self.policy = policy
+        self.dribble_mask_m = dribble_mask_m
         self.spec_env = AttackSpecEnv(DRILL_TASK)
         self.decisions = 0
+        self.dribbles_masked = 0
         if callable(getattr(policy, "reset", None)):
             policy.reset(self.spec_env)
 
@@ -141,6 +162,12 @@ class PolicyAttackDecider(AttackDecider):
         if request.restart or not request.on_ball:
             return super().decide(request)
         passes, obs, mask = request_features(request, self.request_params(request))
+        dribbled = request.ctx.dribbled_m
+        if self.dribble_mask_m is not None and dribbled is not None \
+                and float(dribbled[request.carrier]) >= self.dribble_mask_m:
+            mask = mask.copy()
+            mask[list(DRIBBLE_OPTIONS)] = 0  # shoot stays legal
+            self.dribbles_masked += 1
         a = ask_policy(self.policy, self.spec_env, obs, mask, "PolicyAttackDecider")
         self.decisions += 1
         d, option = option_play_decision(a, request.ctx.ball, request.ctx.field, passes)

@@ -67,8 +67,10 @@ from .tactic_base import Tactic
 #: (``press_urgent_m``, ``contested_kick``; 20 tuning matches against the no-pass baseline,
 #: seeds 61500-61519: 23-7 goals and 403 passes tried against 17-11 and 292 without;
 #: docs/RESULTS.md, section 12, "What limits scoring")
+#: A committed dribble (a learned decider's) is decided again once the carrier has dribbled
+#: 0.8 m (``dribble_cut_m``; SSL's limit is 1 m; the cost decision commits to nothing).
 ATTACK_PASSING = PassingParams(abort_margin_s=-math.inf, decide_at_restart=True, set_piece_shot=True, dead_ball_s=0.6,
-                               contested_kick=True, press_urgent_m=0.6)
+                               contested_kick=True, press_urgent_m=0.6, dribble_cut_m=0.8)
 #: the attacking team's decision parameters (chip, redirect; an :class:`AttackDecider` built
 #: without parameters reads them when it is built)
 ATTACK_PARAMS = AttackParams()

@@ -155,6 +155,12 @@ class PassingParams:
             ball (m) turns the plan urgent: the passer kicks as soon as it faces the
             receive point, before the opponent reaches the ball (the receiver meets the
             ball on its line while it runs); None: off.
+        dribble_cut_m: a decision committed for a while (a learned decider's dribble,
+            ``Decision.commit_s``) is taken again once the carrier has dribbled the ball
+            this far (m, :attr:`~ssl_marl.plays.play.PlayContext.dribbled_m`, as the
+            referee measures it; SSL's limit is 1 m), so a committed dribble cannot run
+            into the excessive-dribbling foul; None: commitments run their time. Decisions
+            without a commitment (the cost decision's) are not affected.
     """
 
     decision: DecisionParams = DecisionParams()
@@ -179,11 +185,12 @@ class PassingParams:
     set_piece_shot: bool = False
     dead_ball_s: float | None = None
     press_urgent_m: float | None = None
+    dribble_cut_m: float | None = None
 
     def __post_init__(self) -> None:
         if self.keep_expiry not in KEEP_EXPIRY:
             raise ValueError(f"PassingParams.keep_expiry must be one of {KEEP_EXPIRY}, got {self.keep_expiry!r}")
-        for name in ("press_urgent_m", "keep_shot_max_m", "keep_tap_m"):
+        for name in ("press_urgent_m", "keep_shot_max_m", "keep_tap_m", "dribble_cut_m"):
             m = getattr(self, name)
             if m is not None and not (isinstance(m, (int, float)) and math.isfinite(m) and m > 0):
                 raise ValueError(f"PassingParams.{name} must be None or a positive finite distance (m), got {m!r}")
@@ -403,9 +410,15 @@ class PassCoordinator:
         if carrier != self._carrier:
             self._carrier, self._keep_since, self.decision = carrier, None, None
             self._commit_until = -math.inf
-        if self.decision is not None and (self._tick % p.decide_every != 0 or t < self._commit_until - 1e-9):
+        committed = t < self._commit_until - 1e-9 and not self._dribble_spent(ctx, carrier)
+        if self.decision is not None and (self._tick % p.decide_every != 0 or committed):
             return
         self._request(ctx, t, carrier, restart)
+
+    def _dribble_spent(self, ctx: PlayContext, carrier: int) -> bool:
+        """``dribble_cut_m``'s rule: the carrier has dribbled the ball at least that far."""
+        m, dribbled = self.params.dribble_cut_m, ctx.dribbled_m
+        return m is not None and dribbled is not None and float(dribbled[carrier]) >= m
 
     def _keep_may_expire(self, ctx: PlayContext) -> bool:
         """``keep_shot_max_m``'s rule: the ball is near enough to the opponent goal (team frame)."""

@@ -71,6 +71,9 @@ class PlayContext:
             the team controller from the env's referee state; False without one).
         their_set_piece: the opponents have a kickoff or free kick not taken yet (we keep
             0.5 m; the wall roles exist).
+        dribbled_m: (n,) metres each of our robots has dribbled the ball in its current
+            dribble, as the referee measures it (:class:`~ssl_marl.plays.dribble_watch.DribbleWatch`;
+            SSL's limit is 1 m); filled by the team controller, None without one.
     """
 
     team: str
@@ -88,6 +91,7 @@ class PlayContext:
     role_holders: Mapping[str, int] = field(default_factory=dict)
     set_piece: bool = False
     their_set_piece: bool = False
+    dribbled_m: np.ndarray | None = None
 
     @property
     def ball(self) -> np.ndarray:

@@ -45,6 +45,7 @@ from ..physics.params import BallParams, RobotParams
 from ..physics.state import TEAMS, WorldState, to_team_frame
 from ..skills.base import make_action
 from .assignment import Assignment, RoleSlot, assign
+from .dribble_watch import DribbleWatch
 from .pass_coordinator import CarrierDecider
 from .play import Play, PlayContext, PlaySelector, RoleDef, make_context, standard_plays
 from .skillset import CORE_SKILLS, SkillsSpec, check_skills, validate_skills
@@ -118,6 +119,7 @@ class TeamController:
         self.play: Play | None = None
         self.context: PlayContext | None = None
         self._forget_set_piece()
+        self.dribble_watch = DribbleWatch(self.team, self.rp, self.bp)
 
     def _forget_set_piece(self) -> None:
         #: our robot that took our last set piece and may not touch the ball before another
@@ -133,6 +135,7 @@ class TeamController:
         self._previous = {}
         self.assignment = self.play = self.context = None
         self._forget_set_piece()
+        self.dribble_watch.reset()
         self.selector.new_episode()
 
     # ------------------------------------------------------------- queries
@@ -229,10 +232,12 @@ class TeamController:
         referee = getattr(getattr(env_or_world, "task", None), "referee_state", None)
         set_piece = referee is not None and referee.is_set_piece_for(self.team)
         self._watch_set_piece_kicker(world, referee, set_piece)
+        dribbled = self.dribble_watch.update(world)
         ctx = make_context(world, self.team, self.field, self.rp)
         ctx = replace(ctx, role_status={role: tactic.status for role, _, tactic in self._tactics.values()},
                       role_holders={role: i for i, (role, _, _) in self._tactics.items()}, set_piece=set_piece,
-                      their_set_piece=referee is not None and referee.is_set_piece_for(other(self.team)))
+                      their_set_piece=referee is not None and referee.is_set_piece_for(other(self.team)),
+                      dribbled_m=dribbled)
         play = self.selector.select(ctx, world.t)
         if play.prepare is not None:
             play.prepare(ctx)

@@ -360,12 +360,16 @@ SKILLS_97200_POOLED = [m.both_colours("attack-learned vs attack-baseline (commit
 SKILLS_SSL_105200 = ["match_attack_learned_vs_attack_baseline_600_ssl_105200",
                      "match_attack_baseline_vs_attack_learned_600_ssl_105210",
                      "match_attack_learned_vs_attack_baseline_600_ssl_105220",
-                     "match_attack_baseline_vs_attack_learned_600_ssl_105230"]
+                     "match_attack_baseline_vs_attack_learned_600_ssl_105230",
+                     "match_attack_learned_vs_attack_baseline_600_ssl_105240",
+                     "match_attack_baseline_vs_attack_learned_600_ssl_105250"]
 SKILLS_SSL_105200_POOLED = [
     m.both_colours("attack-learned vs attack-baseline, SSL format, seeds 105200-105219",
                    SKILLS_SSL_105200[0], SKILLS_SSL_105200[1]),
     m.both_colours("attack-learned vs attack-baseline, SSL format, seeds 105220-105239",
                    SKILLS_SSL_105200[2], SKILLS_SSL_105200[3]),
+    m.both_colours("attack-learned vs attack-baseline, SSL format, seeds 105240-105259",
+                   SKILLS_SSL_105200[4], SKILLS_SSL_105200[5]),
     ("attack-learned vs attack-baseline, SSL format, all", tuple(
         (name, "blue" if i % 2 == 0 else "yellow") for i, name in enumerate(SKILLS_SSL_105200)))]
 ATTACK_DRILL = [("hand-coded (the attacking plays' cost decision)", "attack_drill_handcoded"),
