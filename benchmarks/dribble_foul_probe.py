@@ -20,6 +20,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
+import numpy as np  # noqa: E402
+
 from benchmarks.ball_out_probe import probe_args, write_probe  # noqa: E402
 
 
@@ -27,7 +29,8 @@ def _controller_view(ctrl, robot: int) -> dict:
     """The offender's role, tactic state and the team's last carrier decision."""
     role = (ctrl.assignment.robots.get(robot) if getattr(ctrl, "assignment", None) else None)
     tactic = ctrl.tactic(robot) if hasattr(ctrl, "tactic") else None
-    state = getattr(getattr(getattr(tactic, "status", None), "state", None), "name", None)
+    status = getattr(tactic, "status", None)
+    state = getattr(getattr(status, "state", None), "name", None)
     coord = None
     play = getattr(ctrl, "play", None)
     if play is not None:
@@ -37,7 +40,16 @@ def _controller_view(ctrl, robot: int) -> dict:
     dribbled = None if ctx is None or ctx.dribbled_m is None else float(ctx.dribbled_m[robot])
     return {"role": role, "state": state, "play": getattr(play, "name", None),
             "decision": None if d is None else d.choice.name, "committed": None if d is None else d.commit_s > 0,
-            "team_dribbled_m": dribbled}
+            "team_dribbled_m": dribbled, "time_in_state_s": getattr(status, "time_in_state", None),
+            **_plan_view(coord)}
+
+
+def _plan_view(coord) -> dict:
+    """The pass plan open at the call: its phase, whether it is a set piece's, whether it is urgent."""
+    plan = getattr(coord, "plan", None)
+    if plan is None:
+        return {"plan": None}
+    return {"plan": plan.phase.name, "plan_restart": bool(plan.restart), "plan_urgent": bool(plan.urgent)}
 
 
 def probe_match(blue: str, yellow: str, seconds: float, seed: int) -> list[dict]:
@@ -57,6 +69,7 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int) -> list[dict]
             if e.get("type") == "foul" and e.get("foul") == "excessive_dribbling":
                 team, robot = e["agent"].rsplit("_", 1)
                 fouls.append({"seed": seed, "t": float(e["t"]), "team": team, "robot": int(robot),
+                              "speed_mps": float(np.hypot(*truth.team(team).vel[int(robot)])),
                               **_controller_view(ctrls[team], int(robot))})
         return record(self, events, truth)
 
@@ -71,7 +84,9 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int) -> list[dict]
 
 def summarize(fouls: list[dict], matches: int) -> dict:
     by = Counter(f"{f['team']} {f['role']}/{f['state']} decision={f['decision']}"
-                 f"{' committed' if f['committed'] else ''}" for f in fouls)
+                 f"{' committed' if f['committed'] else ''}"
+                 f"{'' if f.get('plan') is None else ' plan=' + f['plan'] + (' set-piece' if f['plan_restart'] else '')}"
+                 for f in fouls)
     return {"matches": matches, "fouls": len(fouls),
             "per_team": {t: sum(f["team"] == t for f in fouls) for t in ("blue", "yellow")},
             "by_role_state": dict(by.most_common())}

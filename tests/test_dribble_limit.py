@@ -2,6 +2,8 @@
 (:class:`~ssl_marl.plays.dribble_watch.DribbleWatch`) and a learned attacking decision that
 stops dribbling before the referee calls excessive dribbling."""
 
+import math
+
 import numpy as np
 import pytest
 
@@ -131,6 +133,46 @@ def test_learned_attacking_decision_stops_dribbling_before_the_limit(limit):
         assert "excessive_dribbling" in fouls and not masked and dec.dribbles_masked == 0
 
 
+class _Always:
+    """An Attack 3v2 policy that dribbles toward the goal whenever it may, else shoots."""
+
+    def __init__(self):
+        self.masks = []
+
+    def act(self, env, agent, obs, info):
+        from ssl_marl.decisions.attack_features import DRIBBLE_GOAL, SHOOT as SHOOT_3V2
+
+        mask = np.asarray(info["action_mask"])
+        self.masks.append(mask.copy())
+        return DRIBBLE_GOAL if mask[DRIBBLE_GOAL] else SHOOT_3V2
+
+
+@pytest.mark.parametrize("dribbled, masked", [(0.3, False), (0.6, True)])
+def test_passing_plays_learned_decider_masks_dribbles_past_the_limit(dribbled, masked):
+    """The passing plays' learned decider (Attack 3v2 options) offers no dribble once the
+    carrier has dribbled ``DRIBBLE_MASK_M`` (0.5 m): an always-dribble policy shoots."""
+    from dataclasses import replace
+
+    from ssl_marl.decisions.attack_features import DRIBBLE_GOAL, DRIBBLE_LEFT, DRIBBLE_RIGHT
+    from ssl_marl.decisions.match_decider import DRIBBLE_MASK_M, PolicyCarrierDecider
+    from ssl_marl.plays.pass_coordinator import CarrierRequest
+    from ssl_marl.plays.pass_decision import Choice, DecisionParams
+    from ssl_marl.plays.play import make_context
+
+    ctx = replace(make_context(_holding(0.0), "blue", F, RP), dribbled_m=np.array([dribbled, 0.0]))
+    pol = _Always()
+    dec = PolicyCarrierDecider(pol)
+    assert dec.dribble_mask_m == DRIBBLE_MASK_M == 0.5
+    d = dec.decide(CarrierRequest(ctx, 0, (1,), DecisionParams(), False, BP, 1.0))
+    assert dec.dribbles_masked == int(masked) and dec.decisions == 1
+    assert bool(pol.masks[0][[DRIBBLE_GOAL, DRIBBLE_LEFT, DRIBBLE_RIGHT]].any()) is not masked
+    assert d.choice is (Choice.SHOOT if masked else Choice.KEEP)
+    # without the limit the policy dribbles on
+    d = PolicyCarrierDecider(_Always(), dribble_mask_m=None).decide(
+        CarrierRequest(ctx, 0, (1,), DecisionParams(), False, BP, 1.0))
+    assert d.choice is Choice.KEEP
+
+
 def test_dribble_limit_parameters_are_checked():
     from ssl_marl.decisions.match_decider import PolicyAttackDecider
 
@@ -138,6 +180,9 @@ def test_dribble_limit_parameters_are_checked():
         PolicyAttackDecider(_Dribbler(), dribble_mask_m=float("nan"))
     with pytest.raises(ValueError, match="dribble_mask_m"):
         PolicyAttackDecider(_Dribbler(), dribble_mask_m=-0.1)
+    from ssl_marl.decisions.match_decider import PolicyCarrierDecider
+    with pytest.raises(ValueError, match="PolicyCarrierDecider: dribble_mask_m"):
+        PolicyCarrierDecider(_Always(), dribble_mask_m=math.inf)
     with pytest.raises(ValueError, match="dribble_cut_m"):
         PassingParams(dribble_cut_m=0.0)
     assert len(ATTACK_DRILL_OPTIONS) == 10 and set(DRIBBLE_OPTIONS) == {7, 8, 9}

@@ -159,6 +159,16 @@ def test_pass_transitions(state, inputs, expected):
     assert Pass.transition(state, inputs, PassParams()) is expected
 
 
+def test_a_passer_near_the_dribbling_limit_kicks_moving():
+    """``kick_moving``: HOLD -> KICK once facing the target, however fast the robot moves
+    (a passer pushed along with the ball); still only when facing it."""
+    moving = PassInputs(d_db=0.0, receiver_ready=True, aim_err=0.1, speed=0.8)
+    assert Pass.transition(P.HOLD, moving, PassParams()) is P.HOLD
+    assert Pass.transition(P.HOLD, moving, PassParams(kick_moving=True)) is P.KICK
+    turning = dataclasses.replace(moving, aim_err=1.0)
+    assert Pass.transition(P.HOLD, turning, PassParams(kick_moving=True)) is P.HOLD
+
+
 R = ReceiveState
 
 
@@ -678,6 +688,31 @@ def test_pressed_open_play_setup_turns_urgent_only_with_press_urgent_m():
     for bad in (0.0, -1.0, math.nan, math.inf):
         with pytest.raises(ValueError, match="press_urgent_m"):
             PassingParams(press_urgent_m=bad)
+
+
+def test_open_play_setup_turns_urgent_once_the_passer_has_dribbled_the_cut():
+    """A passer in HOLD waiting for its receiver's READY: once the team's account of its
+    dribble reaches ``dribble_cut_m`` the plan turns urgent (it kicks before SSL's 1 m limit);
+    below the cut, without the cut, or at a set piece it waits. The passer's role then kicks
+    moving (``kick_moving``)."""
+    from dataclasses import replace
+
+    from ssl_marl.plays.pass_coordinator import PassCoordinator, PassingParams, PassPhase, PassPlan
+    from ssl_marl.plays.passing_roles import passer_role
+
+    status = {"passer": _status(PassState.HOLD), "receiver": _status(ReceiveState.POSITION)}
+    for cut, dribbled, restart, urgent in ((0.8, 0.85, False, True), (0.8, 0.6, False, False),
+                                           (None, 0.95, False, False), (0.8, 0.95, True, False)):
+        c = PassCoordinator(PassingParams(dribble_cut_m=cut))
+        c.plan = PassPlan(1, 2, np.array([2.0, 2.2]), PassPhase.SETUP, 1.9, restart=restart)
+        ctx = replace(_ctx(make_world(**BLOCKED, t=2.0, frame="blue"), status),
+                      dribbled_m=np.array([0.0, dribbled, 0.0]))
+        c.prepare(ctx)
+        assert c.plan is not None and c.plan.urgent is urgent and c.counters.aborted == 0, (cut, dribbled, restart)
+        assert c.plan.spent is urgent
+        rec = _Recorder()
+        passer_role(c).update(rec, ctx, None)
+        assert rec.params["kick_moving"] is urgent and rec.params["receiver_ready"] is urgent
 
 
 def test_restart_play_applies_at_the_centre_mark_and_free_kick_spots():

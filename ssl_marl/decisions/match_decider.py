@@ -45,8 +45,8 @@ from ..plays.pass_decision import Choice, Decision
 from ..plays.pass_coordinator import CarrierRequest, CostDecider
 from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, DRIBBLE_OPTIONS,
                                     attack_decision_option, option_play_decision, request_features)
-from .attack_features import (ATTACK_OBS_DIM, ATTACK_OPTIONS, OBS_BOUND, attack_action_mask,
-                              attack_observation, option_decision)
+from .attack_features import (ATTACK_OBS_DIM, ATTACK_OPTIONS, DRIBBLE_GOAL, DRIBBLE_LEFT, DRIBBLE_RIGHT, OBS_BOUND,
+                              attack_action_mask, attack_observation, option_decision)
 
 TASK = "attack-3v2"
 #: the attacking plays' decision task
@@ -82,6 +82,29 @@ class AttackSpecEnv:
         return gymnasium.spaces.Discrete(self.n_options)
 
 
+def check_dribble_mask_m(value: Any, where: str) -> float | None:
+    """``value`` as a dribble-mask distance (m): None or finite and >= 0; ValueError naming ``where`` otherwise."""
+    if value is not None and not (isinstance(value, (int, float)) and not isinstance(value, bool)
+                                  and math.isfinite(value) and value >= 0):
+        raise ValueError(f"{where}: dribble_mask_m must be None or a finite distance >= 0 (m), got {value!r}")
+    return value
+
+
+def limit_dribbles(mask: np.ndarray, request: CarrierRequest, dribble_options: tuple[int, ...],
+                   mask_m: float | None) -> tuple[np.ndarray, bool]:
+    """SSL's dribbling limit on a learned decision's legal options: once the carrier has
+    dribbled the ball ``mask_m`` or more in its current dribble
+    (:attr:`~ssl_marl.plays.play.PlayContext.dribbled_m`, as the referee measures it), the
+    ``dribble_options`` are masked (shoot stays legal). Returns (mask, whether it masked);
+    ``mask`` is not modified."""
+    dribbled = request.ctx.dribbled_m
+    if mask_m is None or dribbled is None or float(dribbled[request.carrier]) < mask_m:
+        return mask, False
+    mask = mask.copy()
+    mask[list(dribble_options)] = 0
+    return mask, True
+
+
 def ask_policy(policy: Any, spec_env: AttackSpecEnv, obs: np.ndarray, mask: np.ndarray, where: str) -> int:
     """The policy's option for ``obs`` under ``mask``; ValueError for an illegal one."""
     a = int(policy.act(spec_env, AGENT, obs, {"decision": True, "action_mask": mask, "elapsed_s": 0.0}))
@@ -94,19 +117,28 @@ def ask_policy(policy: Any, spec_env: AttackSpecEnv, obs: np.ndarray, mask: np.n
 class PolicyCarrierDecider:
     """CarrierDecider from a decision policy (module docstring).
 
+    SSL's dribbling limit as in :class:`PolicyAttackDecider`: from ``dribble_mask_m`` of the
+    carrier's current dribble the Attack 3v2 dribble options are not offered
+    (:func:`limit_dribbles`).
+
     Attributes:
         policy: the decision policy; asked only with a legal-option mask.
         fallback: the decider used at restarts (default the cost decision).
+        dribble_mask_m: the dribble distance (m) from which dribbling is not offered;
+            None: always offered (as in the Attack 3v2 task).
         decisions: number of decisions the policy made (for tests and stats).
+        dribbles_masked: decisions taken with the dribbles masked.
     """
 
-    def __init__(self, policy: Any, fallback: Any = None) -> None:
+    def __init__(self, policy: Any, fallback: Any = None, dribble_mask_m: float | None = DRIBBLE_MASK_M) -> None:
         if not callable(getattr(policy, "act", None)):
             raise TypeError(f"PolicyCarrierDecider: policy must have act(env, agent, obs, info), got {policy!r}")
         self.policy = policy
         self.fallback = fallback if fallback is not None else CostDecider()
+        self.dribble_mask_m = check_dribble_mask_m(dribble_mask_m, "PolicyCarrierDecider")
         self.spec_env = AttackSpecEnv()
         self.decisions = 0
+        self.dribbles_masked = 0
         if callable(getattr(policy, "reset", None)):
             policy.reset(self.spec_env)
 
@@ -116,7 +148,9 @@ class PolicyCarrierDecider:
         ctx = request.ctx
         args = (ctx.world, ctx.team, request.carrier, ctx.field, ctx.robot, request.ball, request.params)
         obs = attack_observation(*args, candidates=request.candidates)
-        mask = attack_action_mask(*args, candidates=request.candidates)
+        mask, masked = limit_dribbles(attack_action_mask(*args, candidates=request.candidates), request,
+                                      (DRIBBLE_GOAL, DRIBBLE_LEFT, DRIBBLE_RIGHT), self.dribble_mask_m)
+        self.dribbles_masked += masked
         a = ask_policy(self.policy, self.spec_env, obs, mask, "PolicyCarrierDecider")
         self.decisions += 1
         return option_decision(a, *args, candidates=request.candidates)
@@ -145,10 +179,7 @@ class PolicyAttackDecider(AttackDecider):
                  dribble_mask_m: float | None = DRIBBLE_MASK_M) -> None:
         if not callable(getattr(policy, "act", None)):
             raise TypeError(f"PolicyAttackDecider: policy must have act(env, agent, obs, info), got {policy!r}")
-        if dribble_mask_m is not None and not (isinstance(dribble_mask_m, (int, float))
-                                               and math.isfinite(dribble_mask_m) and dribble_mask_m >= 0):
-            raise ValueError(f"PolicyAttackDecider: dribble_mask_m must be None or a finite distance >= 0 (m), "
-                             f"got {dribble_mask_m!r}")
+        check_dribble_mask_m(dribble_mask_m, "PolicyAttackDecider")
         super().__init__(params)
         self.policy = policy
         self.dribble_mask_m = dribble_mask_m
@@ -162,12 +193,8 @@ class PolicyAttackDecider(AttackDecider):
         if request.restart or not request.on_ball:
             return super().decide(request)
         passes, obs, mask = request_features(request, self.request_params(request))
-        dribbled = request.ctx.dribbled_m
-        if self.dribble_mask_m is not None and dribbled is not None \
-                and float(dribbled[request.carrier]) >= self.dribble_mask_m:
-            mask = mask.copy()
-            mask[list(DRIBBLE_OPTIONS)] = 0  # shoot stays legal
-            self.dribbles_masked += 1
+        mask, masked = limit_dribbles(mask, request, DRIBBLE_OPTIONS, self.dribble_mask_m)
+        self.dribbles_masked += masked
         a = ask_policy(self.policy, self.spec_env, obs, mask, "PolicyAttackDecider")
         self.decisions += 1
         d, option = option_play_decision(a, request.ctx.ball, request.ctx.field, passes)
@@ -309,5 +336,5 @@ def make_match_decider(spec: Any, where: str = "decision", task: str = TASK) -> 
     return PolicyAttackDecider(policy) if task == DRILL_TASK else PolicyCarrierDecider(policy)
 
 
-__all__ = ["PolicyCarrierDecider", "PolicyAttackDecider", "ImprovedAttackDecider", "AttackSpecEnv", "ask_policy", "make_match_decider",
-           "default_actor_path", "check_actor_file", "DECISION_CHOICES", "TASK", "DRILL_TASK", "TASK_SPACES"]
+__all__ = ["PolicyCarrierDecider", "PolicyAttackDecider", "ImprovedAttackDecider", "AttackSpecEnv", "ask_policy",
+           "limit_dribbles", "check_dribble_mask_m", "make_match_decider", "default_actor_path", "check_actor_file", "DECISION_CHOICES", "TASK", "DRILL_TASK", "TASK_SPACES"]

@@ -83,7 +83,9 @@ class PassPlan:
     """The team's current pass: passer and receiver robot indices, receive point (m),
     phase, start and kick times (s); ``urgent``: an opponent contests the ball, so the
     passer kicks without waiting for the receiver's READY; ``restart``: a set piece
-    planned before the passer reached the ball."""
+    planned before the passer reached the ball; ``spent``: the passer has dribbled the
+    ball ``dribble_cut_m`` (:class:`PassingParams`), so it kicks without the READY and
+    however fast it moves (a pressed passer is pushed along with the ball)."""
 
     passer: int
     receiver: int
@@ -93,6 +95,7 @@ class PassPlan:
     t_kick: float | None = None
     urgent: bool = False
     restart: bool = False
+    spent: bool = False
 
 
 @dataclass(frozen=True)
@@ -159,8 +162,10 @@ class PassingParams:
             ``Decision.commit_s``) is taken again once the carrier has dribbled the ball
             this far (m, :attr:`~ssl_marl.plays.play.PlayContext.dribbled_m`, as the
             referee measures it; SSL's limit is 1 m), so a committed dribble cannot run
-            into the excessive-dribbling foul; None: commitments run their time. Decisions
-            without a commitment (the cost decision's) are not affected.
+            into the excessive-dribbling foul, and an open-play pass setup whose passer has
+            dribbled this far is *spent* (:class:`PassPlan`: the passer kicks as soon as it
+            faces the receive point, without the receiver's READY and however fast it moves:
+            in matches such passers are mostly pushed along by an opponent); None: off.
     """
 
     decision: DecisionParams = DecisionParams()
@@ -362,6 +367,8 @@ class PassCoordinator:
             if not plan.restart and p.press_urgent_m is not None and len(ctx.opp_pos) and float(
                     np.min(np.hypot(*(ctx.opp_pos - ctx.ball).T))) < p.press_urgent_m:
                 plan.urgent = True
+            if not plan.restart and self._dribble_spent(ctx, plan.passer):
+                plan.urgent = plan.spent = True  # the passer kicks before SSL's 1 m limit
             max_setup = p.max_restart_setup_s if plan.restart else p.max_setup_s
             if (passer is not None and passer.state is PassState.FAILED) or t - plan.t_start > max_setup:
                 self._drop(t)

@@ -3,7 +3,7 @@
 State machine (team frame; d_{d-b}: dribbler-ball distance)::
 
     GET_BALL --(d_db <= 35 mm)--> HOLD
-    HOLD --(receiver_ready, a target set, facing it, nearly still)--> KICK   (the handshake)
+    HOLD --(receiver_ready, a target set, facing it, nearly still or kick_moving)--> KICK   (the handshake)
     HOLD --(d_db > 50 mm: ball lost)--> GET_BALL
     HOLD --(waited max_wait_s)--> FAILED
     KICK --(kick commanded / pass skill SUCCEEDED)--> DONE
@@ -97,6 +97,9 @@ class PassParams:
             ``kick_align_tol``.
         strike: with ``approach_behind``, kick from behind the ball without taking it onto
             the dribbler (STRIKE; a set piece, module docstring).
+        kick_moving: HOLD -> KICK without the ``settle_speed`` condition (a passer whose
+            dribble nears SSL's 1 m limit, e.g. pushed along by an opponent, kicks as soon as
+            it faces the target).
     """
 
     target_robot: int | None = None
@@ -118,6 +121,7 @@ class PassParams:
     behind_gap_m: float = 0.08
     behind_tol_m: float = 0.05
     strike: bool = False
+    kick_moving: bool = False
 
 
 @dataclass(frozen=True)
@@ -206,7 +210,7 @@ class Pass(Tactic):
             if inputs.d_db > params.lost_ball_m:
                 return S.GET_BALL
             if (inputs.receiver_ready and inputs.has_target and inputs.aim_err <= params.kick_align_tol
-                    and inputs.speed <= params.settle_speed):
+                    and (inputs.speed <= params.settle_speed or params.kick_moving)):
                 return S.KICK
             return S.FAILED if inputs.time_in_state > params.max_wait_s else S.HOLD
         if state is S.KICK:

@@ -42,7 +42,8 @@ def only_robot(robot_of: Callable[[PlayContext], int | None]) -> Callable[[PlayC
 def passer_role(coord: PassCoordinator, priority: int = 95, tactic: type[Tactic] = Pass,
                 extra: Callable[[PlayContext, PassPlan], dict] | None = None) -> RoleDef:
     """The plan's passer: ``tactic`` (a :class:`~ssl_marl.plays.pass_tactic.Pass`) told the
-    receiver, the receive point and whether the receiver is READY (or the plan urgent);
+    receiver, the receive point and whether the receiver is READY (or the plan urgent), and
+    whether it kicks moving (the plan spent: its dribble near SSL's limit);
     ``extra(ctx, plan)`` adds tactic parameters (e.g. a chip's elevation)."""
 
     def target(ctx: PlayContext) -> np.ndarray | None:
@@ -55,7 +56,7 @@ def passer_role(coord: PassCoordinator, priority: int = 95, tactic: type[Tactic]
         ready = ctx.role_status.get("receiver")
         t.set_params(target_robot=plan.receiver, target_point=(float(plan.point[0]), float(plan.point[1])),
                      receiver_ready=plan.urgent or (ready is not None and ready.state is ReceiveState.READY),
-                     **(extra(ctx, plan) if extra is not None else {}))
+                     kick_moving=plan.spent, **(extra(ctx, plan) if extra is not None else {}))
 
     return RoleDef("passer", priority, tactic, target, update=update,
                    cost=only_robot(lambda ctx: coord.plan.passer if coord.plan else None), unfilled_cost=20.0)
