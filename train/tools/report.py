@@ -304,6 +304,18 @@ DECISION_SSL_103 = ["match_attack_learned_decision_vs_attack_learned_600_ssl_103
 DECISION_SSL_103_POOLED = [
     m.both_colours("attack-learned, learned decision vs attack-learned, `--format ssl`, 6v6 Division B",
                    DECISION_SSL_103[0], DECISION_SSL_103[1])]
+#: the learned decision within SSL's dribbling limit against the cost decision, both colours (commit 360168e)
+DECISION_SSL_105300 = ["match_attack_learned_decision_vs_attack_learned_600_ssl_105300",
+                       "match_attack_learned_vs_attack_learned_decision_600_ssl_105310",
+                       "match_attack_learned_decision_vs_attack_learned_600_ssl_105320",
+                       "match_attack_learned_vs_attack_learned_decision_600_ssl_105330"]
+DECISION_SSL_105300_POOLED = [
+    m.both_colours("learned decision (dribble limit) vs attack-learned, SSL format, seeds 105300-105319",
+                   DECISION_SSL_105300[0], DECISION_SSL_105300[1]),
+    m.both_colours("learned decision (dribble limit) vs attack-learned, SSL format, seeds 105320-105339",
+                   DECISION_SSL_105300[2], DECISION_SSL_105300[3]),
+    ("learned decision (dribble limit) vs attack-learned, SSL format, 6v6 Division B, all", tuple(
+        (name, "blue" if i % 2 == 0 else "yellow") for i, name in enumerate(DECISION_SSL_105300)))]
 #: the improved decision with the second-iteration value actor against the cost decision, both colours (commit 646fe1b)
 DECISION_IMPROVED_103 = ["match_attack_improved_decision_vs_attack_learned_600_103100",
                          "match_attack_learned_vs_attack_improved_decision_600_103105"]
@@ -466,6 +478,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_div_a_102_pooled": lambda r: m.pooled_sides(r, DECISION_DIV_A_102_POOLED),
     "decision_series_ssl_103": lambda r: m.series_600(r, DECISION_SSL_103),
     "decision_ssl_103_pooled": lambda r: m.pooled_sides(r, DECISION_SSL_103_POOLED),
+    "decision_series_ssl_105300": lambda r: m.series_600(r, DECISION_SSL_105300),
+    "decision_ssl_105300_pooled": lambda r: m.pooled_sides(r, DECISION_SSL_105300_POOLED),
     "receive_pressed": lambda r: t.skills(r, RECEIVE_PRESSED),
     "receive_pressed_selection": lambda r: t.selection(r, RECEIVE_PRESSED_RUNS),
     "receive_mixed_selection_s0": lambda r: t.selection_by_field(r, "receive_pressed_mixed_s0"),
