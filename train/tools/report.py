@@ -308,12 +308,16 @@ DECISION_SSL_103_POOLED = [
 DECISION_SSL_105300 = ["match_attack_learned_decision_vs_attack_learned_600_ssl_105300",
                        "match_attack_learned_vs_attack_learned_decision_600_ssl_105310",
                        "match_attack_learned_decision_vs_attack_learned_600_ssl_105320",
-                       "match_attack_learned_vs_attack_learned_decision_600_ssl_105330"]
+                       "match_attack_learned_vs_attack_learned_decision_600_ssl_105330",
+                       "match_attack_learned_decision_vs_attack_learned_600_ssl_105340",
+                       "match_attack_learned_vs_attack_learned_decision_600_ssl_105350"]
 DECISION_SSL_105300_POOLED = [
     m.both_colours("learned decision (dribble limit) vs attack-learned, SSL format, seeds 105300-105319",
                    DECISION_SSL_105300[0], DECISION_SSL_105300[1]),
     m.both_colours("learned decision (dribble limit) vs attack-learned, SSL format, seeds 105320-105339",
                    DECISION_SSL_105300[2], DECISION_SSL_105300[3]),
+    m.both_colours("learned decision (dribble limit) vs attack-learned, SSL format, seeds 105340-105359",
+                   DECISION_SSL_105300[4], DECISION_SSL_105300[5]),
     ("learned decision (dribble limit) vs attack-learned, SSL format, 6v6 Division B, all", tuple(
         (name, "blue" if i % 2 == 0 else "yellow") for i, name in enumerate(DECISION_SSL_105300)))]
 #: the improved decision with the second-iteration value actor against the cost decision, both colours (commit 646fe1b)
