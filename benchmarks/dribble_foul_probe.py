@@ -20,8 +20,6 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-import numpy as np  # noqa: E402
-
 from benchmarks.ball_out_probe import probe_args, write_probe  # noqa: E402
 
 
@@ -69,7 +67,6 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int) -> list[dict]
             if e.get("type") == "foul" and e.get("foul") == "excessive_dribbling":
                 team, robot = e["agent"].rsplit("_", 1)
                 fouls.append({"seed": seed, "t": float(e["t"]), "team": team, "robot": int(robot),
-                              "speed_mps": float(np.hypot(*truth.team(team).vel[int(robot)])),
                               **_controller_view(ctrls[team], int(robot))})
         return record(self, events, truth)
 

@@ -72,15 +72,16 @@ def test_dribble_watch_agrees_with_the_referee_on_a_real_dribble():
 
 
 class _Dribbler:
-    """A decision policy that dribbles towards the goal whenever it may, else shoots."""
+    """A decision policy that dribbles towards the goal (option ``dribble``) whenever it may,
+    else shoots (option ``shoot``); the attack drill's options by default."""
 
-    def __init__(self):
-        self.masks = []
+    def __init__(self, dribble=DRIBBLE_GOAL_OPTION, shoot=SHOOT):
+        self.dribble, self.shoot, self.masks = dribble, shoot, []
 
     def act(self, env, agent, obs, info):
         mask = np.asarray(info["action_mask"])
         self.masks.append(mask.copy())
-        return DRIBBLE_GOAL_OPTION if mask[DRIBBLE_GOAL_OPTION] else SHOOT
+        return self.dribble if mask[self.dribble] else self.shoot
 
 
 def _dribble_run(mask_m, cut_m, seconds=10.0):
@@ -133,18 +134,11 @@ def test_learned_attacking_decision_stops_dribbling_before_the_limit(limit):
         assert "excessive_dribbling" in fouls and not masked and dec.dribbles_masked == 0
 
 
-class _Always:
-    """An Attack 3v2 policy that dribbles toward the goal whenever it may, else shoots."""
+def _dribbler_3v2():
+    """:class:`_Dribbler` over the Attack 3v2 options."""
+    from ssl_marl.decisions.attack_features import DRIBBLE_GOAL, SHOOT as SHOOT_3V2
 
-    def __init__(self):
-        self.masks = []
-
-    def act(self, env, agent, obs, info):
-        from ssl_marl.decisions.attack_features import DRIBBLE_GOAL, SHOOT as SHOOT_3V2
-
-        mask = np.asarray(info["action_mask"])
-        self.masks.append(mask.copy())
-        return DRIBBLE_GOAL if mask[DRIBBLE_GOAL] else SHOOT_3V2
+    return _Dribbler(DRIBBLE_GOAL, SHOOT_3V2)
 
 
 @pytest.mark.parametrize("dribbled, masked", [(0.3, False), (0.6, True)])
@@ -160,7 +154,7 @@ def test_passing_plays_learned_decider_masks_dribbles_past_the_limit(dribbled, m
     from ssl_marl.plays.play import make_context
 
     ctx = replace(make_context(_holding(0.0), "blue", F, RP), dribbled_m=np.array([dribbled, 0.0]))
-    pol = _Always()
+    pol = _dribbler_3v2()
     dec = PolicyCarrierDecider(pol)
     assert dec.dribble_mask_m == DRIBBLE_MASK_M == 0.5
     d = dec.decide(CarrierRequest(ctx, 0, (1,), DecisionParams(), False, BP, 1.0))
@@ -168,7 +162,7 @@ def test_passing_plays_learned_decider_masks_dribbles_past_the_limit(dribbled, m
     assert bool(pol.masks[0][[DRIBBLE_GOAL, DRIBBLE_LEFT, DRIBBLE_RIGHT]].any()) is not masked
     assert d.choice is (Choice.SHOOT if masked else Choice.KEEP)
     # without the limit the policy dribbles on
-    d = PolicyCarrierDecider(_Always(), dribble_mask_m=None).decide(
+    d = PolicyCarrierDecider(_dribbler_3v2(), dribble_mask_m=None).decide(
         CarrierRequest(ctx, 0, (1,), DecisionParams(), False, BP, 1.0))
     assert d.choice is Choice.KEEP
 
@@ -182,7 +176,7 @@ def test_dribble_limit_parameters_are_checked():
         PolicyAttackDecider(_Dribbler(), dribble_mask_m=-0.1)
     from ssl_marl.decisions.match_decider import PolicyCarrierDecider
     with pytest.raises(ValueError, match="PolicyCarrierDecider: dribble_mask_m"):
-        PolicyCarrierDecider(_Always(), dribble_mask_m=math.inf)
+        PolicyCarrierDecider(_dribbler_3v2(), dribble_mask_m=math.inf)
     with pytest.raises(ValueError, match="dribble_cut_m"):
         PassingParams(dribble_cut_m=0.0)
     assert len(ATTACK_DRILL_OPTIONS) == 10 and set(DRIBBLE_OPTIONS) == {7, 8, 9}

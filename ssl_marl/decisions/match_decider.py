@@ -179,10 +179,9 @@ class PolicyAttackDecider(AttackDecider):
                  dribble_mask_m: float | None = DRIBBLE_MASK_M) -> None:
         if not callable(getattr(policy, "act", None)):
             raise TypeError(f"PolicyAttackDecider: policy must have act(env, agent, obs, info), got {policy!r}")
-        check_dribble_mask_m(dribble_mask_m, "PolicyAttackDecider")
+        self.dribble_mask_m = check_dribble_mask_m(dribble_mask_m, "PolicyAttackDecider")
         super().__init__(params)
         self.policy = policy
-        self.dribble_mask_m = dribble_mask_m
         self.spec_env = AttackSpecEnv(DRILL_TASK)
         self.decisions = 0
         self.dribbles_masked = 0

@@ -311,15 +311,8 @@ DECISION_SSL_105300 = ["match_attack_learned_decision_vs_attack_learned_600_ssl_
                        "match_attack_learned_vs_attack_learned_decision_600_ssl_105330",
                        "match_attack_learned_decision_vs_attack_learned_600_ssl_105340",
                        "match_attack_learned_vs_attack_learned_decision_600_ssl_105350"]
-DECISION_SSL_105300_POOLED = [
-    m.both_colours("learned decision (dribble limit) vs attack-learned, SSL format, seeds 105300-105319",
-                   DECISION_SSL_105300[0], DECISION_SSL_105300[1]),
-    m.both_colours("learned decision (dribble limit) vs attack-learned, SSL format, seeds 105320-105339",
-                   DECISION_SSL_105300[2], DECISION_SSL_105300[3]),
-    m.both_colours("learned decision (dribble limit) vs attack-learned, SSL format, seeds 105340-105359",
-                   DECISION_SSL_105300[4], DECISION_SSL_105300[5]),
-    ("learned decision (dribble limit) vs attack-learned, SSL format, 6v6 Division B, all", tuple(
-        (name, "blue" if i % 2 == 0 else "yellow") for i, name in enumerate(DECISION_SSL_105300)))]
+DECISION_SSL_105300_POOLED = m.both_colours_rounds("learned decision (dribble limit) vs attack-learned, SSL format",
+                                                   DECISION_SSL_105300, 105300)
 #: the improved decision with the second-iteration value actor against the cost decision, both colours (commit 646fe1b)
 DECISION_IMPROVED_103 = ["match_attack_improved_decision_vs_attack_learned_600_103100",
                          "match_attack_learned_vs_attack_improved_decision_600_103105"]
@@ -379,15 +372,8 @@ SKILLS_SSL_105200 = ["match_attack_learned_vs_attack_baseline_600_ssl_105200",
                      "match_attack_baseline_vs_attack_learned_600_ssl_105230",
                      "match_attack_learned_vs_attack_baseline_600_ssl_105240",
                      "match_attack_baseline_vs_attack_learned_600_ssl_105250"]
-SKILLS_SSL_105200_POOLED = [
-    m.both_colours("attack-learned vs attack-baseline, SSL format, seeds 105200-105219",
-                   SKILLS_SSL_105200[0], SKILLS_SSL_105200[1]),
-    m.both_colours("attack-learned vs attack-baseline, SSL format, seeds 105220-105239",
-                   SKILLS_SSL_105200[2], SKILLS_SSL_105200[3]),
-    m.both_colours("attack-learned vs attack-baseline, SSL format, seeds 105240-105259",
-                   SKILLS_SSL_105200[4], SKILLS_SSL_105200[5]),
-    ("attack-learned vs attack-baseline, SSL format, all", tuple(
-        (name, "blue" if i % 2 == 0 else "yellow") for i, name in enumerate(SKILLS_SSL_105200)))]
+SKILLS_SSL_105200_POOLED = m.both_colours_rounds("attack-learned vs attack-baseline, SSL format", SKILLS_SSL_105200,
+                                                 105200)
 ATTACK_DRILL = [("hand-coded (the attacking plays' cost decision)", "attack_drill_handcoded"),
                 ("learned (shipped `attack_drill.pt`: cloned, then MAPPO `mappo_attack_drill_bc_s0`)",
                  "attack_drill_learned")]

@@ -182,6 +182,21 @@ def both_colours(label: str, blue_series: str, yellow_series: str) -> tuple[str,
     return label, ((blue_series, "blue"), (yellow_series, "yellow"))
 
 
+def both_colours_rounds(label: str, names: list[str], first_seed: int,
+                        seeds_per_round: int = 20) -> list[tuple[str, tuple[tuple[str, str], ...]]]:
+    """:func:`pooled_sides` row specs of one team played in rounds: ``names`` alternate the
+    team's blue and yellow series, each pair a round of ``seeds_per_round`` seeds from
+    ``first_seed`` on (its row labelled with the seed range), then a row of all of them."""
+    if len(names) % 2:
+        raise ValueError(f"both_colours_rounds: names must pair blue and yellow series, got {len(names)}")
+    rows = []
+    for k in range(len(names) // 2):
+        lo = first_seed + k * seeds_per_round
+        rows.append(both_colours(f"{label}, seeds {lo}-{lo + seeds_per_round - 1}", names[2 * k], names[2 * k + 1]))
+    rows.append((f"{label}, all", tuple((name, "blue" if i % 2 == 0 else "yellow") for i, name in enumerate(names))))
+    return rows
+
+
 def pooled_sides(results: Path, rows_spec: Iterable[tuple[str, tuple[tuple[str, str], ...]]]) -> Lines:
     """One row per (label, ((series name, side), ...)): the matches of the named series
     pooled from the named side's point of view ("blue" or "yellow"), so a team played on
