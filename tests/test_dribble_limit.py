@@ -148,7 +148,8 @@ def test_passing_plays_learned_decider_masks_dribbles_past_the_limit(dribbled, m
     from dataclasses import replace
 
     from ssl_marl.decisions.attack_features import DRIBBLE_GOAL, DRIBBLE_LEFT, DRIBBLE_RIGHT
-    from ssl_marl.decisions.match_decider import DRIBBLE_MASK_M, PolicyCarrierDecider
+    from ssl_marl.decisions.dribble_limit import DRIBBLE_MASK_M
+    from ssl_marl.decisions.match_decider import PolicyCarrierDecider
     from ssl_marl.plays.pass_coordinator import CarrierRequest
     from ssl_marl.plays.pass_decision import Choice, DecisionParams
     from ssl_marl.plays.play import make_context

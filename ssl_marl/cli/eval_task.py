@@ -1,4 +1,4 @@
-"""``ssl-marl eval-task``: a decision policy on keepaway, attack-3v2 or attack-drill."""
+"""``ssl-marl eval-task``: a decision policy on keepaway, attack-3v2 or an attack drill."""
 
 from __future__ import annotations
 
@@ -9,14 +9,15 @@ from .options import FIELDS, add_backend, add_tracker_option, positive_int, work
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     """Add the ``eval-task`` subparser."""
-    k = subparsers.add_parser("eval-task", help="evaluate a decision policy on keepaway, attack-3v2 or attack-drill",
+    k = subparsers.add_parser("eval-task", help="evaluate a decision policy on keepaway, attack-3v2 or an attack drill",
                               description="Episodes of a decision-level multi-agent task (ssl_marl/decisions) with "
                                           "one policy for all learning agents; episode i uses seed SEED+i, so "
                                           "results do not depend on --workers. Writes OUT/results.json (keepaway: "
-                                          "mean_duration_s, attack-3v2 / attack-drill: goal_rate, with 95% intervals, outcomes, "
+                                          "mean_duration_s, attack-3v2 / attack drills: goal_rate, with 95% intervals, outcomes, "
                                           "every episode) and OUT/duration_hist.png.")
-    k.add_argument("task", choices=("keepaway", "attack-3v2", "attack-drill"),
-                   help="the decision task (attack-drill: the attacking plays' options)")
+    k.add_argument("task", choices=("keepaway", "attack-3v2", "attack-drill", "attack-drill-ssl"),
+                   help="the decision task (attack-drill: the attacking plays' options; attack-drill-ssl: the "
+                        "same under SSL rules, the attackers' fouls ending the attack)")
     k.add_argument("--policy", choices=("learned", "handcoded", "random", "always-hold", "improved"),
                    default="handcoded",
                    help="decision policy: learned (ssl_marl.decisions.learned, the shipped actor or --actor), "
@@ -28,13 +29,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         "(default handcoded)")
     k.add_argument("--actor", default=None, metavar="PATH",
                    help="decision actor file (.pt, loaded with weights_only=True); with --policy learned the "
-                        "policy's actor (default: ssl_marl/decisions/pretrained/TASK.pt), with --policy improved "
+                        "policy's actor (default: ssl_marl/decisions/pretrained/TASK.pt, attack_drill.pt for attack-drill-ssl), with --policy improved "
                         "the value actor (python -m train.mappo_rollout_pi fit; default: "
                         "ssl_marl/decisions/pretrained/TASK_value.pt)")
     k.add_argument("--episodes", type=positive_int("--episodes"), default=1000, help="episodes (default 1000)")
     k.add_argument("--seed", type=int, default=None,
                    help="evaluation seed: episode i uses SEED+i (default 40000 keepaway, 41000 attack-3v2, 43000 "
-                        "attack-drill)")
+                        "attack-drill, 153000 attack-drill-ssl)")
     k.add_argument("--workers", type=positive_int("--workers"), default=None,
                    help="worker processes (default 1; with --backend ray: tasks in flight, default the cluster's CPUs)")
     k.add_argument("--realism", choices=("none", "realistic"), default="none", help="noise / latency preset")

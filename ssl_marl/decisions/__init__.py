@@ -8,11 +8,12 @@ Registries (names used by ``ssl-marl eval-task`` and the trainers):
 * :data:`DECISION_TASKS`: task name -> factory ``(**kwargs) -> DecisionEnv``
   ("keepaway": :class:`~ssl_marl.decisions.keepaway.env.KeepawayEnv`; "attack-3v2":
   ``ssl_marl.decisions.attack:Attack3v2Env``, the passing play's options; "attack-drill":
-  ``ssl_marl.decisions.attack_drill:AttackDrillEnv``, the attacking plays' options).
+  ``ssl_marl.decisions.attack_drill:AttackDrillEnv``, the attacking plays' options;
+  "attack-drill-ssl": ``AttackDrillSSLEnv``, the same drill under SSL rules).
 * :data:`HANDCODED_POLICIES`: task name -> the task's hand-coded benchmark policy class
   ("keepaway": ``HandcodedKeepawayPolicy``; "attack-3v2":
   ``ssl_marl.decisions.attack:HandcodedAttackPolicy``; "attack-drill":
-  ``ssl_marl.decisions.attack_drill:HandcodedAttackDrillPolicy``).
+  ``ssl_marl.decisions.attack_drill:HandcodedAttackDrillPolicy``, for both drills).
 * :data:`DECISION_POLICIES`: policy name -> factory ``(task, seed=0, actor=None) ->
   DecisionPolicy`` ("random", "always-hold" (keepaway only), "handcoded", "learned"
   (``ssl_marl.decisions.learned``, the shipped actor or ``actor``), "improved" (the hand-coded
@@ -35,12 +36,14 @@ _TASK_SPECS: dict[str, str] = {
     "keepaway": "ssl_marl.decisions.keepaway.env:KeepawayEnv",
     "attack-3v2": "ssl_marl.decisions.attack:Attack3v2Env",
     "attack-drill": "ssl_marl.decisions.attack_drill:AttackDrillEnv",
+    "attack-drill-ssl": "ssl_marl.decisions.attack_drill:AttackDrillSSLEnv",
 }
 #: task name -> "module:hand-coded benchmark policy class" (constructor takes no required arguments)
 _HANDCODED_SPECS: dict[str, str] = {
     "keepaway": "ssl_marl.decisions.keepaway.policies:HandcodedKeepawayPolicy",
     "attack-3v2": "ssl_marl.decisions.attack:HandcodedAttackPolicy",
     "attack-drill": "ssl_marl.decisions.attack_drill:HandcodedAttackDrillPolicy",
+    "attack-drill-ssl": "ssl_marl.decisions.attack_drill:HandcodedAttackDrillPolicy",
 }
 
 

@@ -24,6 +24,14 @@ the match's attacking plays in place of the passing play:
   (:func:`~ssl_marl.plays.attack_decision.decide_attack`, the function the attacking team plays
   in matches) on the same request, mapped to the options (keep -> ``dribble_goal``); a carrier
   that has kept the ball for more than ``max_keep_s`` (0.8 s) shoots, as in the play.
+* **Under SSL rules** (:class:`AttackDrillSSLEnv`, task ``attack-drill-ssl``): the attackers'
+  SSL fouls end the episode (outcome ``foul``: :class:`~ssl_marl.envs.tasks.attack.AttackRules`
+  ``fouls``), the pass coordinator cuts dribbles as in matches (:data:`SSL_DRILL_PASSING`), and
+  the dribble options are not offered once the carrier has dribbled
+  :data:`~ssl_marl.decisions.dribble_limit.DRIBBLE_MASK_M` (the rule the match's learned decider
+  applies, :mod:`~ssl_marl.decisions.dribble_limit`; a masked choice of the hand-coded policy
+  is a shot, as its keep clock's). Same observation and options, so its actors play in matches
+  as the drill's do.
 """
 
 from __future__ import annotations
@@ -35,6 +43,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from ..envs.actions import CHIP_ACTION_DIM, fit_action
+from ..envs.tasks.attack import AttackRules
 from ..physics.params import BallParams
 from ..plays.attack_decision import AttackOption, AttackParams, decide_attack
 from ..plays.attack_play import (ATTACK_PASSING, AttackDecider, AttackPrepare, SpotPlanner, chip_passer_role,
@@ -44,14 +53,18 @@ from ..plays.passing_roles import passing_attacker_role
 from ..plays.skillset import ATTACK_SKILLS
 from ..plays.play import Play, goalie_role
 from .attack import Attack3v2Env, CarrierRequestHooks, DrillDecider, HandcodedCarrierPolicy
-from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, DRIBBLE_GOAL_OPTION, SHOOT, SlotPasses,
+from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, DRIBBLE_GOAL_OPTION, DRIBBLE_OPTIONS,
+                                    SHOOT, SlotPasses,
                                     attack_decision_option, option_play_decision, request_features)
 from .attack_features import ATTACK_OBS_DIM, OBS_BOUND, attack_observation
+from .dribble_limit import DRIBBLE_MASK_M, check_dribble_mask_m, limit_dribbles
 
 #: the drill's pass coordinator: the attacking plays' settings, asked every tick; the drill
 #: calls no fouls and its shipped actors were trained with dribbles that run their time, so
 #: the match's dribble cut (``dribble_cut_m``) is off here
 DRILL_PASSING = dataclasses.replace(ATTACK_PASSING, decide_every=1, dribble_cut_m=None)
+#: the drill under SSL rules: the attacking plays' settings as in matches (dribble cut on), asked every tick
+SSL_DRILL_PASSING = dataclasses.replace(ATTACK_PASSING, decide_every=1)
 
 
 class DrillAttackDecider(DrillDecider, AttackDecider):
@@ -99,10 +112,13 @@ class AttackOptionsMixin(CarrierRequestHooks):
     ``n_agents`` and ``agent_of``."""
 
     _passes: SlotPasses
+    #: m: dribble distance from which the dribble options are masked (None: never;
+    #: :func:`~ssl_marl.decisions.dribble_limit.limit_dribbles`)
+    dribble_mask_m: float | None = None
 
     def request_features(self, req: CarrierRequest) -> tuple[np.ndarray, np.ndarray]:
         self._passes, obs, mask = request_features(req, self.decider.request_params(req))
-        return obs, mask
+        return obs, limit_dribbles(mask, req, DRIBBLE_OPTIONS, self.dribble_mask_m)[0]
 
     def start_options(self, chosen: Mapping[str, int]) -> None:
         req = self.decider.request
@@ -160,6 +176,24 @@ class AttackDrillEnv(AttackOptionsMixin, Attack3v2Env):
         return {**super().engine_kwargs(), "chip_kicks": True}
 
 
+class AttackDrillSSLEnv(AttackDrillEnv):
+    """The attack drill under SSL rules (module docstring): fouls called, the match's dribble cut
+    and the learned decider's dribble mask. Arguments as :class:`AttackDrillEnv` plus
+    ``dribble_mask_m`` (m, default :data:`~ssl_marl.decisions.dribble_limit.DRIBBLE_MASK_M`;
+    None: dribbles always offered); ``rules`` must call fouls."""
+
+    task_name = "attack-drill-ssl"
+
+    def __init__(self, skills: str = "learned", attack: AttackParams | None = None,
+                 dribble_mask_m: float | None = DRIBBLE_MASK_M, **kwargs: Any) -> None:
+        self.dribble_mask_m = check_dribble_mask_m(dribble_mask_m, type(self).__name__)
+        rules = kwargs.setdefault("rules", AttackRules(fouls=True))
+        if not rules.fouls:
+            raise ValueError(f"{type(self).__name__}: rules must call fouls (AttackRules(fouls=True)), got {rules!r}")
+        kwargs.setdefault("passing", SSL_DRILL_PASSING)
+        super().__init__(skills=skills, attack=attack, **kwargs)
+
+
 class HandcodedAttackDrillPolicy(HandcodedCarrierPolicy):
     """The attacking plays' cost decision as an attack-drill policy (module docstring)."""
 
@@ -173,5 +207,5 @@ class HandcodedAttackDrillPolicy(HandcodedCarrierPolicy):
         return option, option == DRIBBLE_GOAL_OPTION
 
 
-__all__ = ["AttackDrillEnv", "AttackOptionsMixin", "HandcodedAttackDrillPolicy", "DrillAttackDecider",
+__all__ = ["AttackDrillEnv", "AttackDrillSSLEnv", "AttackOptionsMixin", "SSL_DRILL_PASSING", "HandcodedAttackDrillPolicy", "DrillAttackDecider",
            "drill_attacking_plays", "DRILL_PASSING"]

@@ -46,7 +46,7 @@ _TRAIN_CMD = {
 
 #: tasks whose agents decide with another task's observation and options (an actor of one
 #: plays the other): the full-match task continues the attack drill's decision
-SHARED_DECISIONS: dict[str, str] = {"attack-match": "attack-drill"}
+SHARED_DECISIONS: dict[str, str] = {"attack-match": "attack-drill", "attack-drill-ssl": "attack-drill"}
 
 
 def decision_family(task: str | None) -> str | None:
@@ -56,9 +56,10 @@ def decision_family(task: str | None) -> str | None:
 
 
 def pretrained_path(task: str) -> Path:
-    """The shipped actor of ``task`` (``pretrained/<task with - as _>.pt``); FileNotFoundError saying
-    how to train one when it is absent."""
-    path = PRETRAINED_DIR / f"{task.replace('-', '_')}.pt"
+    """The shipped actor of ``task``'s decision family (:func:`decision_family`;
+    ``pretrained/<family with - as _>.pt``: the drill under SSL rules plays the drill's actor);
+    FileNotFoundError saying how to train one when it is absent."""
+    path = PRETRAINED_DIR / f"{decision_family(task).replace('-', '_')}.pt"
     if not path.is_file():
         cmd = _TRAIN_CMD.get(task, f"python -m train mappo --task {task} --seed 0 --out runs/mappo_{task}")
         raise FileNotFoundError(f"no shipped decision actor for task {task!r} ({path}); train and export one: {cmd}")

@@ -32,7 +32,6 @@ match starts.
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 from typing import Any
 
@@ -45,6 +44,7 @@ from ..plays.pass_decision import Choice, Decision
 from ..plays.pass_coordinator import CarrierRequest, CostDecider
 from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, DRIBBLE_OPTIONS,
                                     attack_decision_option, option_play_decision, request_features)
+from .dribble_limit import DRIBBLE_MASK_M, check_dribble_mask_m, limit_dribbles
 from .attack_features import (ATTACK_OBS_DIM, ATTACK_OPTIONS, DRIBBLE_GOAL, DRIBBLE_LEFT, DRIBBLE_RIGHT, OBS_BOUND,
                               attack_action_mask, attack_observation, option_decision)
 
@@ -55,9 +55,6 @@ DRILL_TASK = "attack-drill"
 TASK_SPACES: dict[str, tuple[int, tuple[str, ...]]] = {TASK: (ATTACK_OBS_DIM, ATTACK_OPTIONS),
                                                        DRILL_TASK: (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS)}
 DECISION_CHOICES = ("handcoded", "learned", "improved")
-#: m: a learned attacking decider stops offering dribbles from this dribble distance on
-#: (:class:`PolicyAttackDecider`; SSL's limit is 1 m)
-DRIBBLE_MASK_M = 0.5
 AGENT = "attacker_0"
 
 
@@ -80,29 +77,6 @@ class AttackSpecEnv:
 
     def action_space(self, agent: str) -> gymnasium.spaces.Discrete:
         return gymnasium.spaces.Discrete(self.n_options)
-
-
-def check_dribble_mask_m(value: Any, where: str) -> float | None:
-    """``value`` as a dribble-mask distance (m): None or finite and >= 0; ValueError naming ``where`` otherwise."""
-    if value is not None and not (isinstance(value, (int, float)) and not isinstance(value, bool)
-                                  and math.isfinite(value) and value >= 0):
-        raise ValueError(f"{where}: dribble_mask_m must be None or a finite distance >= 0 (m), got {value!r}")
-    return value
-
-
-def limit_dribbles(mask: np.ndarray, request: CarrierRequest, dribble_options: tuple[int, ...],
-                   mask_m: float | None) -> tuple[np.ndarray, bool]:
-    """SSL's dribbling limit on a learned decision's legal options: once the carrier has
-    dribbled the ball ``mask_m`` or more in its current dribble
-    (:attr:`~ssl_marl.plays.play.PlayContext.dribbled_m`, as the referee measures it), the
-    ``dribble_options`` are masked (shoot stays legal). Returns (mask, whether it masked);
-    ``mask`` is not modified."""
-    dribbled = request.ctx.dribbled_m
-    if mask_m is None or dribbled is None or float(dribbled[request.carrier]) < mask_m:
-        return mask, False
-    mask = mask.copy()
-    mask[list(dribble_options)] = 0
-    return mask, True
 
 
 def ask_policy(policy: Any, spec_env: AttackSpecEnv, obs: np.ndarray, mask: np.ndarray, where: str) -> int:
@@ -336,4 +310,4 @@ def make_match_decider(spec: Any, where: str = "decision", task: str = TASK) -> 
 
 
 __all__ = ["PolicyCarrierDecider", "PolicyAttackDecider", "ImprovedAttackDecider", "AttackSpecEnv", "ask_policy",
-           "limit_dribbles", "check_dribble_mask_m", "make_match_decider", "default_actor_path", "check_actor_file", "DECISION_CHOICES", "TASK", "DRILL_TASK", "TASK_SPACES"]
+           "make_match_decider", "default_actor_path", "check_actor_file", "DECISION_CHOICES", "TASK", "DRILL_TASK", "TASK_SPACES"]

@@ -9,7 +9,7 @@ always-hold). Episodes are independent jobs of the project's pool
 ``workers`` or the backend.
 
 Scores: keepaway -- ``mean_duration_s`` with its 95 % t-interval (Student's t on the
-episodes' durations); attack-3v2 and attack-drill -- ``goal_rate`` with its 95 % Wilson interval. Both
+episodes' durations); attack-3v2 and the attack drills -- ``goal_rate`` with its 95 % Wilson interval. Both
 also list the outcome counts, a duration summary and every episode (seed, outcome,
 duration, decisions, option counts). Throughput (``decisions_per_s``,
 ``sim_s_per_s``: simulated seconds per wall second, summed over workers' wall time) is
@@ -37,8 +37,8 @@ from .provenance import build_manifest
 from .result import write_result_folder
 from .statistics import t_interval, time_summary, wilson_interval
 
-TASK_SCORES = {"keepaway": "duration", "attack-3v2": "goal", "attack-drill": "goal"}
-DEFAULT_SEEDS = {"keepaway": 40_000, "attack-3v2": 41_000, "attack-drill": 43_000}
+TASK_SCORES = {"keepaway": "duration", "attack-3v2": "goal", "attack-drill": "goal", "attack-drill-ssl": "goal"}
+DEFAULT_SEEDS = {"keepaway": 40_000, "attack-3v2": 41_000, "attack-drill": 43_000, "attack-drill-ssl": 153_000}
 
 _CACHE: dict[tuple, Any] = {}
 
@@ -151,10 +151,11 @@ def evaluate_task(task: str, policy: str, episodes: int = 1000, seed: int | None
     written to ``out/results.json`` with ``out/duration_hist.png`` when ``out`` is given).
 
     Args:
-        task: "keepaway", "attack-3v2" or "attack-drill".
+        task: "keepaway", "attack-3v2", "attack-drill" or "attack-drill-ssl".
         policy: "learned", "handcoded", "random", "always-hold" (keepaway only) or "improved".
         episodes: number of episodes.
-        seed: episode i uses seed + i (default: 40000 keepaway, 41000 attack-3v2, 43000 attack-drill).
+        seed: episode i uses seed + i (default: 40000 keepaway, 41000 attack-3v2, 43000 attack-drill,
+            153000 attack-drill-ssl).
         workers: worker processes (or Ray tasks in flight); results do not depend on it.
         realism: "none" or "realistic".
         field: "div_b" or "div_a".

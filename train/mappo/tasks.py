@@ -97,6 +97,13 @@ MARL_TASKS: dict[str, MARLTask] = {
                                        "gamma": 0.99, "tau_s": 0.1}},
                              "attack drill: the attacking plays' options, 3 attackers vs goalie and defender "
                              "(ssl_marl.decisions)"),
+    "attack-drill-ssl": MARLTask(DecisionTaskFactory("attack-drill-ssl"), "goal",
+                                 {"val_seed": 49600, "num_envs": 4, "rollout_steps": 16, "total_decisions": 1_500,
+                                  "checkpoint_every": 2, "val_every": 8, "val_episodes": 40,
+                                  "algo": {"hidden": [64, 64], "lr": 1e-3, "epochs": 10, "minibatches": 2,
+                                           "gamma": 0.99, "tau_s": 0.1}},
+                                 "the attack drill under SSL rules: the attackers' fouls end the attack, dribbles "
+                                 "cut and masked as in matches (ssl_marl.decisions)"),
     "attack-match": MARLTask(_attack_match, "goal_diff",
                              {"val_seed": 49500, "num_envs": 2, "rollout_steps": 32, "total_decisions": 2_000,
                               "checkpoint_every": 2, "val_every": 0, "val_episodes": 4,

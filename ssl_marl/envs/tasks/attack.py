@@ -36,6 +36,12 @@ End (checked after every control tick, in this order):
   reward +1 to every blue robot: a team reward);
 * ``"lost_goalie"`` / ``"lost_defender"``: the ball is on that defender's dribbler, or
   (goalie) rests (< ``rest_speed``) inside the yellow defense area (terminated);
+* ``"foul"`` (only with ``AttackRules.fouls``): an attacker commits one of SSL's fouls as the
+  match's referee calls them (:class:`~ssl_marl.envs.game_control.TouchWatch`: the ball
+  dribbled more than 1 m, ``excessive_dribbling``, or touched inside the goalie's defense area,
+  ``attacker_in_defense_area``); the free kick would go to the defence, so the attack is over
+  (terminated; event ``foul``). The defence's fouls are not called: a defender that gains the
+  ball has ended the episode already;
 * ``"out"``: the ball fully left the field, or left the attacking half (x < 0)
   (terminated);
 * ``"timeout"``: ``max_time_s`` (15 s) of play (truncated).
@@ -50,12 +56,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..game_control import TouchWatch
 from .base import Task
 from .engine import Engine
 from .scene import Scene, scene_from_options
 
 
-OUTCOMES = ("goal", "lost_goalie", "lost_defender", "out", "timeout")
+OUTCOMES = ("goal", "lost_goalie", "lost_defender", "foul", "out", "timeout")
 N_ATTACKERS = 3
 ATTACKER_ROBOTS = ("blue_1", "blue_2", "blue_3")
 
@@ -86,10 +93,12 @@ class AttackRules:
     """Attributes:
         max_time_s: truncation after this much play (s).
         rest_speed: a ball slower than this (m/s) inside the yellow defense area is the goalie's.
+        fouls: call the attackers' SSL fouls (outcome ``"foul"``, module docstring).
     """
 
     max_time_s: float = 15.0
     rest_speed: float = 0.2
+    fouls: bool = False
 
 
 class AttackTask(Task):
@@ -104,6 +113,8 @@ class AttackTask(Task):
         self.outcome: str | None = None
         self.goal = 0
         self.carrier_robot: str | None = None
+        self.touch: TouchWatch | None = None
+        self._event_mark = 0
 
     def bind(self, env: Engine) -> None:
         cfg = env.config
@@ -111,6 +122,8 @@ class AttackTask(Task):
             raise ValueError(f"AttackTask needs n_blue=4 (a parked goalie and 3 attackers) and n_yellow=2, got "
                              f"n_blue={cfg.n_blue}, n_yellow={cfg.n_yellow}")
         super().bind(env)
+        if self.rules.fouls:
+            self.touch = TouchWatch(cfg.n_blue, cfg.n_yellow, cfg.robot.radius, cfg.ball.radius)
 
     # ------------------------------------------------------------------ start
     def reset_scene(self, env: Engine, options: dict) -> Scene:
@@ -168,9 +181,26 @@ class AttackTask(Task):
         self.outcome = None
         self.goal = 0
         self._scored = False
+        if self.touch is not None:
+            self.touch.reset()
 
     def begin_step(self, env: Engine) -> None:
         self._scored = False
+        self._event_mark = 0
+
+    def attacker_foul(self, env: Engine, events: list[dict]) -> str | None:
+        """This tick's SSL foul of an attacker (its name), None without one or without ``rules.fouls``.
+        Reads the step's kick events after the last call (``events``: the step's list)."""
+        if self.touch is None:
+            return None
+        kicked = [env.agent_index(e["agent"]) for e in events[self._event_mark:] if e["type"] == "kick"]
+        self._event_mark = len(events)
+        w = env.world_state()
+        foul = self.touch.update(w, self.touch.touching(w, kicked), env.field, True, kicked)
+        if foul is None or self.touch.teams[foul[1]] != "blue":
+            return None
+        events.append({"type": "foul", "foul": foul[0], "team": "blue", "robot": int(foul[1]), "t": float(w.t)})
+        return foul[0]
 
     # ------------------------------------------------------------------ judge
     def judge(self, env: Engine) -> str | None:
@@ -197,6 +227,8 @@ class AttackTask(Task):
         if self.outcome is not None:
             return True
         out = self.judge(env)
+        if out != "goal" and self.attacker_foul(env, events) is not None:
+            out = "foul"
         if out is None:
             return False
         self.outcome = out
