@@ -107,3 +107,21 @@ def test_attack_drill_actors_play_the_full_match_task():
     assert isinstance(check_actor_file(actor, task="attack-drill"), dict)
     with pytest.raises(ValueError, match="not 'attack-3v2'"):
         LearnedDecisionPolicy(actor, task="attack-3v2")
+
+
+def test_ssl_rules_play_game_control_and_the_dribble_mask():
+    """With ``ssl_rules`` the episode is a match under SSL game control (a kickoff command at
+    the start, the referee's fouls on) and the learned decider's dribble mask is on, as in
+    ``ssl-marl match --format ssl``; deterministic under the seed."""
+    from ssl_marl.decisions.dribble_limit import DRIBBLE_MASK_M
+    from ssl_marl.envs.game_control import KICKOFF
+
+    env = _env(seconds=6.0, ssl_rules=True)
+    assert env.dribble_mask_m == DRIBBLE_MASK_M and _env().dribble_mask_m is None
+    env.reset(seed=5)
+    rules = env.engine.task.rules
+    assert rules.ssl_restarts and rules.fouls and env.engine.task.referee_state.command == KICKOFF
+    assert not _env().engine.task.rules.ssl_restarts
+    a = run_episode(env, RandomPolicy(1), seed=5, record=True)
+    b = run_episode(_env(seconds=6.0, ssl_rules=True), RandomPolicy(1), seed=5, record=True)
+    assert a["trace"] == b["trace"] and a["goal_diff"] == b["goal_diff"]

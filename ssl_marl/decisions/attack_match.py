@@ -31,6 +31,9 @@ an actor trained in the drill continues here and plays the same way in ``ssl-mar
   ``val.csv`` whose validation score beat every earlier one (the last ``max_snapshots``), each
   playing the attacking plays with that decision. Episodes are deterministic under the seed for a
   given opponent; the draw depends on this env's earlier results.
+* **Rules.** The plain format by default; ``ssl_rules`` plays SSL game control (commands, free
+  kicks, fouls) with the learned decider's dribble mask, so what is learned is what plays in
+  ``ssl-marl match --format ssl``.
 * **State** (:meth:`global_state`, ``4 + 8 n + 2`` values): the ball (x, y, vx, vy), every robot
   of both teams (x, y, vx, vy), the goal difference / 5 and the elapsed fraction.
 """
@@ -45,6 +48,7 @@ from typing import Any
 
 import numpy as np
 
+from ..envs.game_control import SSL_GAME_CONTROL
 from ..envs.referee import match_start_options
 from ..envs.tasks.match import MatchTask
 from ..plays.attack_decision import AttackParams
@@ -58,6 +62,7 @@ from .attack_drill import AttackOptionsMixin, DrillAttackDecider
 from .attack_drill_features import ATTACK_DRILL_OPTIONS, SHOOT, SlotPasses
 from .attack_features import OBS_BOUND
 from .base import DecisionEnv
+from .dribble_limit import DRIBBLE_MASK_M
 from .pfsp import pfsp_weights, win_probability
 
 class MatchAttackDecider(DrillAttackDecider):
@@ -103,6 +108,11 @@ class AttackMatchEnv(AttackOptionsMixin, DecisionEnv):
         start_jitter_m, restart_jitter_m: the match's kickoff and restart placement jitter (m).
         reward_scales: the match task's reward terms (default ``{"goal": 1.0}``; e.g.
             ``"ball_progress"`` adds the ball's progress towards the opponent goal).
+        ssl_rules: SSL game control (:data:`~ssl_marl.envs.game_control.SSL_GAME_CONTROL`: referee
+            commands, free kicks, fouls) as in ``ssl-marl match --format ssl`` (one period: no
+            half-time), and the learned decider's dribble mask
+            (:data:`~ssl_marl.decisions.dribble_limit.DRIBBLE_MASK_M`), as the match's
+            :class:`~ssl_marl.decisions.match_decider.PolicyAttackDecider` plays.
         kwargs: :class:`~ssl_marl.decisions.base.DecisionEnv` options (field, realism,
             max_interval_s, illegal_option, render_mode, tracker).
     """
@@ -118,7 +128,7 @@ class AttackMatchEnv(AttackOptionsMixin, DecisionEnv):
                  robots: int = 6, seconds: float = 120.0, pfsp: bool = True, snapshot_dir: str | None = None,
                  max_snapshots: int = 3, snapshot_spec: Callable[[str], TeamSpec] | None = None,
                  start_jitter_m: float = 0.1, restart_jitter_m: float = 0.1,
-                 reward_scales: Mapping[str, float] | None = None, **kwargs: Any) -> None:
+                 reward_scales: Mapping[str, float] | None = None, ssl_rules: bool = False, **kwargs: Any) -> None:
         if not opponents:
             raise ValueError("AttackMatchEnv needs at least one opponent")
         if not (isinstance(robots, int) and 2 <= robots <= 11):
@@ -133,6 +143,8 @@ class AttackMatchEnv(AttackOptionsMixin, DecisionEnv):
         self.snapshot_spec = snapshot_spec or self._snapshot_spec
         self.start_jitter_m, self.restart_jitter_m = float(start_jitter_m), float(restart_jitter_m)
         self.reward_scales = dict(reward_scales or {"goal": 1.0})
+        self.ssl_rules = bool(ssl_rules)
+        self.dribble_mask_m = DRIBBLE_MASK_M if self.ssl_rules else None
         self.results: dict[str, list[float]] = {}  # opponent -> [wins (draw 0.5), games]
         self._teams: dict[str, TeamController] = {}
         super().__init__(**kwargs)
@@ -192,7 +204,7 @@ class AttackMatchEnv(AttackOptionsMixin, DecisionEnv):
     def engine_kwargs(self) -> dict:
         return {"n_blue": self.robots, "n_yellow": self.robots, "chip_kicks": True, "referee": True,
                 "after_goal": "kickoff", "max_time_s": self.seconds, "restart_jitter_m": self.restart_jitter_m,
-                "reward_scales": self.reward_scales}
+                "reward_scales": self.reward_scales, **(SSL_GAME_CONTROL if self.ssl_rules else {})}
 
     def agent_robot(self, agent: str) -> str:
         return f"blue_{int(agent.rsplit('_', 1)[1]) + 1}"

@@ -66,6 +66,8 @@ IN_PLAY_DISTANCE = 0.05  #: m the ball moves from its spot for a kickoff / free 
 #: m/s: a ball leaving a robot faster than this (radially, relative to it) is let go, not carried
 SEPARATING_M_S = 0.3
 MAX_DRIBBLE_M = 1.0  #: m: the rules' limit on dribbling the ball
+#: the env options that switch SSL game control on (commands, free kicks and fouls)
+SSL_GAME_CONTROL = {"ssl_restarts": True, "fouls": True}
 TOUCH_MARGIN = 0.01  #: m of slack on body contact (solver slop and one tick of motion)
 TOUCH_MAX_HEIGHT_M = 0.15  #: m: a ball higher than this passes over the robots (rules: robots fit under 0.15 m)
 #: m, ball to robot centre: closer than this at the other team's kickoff or free kick is a foul
@@ -277,6 +279,6 @@ def jittered_kickoff(poses: np.ndarray, n_blue: int, field: FieldGeometry, jitte
     return out
 
 
-__all__ = ["RefereeState", "TouchWatch", "jittered_clearance", "jittered_kickoff", "too_close_to_kick_point",
+__all__ = ["RefereeState", "TouchWatch", "SSL_GAME_CONTROL", "jittered_clearance", "jittered_kickoff", "too_close_to_kick_point",
            "COMMANDS", "FOULS", "DEFENDER_TOO_CLOSE_M", "RUNNING",
            "STOP", "KICKOFF", "FREE_KICK", "IN_PLAY_DISTANCE", "SEPARATING_M_S", "MAX_DRIBBLE_M", "other"]

@@ -39,6 +39,7 @@ import numpy as np
 from ..envs.actions import fit_action
 from ..envs.referee import match_start_options
 from ..envs.deadline import ControlDeadline
+from ..envs.game_control import SSL_GAME_CONTROL
 from .controllers import (CHIP_KINDS, STP_KINDS, TEAM_KINDS, controller_label, decision_label, decision_spec,
                           make_controller)
 from .result import MatchResult
@@ -55,7 +56,7 @@ REFEREE_CALLS = ("ball_out", "no_progress", "foul", "referee", "half_time")
 GAME_RULES = ("ssl_restarts", "fouls", "restart_jitter_m", "stop_s", "free_kick_timeout_s", "half_time_s")
 #: env options of the SSL format (``--format ssl``): two halves of ``seconds / 2``, SSL
 #: restarts and fouls, restart placement jittered by 0.1 m
-SSL_FORMAT = {"ssl_restarts": True, "fouls": True, "restart_jitter_m": 0.1}
+SSL_FORMAT = {**SSL_GAME_CONTROL, "restart_jitter_m": 0.1}
 
 
 def format_options(fmt: str, seconds: float) -> dict:
