@@ -1,4 +1,4 @@
-"""Decisions per CPU-second: the decision drills (keepaway, attack 3v2, attack drill) and full matches.
+"""Decisions per CPU-second: the decision drills (keepaway, attack 3v2, the attack drills) and full matches.
 
 A benchmark, not a test. CPU time (``time.process_time``), one process, so the load of a
 shared machine does not enter; the record keeps the load average and the machine anyway.
@@ -14,7 +14,8 @@ shared machine does not enter; the record keeps the load average and the machine
 * **Full matches as the decision task** (``attack-match``, what MAPPO trains on): one
   ``--match-seconds`` episode, the attacking team's carrier decisions by the shipped
   attack-drill actor, against the attacking team with the cost decision: option-level
-  decisions per CPU-second.
+  decisions per CPU-second; once in the plain format and once under SSL rules (``ssl_rules``:
+  game control and the dribble mask).
 
     python benchmarks/decision_speed.py [--episodes 20] [--match-seconds 120] [--out results/bench_decisions.json]
 """
@@ -32,7 +33,7 @@ from ssl_marl.decisions.policies import run_episode
 from ssl_marl.io import atomic_write_json
 from ssl_marl.runners.provenance import build_manifest
 
-DRILLS = ("keepaway", "attack-3v2", "attack-drill")
+DRILLS = ("keepaway", "attack-3v2", "attack-drill", "attack-drill-ssl")
 
 
 def drill_speed(task: str, policy: str, episodes: int, seed: int) -> dict:
@@ -74,17 +75,18 @@ def match_speed(seconds: float, seed: int) -> dict:
             "ticks_per_cpu_s": ticks / cpu, "sim_s_per_cpu_s": seconds / cpu, "decisions_per_cpu_s": dec / cpu}
 
 
-def match_task_speed(seconds: float, seed: int) -> dict:
-    """Per-CPU-second throughput of one ``seconds`` episode of the attack-match decision task."""
+def match_task_speed(seconds: float, seed: int, ssl_rules: bool = False) -> dict:
+    """Per-CPU-second throughput of one ``seconds`` episode of the attack-match decision task
+    (``ssl_rules``: under SSL game control)."""
     from ssl_marl.decisions import make_decision_policy
     from train.mappo.tasks import get_task
 
-    env = get_task("attack-match").factory(opponents=("attack-learned",), seconds=seconds)
+    env = get_task("attack-match").factory(opponents=("attack-learned",), seconds=seconds, ssl_rules=ssl_rules)
     pol = make_decision_policy("learned", "attack-drill")
     c0 = time.process_time()
     r = run_episode(env, pol, seed=seed)
     cpu = time.process_time() - c0
-    return {"task": "attack-match", "policy": "learned (attack_drill.pt)", "opponent": r["opponent"], "seed": seed,
+    return {"task": "attack-match", "ssl_rules": ssl_rules, "policy": "learned (attack_drill.pt)", "opponent": r["opponent"], "seed": seed,
             "seconds": seconds, "goals": [r["goals_for"], r["goals_against"]], "ticks": env.ticks,
             "decisions": r["decisions"], "cpu_s": cpu, "ticks_per_cpu_s": env.ticks / cpu,
             "sim_s_per_cpu_s": r["t_s"] / cpu, "decisions_per_cpu_s": r["decisions"] / cpu}
@@ -103,7 +105,9 @@ def main() -> None:
     rows = [drill_speed(t, a.policy, a.episodes, a.seed) for t in DRILLS]
     match = match_speed(a.match_seconds, a.match_seed) if a.match_seconds > 0 else None
     match_task = match_task_speed(a.match_seconds, a.match_seed) if a.match_seconds > 0 else None
-    rec = {"drills": rows, "match": match, "match_task": match_task, "load_average": list(os.getloadavg()),
+    match_task_ssl = match_task_speed(a.match_seconds, a.match_seed, ssl_rules=True) if a.match_seconds > 0 else None
+    rec = {"drills": rows, "match": match, "match_task": match_task, "match_task_ssl": match_task_ssl,
+           "load_average": list(os.getloadavg()),
            "machine": {"cpu_count": os.cpu_count(), "processor": platform.processor() or platform.machine()},
            "date": time.strftime("%Y-%m-%d"),
            "manifest": build_manifest(rules={"policy": a.policy}, seeds={"seed": a.seed, "episodes": a.episodes,
