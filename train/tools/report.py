@@ -313,6 +313,12 @@ DECISION_SSL_105300 = ["match_attack_learned_decision_vs_attack_learned_600_ssl_
                        "match_attack_learned_vs_attack_learned_decision_600_ssl_105350"]
 DECISION_SSL_105300_POOLED = m.both_colours_rounds("learned decision (dribble limit) vs attack-learned, SSL format",
                                                    DECISION_SSL_105300, 105300)
+#: the decision fine-tuned in the drill under SSL rules against the cost decision, both colours
+DECISION_SSL_DRILL_105400 = ["match_attack_drill_ssl_decision_vs_attack_learned_600_ssl_105400",
+                             "match_attack_learned_vs_attack_drill_ssl_decision_600_ssl_105410"]
+DECISION_SSL_DRILL_105400_POOLED = [m.both_colours(
+    "decision fine-tuned under SSL rules (`attack_drill_ssl.pt`) vs attack-learned, SSL format, 6v6 Division B",
+    *DECISION_SSL_DRILL_105400)]
 #: the improved decision with the second-iteration value actor against the cost decision, both colours (commit 646fe1b)
 DECISION_IMPROVED_103 = ["match_attack_improved_decision_vs_attack_learned_600_103100",
                          "match_attack_learned_vs_attack_improved_decision_600_103105"]
@@ -468,6 +474,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_div_a_102_pooled": lambda r: m.pooled_sides(r, DECISION_DIV_A_102_POOLED),
     "decision_series_ssl_103": lambda r: m.series_600(r, DECISION_SSL_103),
     "decision_ssl_103_pooled": lambda r: m.pooled_sides(r, DECISION_SSL_103_POOLED),
+    "decision_series_ssl_105400": lambda r: m.series_600(r, DECISION_SSL_DRILL_105400),
+    "decision_ssl_105400_pooled": lambda r: m.pooled_sides(r, DECISION_SSL_DRILL_105400_POOLED),
     "decision_series_ssl_105300": lambda r: m.series_600(r, DECISION_SSL_105300),
     "decision_ssl_105300_pooled": lambda r: m.pooled_sides(r, DECISION_SSL_105300_POOLED),
     "receive_pressed": lambda r: t.skills(r, RECEIVE_PRESSED),
@@ -600,6 +608,13 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
                                                  "attack_drill_handcoded", "goal"),
     "mappo_attack_drill_v2": lambda r: t.mappo_runs(r, [("mappo_attack_drill_v2_s0", "attack_drill_learned_v2_42000")],
                                                     "attack_drill_handcoded_42000", "goal"),
+    "attack_drill_ssl_153000": lambda r: t.attack(r, [
+        ("hand-coded (the attacking plays' cost decision)", "attack_drill_ssl_handcoded_153000"),
+        ("learned, shipped `attack_drill.pt` (trained in the drill without fouls)", "attack_drill_ssl_learned_153000"),
+        ("learned, fine-tuned under SSL rules (`mappo_attack_drill_ssl_s0`, `attack_drill_ssl.pt`)",
+         "attack_drill_ssl_learned_ssl_153000")]),
+    "mappo_attack_drill_ssl": lambda r: t.mappo_runs(r, [("mappo_attack_drill_ssl_s0", "attack_drill_ssl_learned_ssl_153000")],
+                                                     "attack_drill_ssl_handcoded_153000", "goal"),
     "decision_tasks_realistic": lambda r: t.decision_tasks(r, "*_realistic*"),
     "mappo_keepaway": lambda r: t.mappo_runs(r, [("mappo_keepaway_s0", "keepaway_learned_s0"),
                                                  ("mappo_keepaway_s1", "keepaway_learned"),
