@@ -34,14 +34,14 @@ End (checked after every control tick, in this order):
 
 * ``"goal"``: the ball fully crossed the +x goal line between the posts (terminated;
   reward +1 to every blue robot: a team reward);
-* ``"lost_goalie"`` / ``"lost_defender"``: the ball is on that defender's dribbler, or
-  (goalie) rests (< ``rest_speed``) inside the yellow defense area (terminated);
 * ``"foul"`` (only with ``AttackRules.fouls``): an attacker commits one of SSL's fouls as the
   match's referee calls them (:class:`~ssl_marl.envs.game_control.TouchWatch`: the ball
   dribbled more than 1 m, ``excessive_dribbling``, or touched inside the goalie's defense area,
   ``attacker_in_defense_area``); the free kick would go to the defence, so the attack is over
   (terminated; event ``foul``). The defence's fouls are not called: a defender that gains the
   ball has ended the episode already;
+* ``"lost_goalie"`` / ``"lost_defender"``: the ball is on that defender's dribbler, or
+  (goalie) rests (< ``rest_speed``) inside the yellow defense area (terminated);
 * ``"out"``: the ball fully left the field, or left the attacking half (x < 0)
   (terminated);
 * ``"timeout"``: ``max_time_s`` (15 s) of play (truncated).
