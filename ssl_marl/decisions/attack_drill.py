@@ -184,14 +184,13 @@ class AttackDrillSSLEnv(AttackDrillEnv):
 
     task_name = "attack-drill-ssl"
 
-    def __init__(self, skills: str = "learned", attack: AttackParams | None = None,
-                 dribble_mask_m: float | None = DRIBBLE_MASK_M, **kwargs: Any) -> None:
+    def __init__(self, dribble_mask_m: float | None = DRIBBLE_MASK_M, **kwargs: Any) -> None:
         self.dribble_mask_m = check_dribble_mask_m(dribble_mask_m, type(self).__name__)
         rules = kwargs.setdefault("rules", AttackRules(fouls=True))
         if not rules.fouls:
             raise ValueError(f"{type(self).__name__}: rules must call fouls (AttackRules(fouls=True)), got {rules!r}")
         kwargs.setdefault("passing", SSL_DRILL_PASSING)
-        super().__init__(skills=skills, attack=attack, **kwargs)
+        super().__init__(**kwargs)
 
 
 class HandcodedAttackDrillPolicy(HandcodedCarrierPolicy):

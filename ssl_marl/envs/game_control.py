@@ -99,6 +99,11 @@ def too_close_to_kick_point(pos: np.ndarray, spot: np.ndarray, limit: float = DE
     return i if d2[i] < limit * limit else None
 
 
+def kicked_rows(events: list[dict], agent_index) -> list[int]:
+    """Rows (``agent_index(agent)``, blue first) of the robots that kicked in ``events``."""
+    return [agent_index(e["agent"]) for e in events if e["type"] == "kick"]
+
+
 def other(team: str) -> str:
     return "yellow" if team == "blue" else "blue"
 
@@ -279,6 +284,6 @@ def jittered_kickoff(poses: np.ndarray, n_blue: int, field: FieldGeometry, jitte
     return out
 
 
-__all__ = ["RefereeState", "TouchWatch", "SSL_GAME_CONTROL", "jittered_clearance", "jittered_kickoff", "too_close_to_kick_point",
+__all__ = ["RefereeState", "TouchWatch", "SSL_GAME_CONTROL", "kicked_rows", "jittered_clearance", "jittered_kickoff", "too_close_to_kick_point",
            "COMMANDS", "FOULS", "DEFENDER_TOO_CLOSE_M", "RUNNING",
            "STOP", "KICKOFF", "FREE_KICK", "IN_PLAY_DISTANCE", "SEPARATING_M_S", "MAX_DRIBBLE_M", "other"]

@@ -68,6 +68,12 @@ def _pass_and_score(**kw: Any) -> Any:
     return PassAndScoreEnv(**kw)
 
 
+#: the attack drills' run defaults (each adds its validation seed)
+_DRILL_DEFAULTS: dict[str, Any] = {"num_envs": 4, "rollout_steps": 16, "total_decisions": 1_500, "checkpoint_every": 2,
+                                   "val_every": 8, "val_episodes": 40,
+                                   "algo": {"hidden": [64, 64], "lr": 1e-3, "epochs": 10, "minibatches": 2,
+                                            "gamma": 0.99, "tau_s": 0.1}}
+
 MARL_TASKS: dict[str, MARLTask] = {
     "toy-signal": MARLTask(_toy_signal, "success",
                            {"num_envs": 16, "rollout_steps": 16, "total_decisions": 6_000, "val_episodes": 30,
@@ -90,18 +96,10 @@ MARL_TASKS: dict[str, MARLTask] = {
                             "algo": {"hidden": [64, 64], "lr": 1e-3, "epochs": 10, "minibatches": 2,
                                      "gamma": 0.99, "tau_s": 0.1}},
                            "attack 3v2 (ssl_marl.decisions)"),
-    "attack-drill": MARLTask(DecisionTaskFactory("attack-drill"), "goal",
-                             {"val_seed": 49000, "num_envs": 4, "rollout_steps": 16, "total_decisions": 1_500,
-                              "checkpoint_every": 2, "val_every": 8, "val_episodes": 40,
-                              "algo": {"hidden": [64, 64], "lr": 1e-3, "epochs": 10, "minibatches": 2,
-                                       "gamma": 0.99, "tau_s": 0.1}},
+    "attack-drill": MARLTask(DecisionTaskFactory("attack-drill"), "goal", {"val_seed": 49000, **_DRILL_DEFAULTS},
                              "attack drill: the attacking plays' options, 3 attackers vs goalie and defender "
                              "(ssl_marl.decisions)"),
-    "attack-drill-ssl": MARLTask(DecisionTaskFactory("attack-drill-ssl"), "goal",
-                                 {"val_seed": 49600, "num_envs": 4, "rollout_steps": 16, "total_decisions": 1_500,
-                                  "checkpoint_every": 2, "val_every": 8, "val_episodes": 40,
-                                  "algo": {"hidden": [64, 64], "lr": 1e-3, "epochs": 10, "minibatches": 2,
-                                           "gamma": 0.99, "tau_s": 0.1}},
+    "attack-drill-ssl": MARLTask(DecisionTaskFactory("attack-drill-ssl"), "goal", {"val_seed": 49600, **_DRILL_DEFAULTS},
                                  "the attack drill under SSL rules: the attackers' fouls end the attack, dribbles "
                                  "cut and masked as in matches (ssl_marl.decisions)"),
     "attack-match": MARLTask(_attack_match, "goal_diff",

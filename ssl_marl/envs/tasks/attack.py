@@ -56,7 +56,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..game_control import TouchWatch
+from ..game_control import TouchWatch, kicked_rows
 from .base import Task
 from .engine import Engine
 from .scene import Scene, scene_from_options
@@ -193,7 +193,7 @@ class AttackTask(Task):
         Reads the step's kick events after the last call (``events``: the step's list)."""
         if self.touch is None:
             return None
-        kicked = [env.agent_index(e["agent"]) for e in events[self._event_mark:] if e["type"] == "kick"]
+        kicked = kicked_rows(events[self._event_mark:], env.agent_index)
         self._event_mark = len(events)
         w = env.world_state()
         foul = self.touch.update(w, self.touch.touching(w, kicked), env.field, True, kicked)

@@ -40,7 +40,7 @@ import numpy as np
 
 from ..config import MatchRules
 from ..game_control import (FREE_KICK, IN_PLAY_DISTANCE, KICKOFF, RUNNING, STOP, RefereeState, TouchWatch,
-                            jittered_clearance, jittered_kickoff, other, too_close_to_kick_point)
+                            jittered_clearance, jittered_kickoff, kicked_rows, other, too_close_to_kick_point)
 from ..referee import (RESTART_CLEARANCE, NoProgressWatch, clear_robots_from, free_kick_spot, judge, kickoff_poses,
                        placement_point)
 from .base import Task
@@ -204,7 +204,7 @@ class MatchTask(Task):
     def _game_tick(self, env: Engine, truth, call, events: list[dict]) -> bool:
         """One tick of :mod:`~ssl_marl.envs.game_control` (goals are judged before)."""
         r, f = self.rules, env.field
-        kicked = [env.agent_index(e["agent"]) for e in events[self._event_mark:] if e["type"] == "kick"]
+        kicked = kicked_rows(events[self._event_mark:], env.agent_index)
         self._event_mark = len(events)
         touch = self._touch.touching(truth, kicked)
         if r.half_time_s is not None and self.half == 1 and truth.t >= r.half_time_s - 1e-9:
