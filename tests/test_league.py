@@ -21,7 +21,7 @@ STRENGTH = {"baseline": 3, "passing-baseline": 1, "idle": 0}
 def fake_play(blue, yellow, seed, **_kwargs):
     """A deterministic match: the stronger kind (STRENGTH) wins by the strength gap."""
     return SimpleNamespace(score={"blue": STRENGTH[blue] + seed % 2, "yellow": STRENGTH[yellow] + seed % 2},
-                           sim_time_s=2.0)
+                           sim_time_s=2.0, played_s=2.0)
 
 
 @pytest.fixture
@@ -201,7 +201,7 @@ def test_a_team_files_decision_reaches_the_match(monkeypatch, tmp_path):
 
     def record(blue, yellow, seed, blue_decision=None, yellow_decision=None, **_kwargs):
         seen.extend([(blue, blue_decision), (yellow, yellow_decision)])
-        return SimpleNamespace(score={"blue": 1, "yellow": 0}, sim_time_s=2.0)
+        return SimpleNamespace(score={"blue": 1, "yellow": 0}, sim_time_s=2.0, played_s=2.0)
 
     monkeypatch.setattr(lg, "play_match", record)
     team = tmp_path / "drill.json"

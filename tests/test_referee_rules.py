@@ -396,6 +396,41 @@ def test_half_time_keeps_the_score_and_swaps_ends():
         assert np.all(to_team_frame(w, team).team(team).pos[:, 0] < 0)
 
 
+@pytest.mark.parametrize("clock_stops", [False, True])
+def test_the_match_clock_stops_during_stop_only_when_asked(clock_stops):
+    """SSL's clock stops during STOP: with ``clock_stops`` the halves and the match last their
+    seconds of play, the STOPs added on top; without it the simulated time is the clock."""
+    env = parallel_env(n_blue=1, n_yellow=1, max_time_s=4.0, half_time_s=2.0, ssl_restarts=True, stop_s=1.0,
+                       clock_stops=clock_stops)
+    env.reset(seed=0, options={"ball": {"pos": (0.5, FIELD.half_width - 0.05), "vel": (0.0, 2.0)},
+                               "robots": {"blue_0": (-1.0, 0.0, 0.0), "yellow_0": (-3.0, 1.0, 0.0)}})
+    dt, steps, stop_steps, half_t = env.config.dt, 0, 0, None
+    while env.agents:
+        stop_steps += env.task.referee_state.command == STOP
+        _, _, _, _, infos = env.step(_idle(env))
+        steps += 1
+        half_t = next((e["t"] for e in infos["blue_0"]["events"] if e["type"] == "half_time"), half_t)
+    assert stop_steps >= 60  # the ball out over the touch line: a STOP of 1 s
+    sim_t = env.world_state().t
+    assert env.task.clock_s(env) == pytest.approx(4.0, abs=1.5 * dt)
+    if clock_stops:
+        assert sim_t == pytest.approx(4.0 + stop_steps * dt, abs=1.5 * dt)
+        assert half_t == pytest.approx(2.0 + stop_steps * dt, abs=1.5 * dt)  # the STOP came in the first half
+    else:
+        assert sim_t == pytest.approx(4.0, abs=1.5 * dt) and half_t == pytest.approx(2.0, abs=1.5 * dt)
+
+
+def test_the_ssl_format_stops_the_clock_and_reports_the_played_time():
+    from ssl_marl.runners.match import format_options, play_match
+    from ssl_marl.runners.result import summarize
+
+    assert format_options("ssl", 600)["clock_stops"] and "clock_stops" not in format_options("plain", 600)
+    r = play_match(blue="idle", yellow="idle", robots=1, seconds=2.0, seed=0, progress=False,
+                   env_kwargs={**format_options("ssl", 2.0), "stop_s": 0.5}, start_jitter_m=0.0)
+    assert r.played_s == pytest.approx(2.0, abs=0.02) and r.config["rules"]["clock_stops"] is True
+    assert summarize([r])["statistics"]["matches"] == 1
+
+
 def _forced_goal_kickoffs(seed, jitter, goals=6):
     env = parallel_env(n_blue=3, n_yellow=3, max_time_s=600.0, restart_jitter_m=jitter, ssl_restarts=jitter > 0)
     env.reset(seed=seed)

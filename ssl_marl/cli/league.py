@@ -35,7 +35,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     p.add_argument("--seconds", type=positive_float("--seconds"), default=600.0,
                    help="simulated match length in seconds (default 600, an SSL match)")
     p.add_argument("--format", choices=("plain", "ssl"), default="ssl",
-                   help="ssl: two halves of --seconds / 2, referee commands, fouls and seeded restarts; plain: one "
+                   help="ssl: two halves of --seconds / 2 of playing time (the clock stops during STOP), referee commands, "
+                        "fouls and seeded restarts; plain: one "
                         "period, play restarted at once after the ball leaves the field (default ssl)")
     p.add_argument("--robots", type=robots, default=6, help="robots per team, 1-11 (default 6)")
     p.add_argument("--field", choices=FIELDS, default="div_b", help="field geometry (default div_b)")

@@ -91,7 +91,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         "itself after every goal)")
     m.add_argument("--format", choices=("plain", "ssl"), default="plain",
                    help="plain: one period, play restarted at once after the ball leaves the field; ssl: SSL's "
-                        "format: two halves of --seconds / 2 with ends changed at half-time, referee commands "
+                        "format: two halves of --seconds / 2 of playing time (the clock stops during STOP, as SSL's does) "
+                        "with ends changed at half-time, referee commands "
                         "(STOP, kickoff, free kick to the team that did not touch the ball last), the fouls "
                         "excessive dribbling, double touch and attacker in the defense area, and restart "
                         "placements drawn from the match seed (use --seconds 600 for an SSL match)")

@@ -99,7 +99,8 @@ class MatchRules:
         referee: goals, out-of-play and no progress are called (False: the walls hold
             everything in).
         after_goal: "kickoff" (place the kickoff formation and play on) or "terminate".
-        max_time_s: truncation time (s of simulated time; ``math.inf``: no limit).
+        max_time_s: truncation time (s on the match clock, the simulated time unless
+            ``clock_stops``; ``math.inf``: no limit).
         reward_scales: scale per named reward term ("goal", "ball_progress",
             "possession"); terms not named keep their defaults (goal 1, the others 0).
         randomize_reset: True: robots and ball at random on reset; False: kickoff formation.
@@ -132,6 +133,10 @@ class MatchRules:
         half_time_s: None (default): one period. A number (s): half-time at this
             simulated time: the score is kept, the teams change ends and yellow
             kicks off the second half (see :class:`ssl_marl.envs.tasks.match.MatchTask`).
+        clock_stops: the match clock that ``max_time_s`` and ``half_time_s`` read stops
+            during STOP (SSL rules: two halves of 300 s of playing time, the clock
+            stopped during stop, halt and ball placement). False (default): the clock is
+            the simulated time. Only ``ssl_restarts`` gives STOPs.
     """
 
     referee: bool = True
@@ -146,9 +151,10 @@ class MatchRules:
     stop_s: float = 1.0
     free_kick_timeout_s: float = 10.0
     half_time_s: float | None = None
+    clock_stops: bool = False
 
     def __post_init__(self) -> None:
-        for name in ("ssl_restarts", "fouls"):
+        for name in ("ssl_restarts", "fouls", "clock_stops"):
             if not isinstance(getattr(self, name), bool):
                 raise ValueError(f"{name} must be True or False, got {getattr(self, name)!r}")
         for name, low in (("restart_jitter_m", 0.0), ("stop_s", 0.0), ("free_kick_timeout_s", 1e-9)):
@@ -308,7 +314,7 @@ def make_config(**options: Any) -> EnvConfig:
     """An :class:`EnvConfig` from the env's keyword options: :class:`EnvConfig`'s fields,
     and :class:`MatchRules`' fields (``referee``, ``after_goal``, ``max_time_s``,
     ``reward_scales``, ``randomize_reset``, ``no_progress_s``, ``ssl_restarts``, ``fouls``,
-    ``restart_jitter_m``, ``stop_s``, ``free_kick_timeout_s``, ``half_time_s``) as single keywords, which
+    ``restart_jitter_m``, ``stop_s``, ``free_kick_timeout_s``, ``half_time_s``, ``clock_stops``) as single keywords, which
     make up ``match`` (or ``match=`` gives them all at once; not both). An unknown
     keyword is a ValueError listing the known ones."""
     known = {f.name for f in fields(EnvConfig)} | set(MATCH_OPTIONS)

@@ -138,7 +138,7 @@ def _league_worker(job: tuple[dict, dict]) -> dict[str, Any]:
                      blue_decision=blue_decision, yellow_decision=yellow_decision,
                      seed=entry["seed"], progress=False, **match_kwargs)
     return {**entry, "score": {"blue": int(res.score["blue"]), "yellow": int(res.score["yellow"])},
-            "sim_time_s": float(res.sim_time_s), "code": code_hash()}
+            "sim_time_s": float(res.sim_time_s), "played_s": float(res.played_s), "code": code_hash()}
 
 
 def match_kwargs(config: LeagueConfig) -> dict[str, Any]:
@@ -277,7 +277,7 @@ def team_series(team: str, matches: Sequence[dict[str, Any]]) -> dict[str, Any]:
     """``team``'s matches of a league (either colour) through the one statistics helper
     (:func:`~ssl_marl.runners.statistics.series_statistics`): wins, draws, losses, goals,
     the win rate with its Wilson 95 % interval and the goal difference per 600 s with its
-    t 95 % interval (each match scaled by its ``sim_time_s``)."""
+    t 95 % interval (each match scaled by its match clock ``played_s``, else its ``sim_time_s``)."""
     from .statistics import SSL_MATCH_S, series_statistics
 
     gf, ga, secs = [], [], []
@@ -286,7 +286,7 @@ def team_series(team: str, matches: Sequence[dict[str, Any]]) -> dict[str, Any]:
             if m[side] == team:
                 gf.append(m["score"][side])
                 ga.append(m["score"][opp])
-                secs.append(float(m.get("sim_time_s") or SSL_MATCH_S))
+                secs.append(float(m.get("played_s") or m.get("sim_time_s") or SSL_MATCH_S))
     st = series_statistics(gf, ga, secs)
     keys = ("matches", "wins", "draws", "losses", "goals_for", "goals_against", "win_rate", "win_rate_ci95",
             "goal_diff_per_600s", "goal_diff_per_600s_ci95")

@@ -18,7 +18,9 @@ mode (``realtime=False``) is reproducible.
 
 Formats (:func:`format_options`): "plain" (one period; play restarts at once after the
 ball leaves the field) or "ssl" (two halves with ends changed at half-time, referee
-commands, free kicks and fouls of :mod:`ssl_marl.envs.game_control`); the referee's
+commands, free kicks and fouls of :mod:`ssl_marl.envs.game_control`, the match clock
+stopped during STOP as SSL's rules stop it, so a match simulates more than its
+``seconds``: ``MatchResult.played_s`` is its clock, ``sim_time_s`` all of it); the referee's
 calls are counted in ``MatchResult.stats["referee"]``. In both, every restart's robot
 placement is drawn from the match seed (``restart_jitter_m``).
 
@@ -53,10 +55,11 @@ REFEREE_CALLS = ("ball_out", "no_progress", "foul", "referee", "half_time")
 
 #: the :class:`~ssl_marl.envs.config.MatchRules` fields of SSL game control, recorded in a
 #: match's config when any is on
-GAME_RULES = ("ssl_restarts", "fouls", "restart_jitter_m", "stop_s", "free_kick_timeout_s", "half_time_s")
-#: env options of the SSL format (``--format ssl``): two halves of ``seconds / 2``, SSL
-#: restarts and fouls, restart placement jittered by 0.1 m
-SSL_FORMAT = {**SSL_GAME_CONTROL, "restart_jitter_m": 0.1}
+GAME_RULES = ("ssl_restarts", "fouls", "restart_jitter_m", "stop_s", "free_kick_timeout_s", "half_time_s",
+              "clock_stops")
+#: env options of the SSL format (``--format ssl``): two halves of ``seconds / 2`` of playing
+#: time (the clock stops during STOP), SSL restarts and fouls, restart placement jittered by 0.1 m
+SSL_FORMAT = {**SSL_GAME_CONTROL, "restart_jitter_m": 0.1, "clock_stops": True}
 
 
 def format_options(fmt: str, seconds: float) -> dict:
@@ -236,6 +239,8 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
             c.reset()
     dt = env.config.dt
     total_steps = int(round(seconds / dt))
+    task = getattr(env, "task", None)
+    clock = task.clock_s if hasattr(task, "clock_s") else (lambda e: stats.steps * dt)  # s on the match clock
     every = max(int(round(env.config.control_hz / render_fps)), 1)
     sink = VideoSink(render, env.config.control_hz / every) if render is not None else None
     deadlines = {team: ControlDeadline(dt) for team in ctrls}
@@ -282,9 +287,10 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
             if sink is not None and stats.steps % every == 0:
                 sink.add(env.render())
             if bar is not None:
-                bar.update(1)
+                bar.update(min(int(round(clock(env) / dt)), total_steps) - bar.n)
                 if stats.goals and stats.steps % 60 == 0:
                     bar.set_postfix(score=f"{env.score['blue']}-{env.score['yellow']}")
+        played = clock(env)
         ok = True
     finally:
         if bar is not None:
@@ -312,7 +318,7 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
     if game_on:
         config["rules"] = {k: getattr(rules, k) for k in GAME_RULES}
     return MatchResult(score=dict(env.score), goals=stats.goals, shots=stats.shots, possession=stats.possession(),
-                       steps=steps, sim_time_s=steps * dt, wall_time_s=wall,
+                       steps=steps, sim_time_s=steps * dt, played_s=played, wall_time_s=wall,
                        act_time_ms={k: 1000.0 * v / max(steps, 1) for k, v in act_time.items()},
                        missed_deadlines={team: d.missed for team, d in deadlines.items()}, seed=seed, config=config,
                        stats={**pass_stats.summary(), "events": pass_stats.log,

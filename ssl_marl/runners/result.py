@@ -25,7 +25,9 @@ class MatchResult:
         shots: kick events per team (every kick, not only shots on goal).
         possession: fraction of control steps in which a robot of the team held the
             ball on its dribbler (ground truth; the two may sum to less than 1).
-        steps: control steps simulated. sim_time_s: simulated seconds.
+        steps: control steps simulated. sim_time_s: simulated seconds. played_s: seconds on
+            the match clock (the SSL format stops it during STOP; 0: not recorded, the
+            simulated time counts).
         wall_time_s: wall-clock seconds for the whole match (env + controllers).
         act_time_ms: mean wall time of each team's ``act`` (ms).
         missed_deadlines: real-time mode: ticks whose command was lost, per team.
@@ -45,6 +47,7 @@ class MatchResult:
     possession: dict[str, float] = field(default_factory=dict)
     steps: int = 0
     sim_time_s: float = 0.0
+    played_s: float = 0.0
     wall_time_s: float = 0.0
     act_time_ms: dict[str, float] = field(default_factory=dict)
     missed_deadlines: dict[str, int] = field(default_factory=dict)
@@ -95,10 +98,11 @@ def summarize(results: list[MatchResult]) -> dict:
 
 
 def _played_s(r: MatchResult) -> float:
-    """Seconds of play of a match: its simulated time, else its configured length, else 600 s."""
+    """Seconds of play of a match: its match clock, else its simulated time, else its
+    configured length, else 600 s."""
     from .statistics import SSL_MATCH_S
 
-    return r.sim_time_s if r.sim_time_s > 0 else float(r.config.get("seconds") or SSL_MATCH_S)
+    return r.played_s or r.sim_time_s or float(r.config.get("seconds") or SSL_MATCH_S)
 
 
 # ------------------------------------------------------------------ result records on disk

@@ -13,8 +13,12 @@ Reward
     Shared by a team: sum over named terms x ``reward_scales``. ``goal``: +1 when the
     team scores, -1 when it concedes. ``ball_progress``: ball displacement towards the
     opponent goal / (L/2). ``possession``: +dt while a robot of the team holds the ball.
+Match clock (:attr:`MatchTask.clock_s`)
+    The simulated time, or with ``clock_stops`` the simulated time less the STOPs (SSL
+    rules: the clock stops during stop, halt and ball placement). ``max_time_s`` and
+    ``half_time_s`` read this clock.
 End
-    Truncation when simulated time reaches ``max_time_s``; termination after a goal if
+    Truncation when the match clock reaches ``max_time_s``; termination after a goal if
     ``after_goal == "terminate"``, otherwise the kickoff formation is placed and play
     goes on.
 SSL game control (``ssl_restarts``, ``fouls``; :mod:`ssl_marl.envs.game_control`)
@@ -26,7 +30,7 @@ Restart placement (``restart_jitter_m`` > 0)
     env's seeded ``np_random``: the same seed gives the same match, but no two restarts
     put the robots in the same poses, so a deterministic kickoff cannot replay itself.
 Half-time (``half_time_s``)
-    At that simulated time: event ``half_time``, the score kept, the kickoff formation
+    At that time on the match clock: event ``half_time``, the score kept, the kickoff formation
     placed, yellow kicks off. The teams change ends: the field is point-symmetric, so
     the env keeps simulating in its field frame (blue's own goal at -x) and records
     the swap as :attr:`MatchTask.sides_swapped`; the stadium frame of the second half
@@ -71,6 +75,7 @@ class MatchTask(Task):
         self.sides_swapped = False  #: True in the second half (module docstring)
         self._touch: TouchWatch | None = None
         self._half_time_now = False
+        self._stopped_s = 0.0  #: s of simulated time the match clock stood still (``clock_stops``)
         self._pending_free_kick: str | None = None
         self._pending_command = FREE_KICK  #: what follows the STOP (a repeated kickoff stays one)
         self._spot = np.zeros(2)
@@ -96,6 +101,7 @@ class MatchTask(Task):
         self._restart_watch(env)
         r = self.rules
         self.half, self.sides_swapped, self._half_time_now = 1, False, False
+        self._stopped_s = 0.0
         self.referee_state = RefereeState(since=float(env.world_state().t))
         self._game = r.ssl_restarts or r.fouls or r.half_time_s is not None
         self._touch = (TouchWatch(env.config.n_blue, env.config.n_yellow, env.config.robot.radius,
@@ -113,7 +119,13 @@ class MatchTask(Task):
         self.goal_for = None
         self._event_mark = 0
 
+    def clock_s(self, env: Engine) -> float:
+        """The match clock (s): the simulated time, less the STOPs with ``clock_stops``."""
+        return float(env.world_state().t) - self._stopped_s
+
     def after_tick(self, env: Engine, events: list[dict]) -> bool:
+        if self.rules.clock_stops and self.referee_state.command == STOP:  # the tick just simulated was a STOP
+            self._stopped_s += env.config.dt
         if self._pending_events:
             events.extend(self._pending_events)
             self._pending_events = []
@@ -171,7 +183,7 @@ class MatchTask(Task):
 
     def end(self, env: Engine) -> tuple[bool, bool]:
         terminated = self.goal_for is not None and self.rules.after_goal == "terminate"
-        truncated = (env.world_state().t >= self.rules.max_time_s - 1e-9) and not terminated
+        truncated = (self.clock_s(env) >= self.rules.max_time_s - 1e-9) and not terminated
         return terminated, truncated
 
     def after_step(self, env: Engine, terminated: bool, truncated: bool) -> None:
@@ -207,7 +219,7 @@ class MatchTask(Task):
         kicked = kicked_rows(events[self._event_mark:], env.agent_index)
         self._event_mark = len(events)
         touch = self._touch.touching(truth, kicked)
-        if r.half_time_s is not None and self.half == 1 and truth.t >= r.half_time_s - 1e-9:
+        if r.half_time_s is not None and self.half == 1 and self.clock_s(env) >= r.half_time_s - 1e-9:
             self.half, self.sides_swapped, self._half_time_now = 2, True, True
             events.append({"type": "half_time", "t": truth.t, "score": dict(getattr(env, "score", {}))})
             return True  # after_step places the second half's kickoff
