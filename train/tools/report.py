@@ -110,6 +110,12 @@ ATTACK_TARGETS_SSL_104600 = ["match_attack_learned_vs_baseline_600_ssl_104600",
 #: issue 24's realistic target again with the code of commit 2c63231 (spent pass setups, dribble limit)
 ATTACK_REALISTIC_SSL_105500 = ["match_attack_learned_vs_baseline_600_ssl_realistic_104900",
                                "match_attack_learned_vs_baseline_600_ssl_realistic_105500"]
+#: issue 24's targets with the SSL clock (stopped during STOP), commit 1772b71
+ATTACK_TARGETS_SSL_105600 = ["match_attack_learned_vs_baseline_600_ssl_105600",
+                             "match_attack_learned_vs_passing_learned_600_ssl_105700",
+                             "match_attack_learned_selfplay_600_ssl_105800",
+                             "match_attack_learned_vs_baseline_600_ssl_realistic_106000",
+                             "match_attack_learned_vs_baseline_600_ssl_div_a_11v11_105900"]
 #: self-play series of one team, pooled: blue's surplus over yellow (a colour bias shows here)
 COLOUR_BALANCE = [("attacking team, the robot order decides a contested ball",
                    ("match_attack_learned_selfplay_600", "match_attack_learned_selfplay_600_85000",
@@ -532,6 +538,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "attack_targets_ssl_104600": lambda r: m.series_600(r, ATTACK_TARGETS_SSL_104600),
     "attack_targets_ssl_104600_set_pieces": lambda r: m.set_piece_series(r, ATTACK_TARGETS_SSL_104600),
     "attack_realistic_ssl_105500": lambda r: m.series_600(r, ATTACK_REALISTIC_SSL_105500),
+    "attack_targets_ssl_105600": lambda r: m.series_600(r, ATTACK_TARGETS_SSL_105600),
+    "attack_targets_ssl_105600_set_pieces": lambda r: m.set_piece_series(r, ATTACK_TARGETS_SSL_105600),
     "ssl_set_pieces_vs_passing_104500": lambda r: m.ssl_fouls_series(r, [(
         "set pieces kicked, walls", "match_attack_learned_vs_passing_learned_600_ssl_104500")]),
     "attack_skill_swaps": lambda r: m.series_600(r, ATTACK_SKILL_SWAPS),
