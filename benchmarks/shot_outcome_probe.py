@@ -1,12 +1,12 @@
 """Where the attacking team's shots end: every shot of a few matches, followed to its end.
 
-6v6 Division B, plain format. A **shot** is a kick of the ``--blue`` team that the match
+6v6 Division B, plain format (``--format ssl``: SSL's). A **shot** is a kick of the ``--blue`` team that the match
 statistics count as one (:meth:`ssl_marl.plays.stats.MatchStatsTracker.classify_kick`:
 its straight path crosses the opponent goal line, +x in the field frame, within 0.25 m of
 the posts, and no teammate stands in its lane). From the world one step after the kick
-(field frame, m) it records the ball's distance to the goal centre, its speed (m/s), the
-open goal angle (rad, :func:`~ssl_marl.plays.pass_decision.open_goal_interval` with every
-robot but the kicker as an obstacle), whether the path is between the posts, the blue
+(field frame, m) it records the ball's distance to the goal centre and the open goal angle
+(rad; both :meth:`~ssl_marl.plays.stats.MatchStatsTracker.shot_geometry`, every robot but
+the kicker an obstacle), its speed (m/s), whether the path is between the posts, the blue
 carrier's last attack decision if it came at most 1.5 s before (choice, shot and keep
 values; none: a kick no carrier decision chose, e.g. a defender's clearance), and how the
 shot ended, whichever comes first: ``goal``; ``keeper`` (first touched by an opponent
@@ -18,6 +18,8 @@ blue's last kick before them.
 
     python benchmarks/shot_outcome_probe.py --blue attack-learned --yellow baseline --seconds 600 \\
         --seeds 61600-61603 --out results/tuning/shot_outcome_probe.json
+    python benchmarks/shot_outcome_probe.py --format ssl --yellow passing-learned --seeds 61760-61761 \
+        --out results/tuning/shot_outcome_probe_ssl_passing.json
 """
 
 from __future__ import annotations
@@ -32,13 +34,12 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from ball_out_probe import probe_args, write_probe  # noqa: E402  (the probes' shared command line)
 
 
-def probe_match(blue: str, yellow: str, seconds: float, seed: int) -> tuple[list[dict], list[dict]]:
+def probe_match(blue: str, yellow: str, seconds: float, seed: int, fmt: str = "plain") -> tuple[list[dict], list[dict]]:
     """The blue shots of one match, and its blue goals that followed no shot (module docstring)."""
     from ssl_marl.envs.game_control import TouchWatch
     from ssl_marl.physics.field import FieldGeometry
     from ssl_marl.physics.params import BallParams, RobotParams
     from ssl_marl.plays import attack_play
-    from ssl_marl.plays.pass_decision import open_goal_interval
     from ssl_marl.plays.stats import MatchStatsTracker
     from ssl_marl.runners import match as match_runner
 
@@ -65,14 +66,13 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int) -> tuple[list
         ball, vel = np.asarray(truth.ball_pos, float), np.asarray(truth.ball_vel, float)
         if state["open"] is not None:
             close("kicked_again")
-        others = np.delete(np.concatenate([truth.blue.pos, truth.yellow.pos]), kicker, axis=0)
-        open_angle, _ = open_goal_interval(ball, others, field, rp, bp)
+        geo = rules.shot_geometry(truth, "blue", kicker)
         y_at = ball[1] + vel[1] * (field.half_length - ball[0]) / vel[0]
         dec = state["decision"]
         state["open"] = {"t": float(truth.t), "kicker": f"blue_{kicker}",
                          "decision": dec if dec is not None and truth.t - dec["t"] <= 1.5 else None,
-                         "ball": ball.round(3).tolist(), "dist_m": float(np.hypot(*(field.goal_center(+1) - ball))),
-                         "speed": float(np.hypot(*vel)), "open_rad": float(open_angle),
+                         "ball": ball.round(3).tolist(), "dist_m": geo["dist_m"],
+                         "speed": float(np.hypot(*vel)), "open_rad": geo["open_rad"],
                          "on_target": bool(abs(y_at) <= field.goal_width / 2)}
 
     def record(self, events, truth):
@@ -108,7 +108,8 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int) -> tuple[list
     attack_play.AttackDecider.decide = decide
     try:
         res = match_runner.play_match(blue=blue, yellow=yellow, robots=6, field="div_b", seconds=seconds, seed=seed,
-                                      progress=False, render=None)
+                                      progress=False, render=None,
+                                      env_kwargs=match_runner.format_options(fmt, seconds))
     finally:
         match_runner.MatchStats.record = original_record
         attack_play.AttackDecider.decide = original_decide
@@ -132,10 +133,13 @@ def summarize(shots: list[dict]) -> dict:
 
 
 def main(argv: list[str] | None = None) -> int:
-    args = probe_args(__doc__.splitlines()[0], "61600-61601", "JSON output (summary and every shot)", argv)
+    def fmt(ap):
+        ap.add_argument("--format", choices=("plain", "ssl"), default="plain",
+                        help="match format (ssl_marl.runners.match.format_options; default plain)")
+    args = probe_args(__doc__.splitlines()[0], "61600-61601", "JSON output (summary and every shot)", argv, extra=fmt)
     shots, goals_other = [], []
     for seed in args.seeds:
-        s, g = probe_match(args.blue, args.yellow, args.seconds, seed)
+        s, g = probe_match(args.blue, args.yellow, args.seconds, seed, args.format)
         shots += s
         goals_other += g
     summary = {**summarize(shots), "blue_goals_without_a_shot": len(goals_other)}

@@ -348,6 +348,8 @@ def test_stats_a_kick_towards_the_goal_that_dies_short_of_it_is_no_shot():
         assert tr.classify_kick(kick(x, 6.5), team, 0) == "shot"
         assert tr.classify_kick(kick(x, 1.0, vz=1.0), team, 0) == "shot"
         assert tr.classify_kick(kick(F.half_length - 0.2, 1.0), team, 0) == "shot"
+        geo = tr.shot_geometry(kick(x, 6.5), team, 0)  # the other robot stands behind the kicker
+        assert geo["dist_m"] == 3.0 and geo["open_rad"] == pytest.approx(2 * math.atan(0.5 / 3.0), abs=1e-4)
 
 
 def test_stats_same_step_control_goes_to_the_robot_nearest_the_ball_not_to_blue():
@@ -733,3 +735,17 @@ def test_restart_play_applies_at_the_centre_mark_and_free_kick_spots():
     assert restart_applicable(dataclasses.replace(_ctx(near_them), set_piece=True))
     mid = make_world(blue=far, yellow=[(4.2, 0, math.pi), (-0.8, 1.4, math.pi)], ball=(-1.0, 1.0), frame="blue")
     assert restart_applicable(dataclasses.replace(_ctx(mid), set_piece=True)) and not restart_applicable(_ctx(mid))
+
+
+
+def test_stats_shot_geometry_sees_the_goalie_shadow_for_either_team():
+    """A robot on the goal line in front of the goal centre halves the open mouth of a shot from
+    3 m straight in front: the same for a blue shot at +x and a yellow shot at -x."""
+    tr = MatchStatsTracker(F, BP)
+    x = F.half_length - 3.0
+    for side, team in ((1.0, "blue"), (-1.0, "yellow")):
+        kicker, keeper = [(side * x, 0.0, 0.0)], [(side * (F.half_length - 0.1), 0.0, 0.0)]
+        blue, yellow = (kicker, keeper) if team == "blue" else (keeper, kicker)
+        w = make_world(blue=blue, yellow=yellow, ball=(side * (x + 0.1), 0.0), ball_vel=(side * 6.0, 0.0))
+        geo = tr.shot_geometry(w, team, 0)
+        assert 0.0 < geo["open_rad"] < math.atan(0.5 / 2.9)  # one side of the goalie

@@ -39,7 +39,9 @@ same rules:
   on contact with a moving ball, the one-touch play; else **direct**. Passes are ``chip`` or ``flat`` (every other pass). Shots are
   ``redirect``, ``after_chip_pass`` (the kicker received a completed chip pass
   and kept the ball until the shot) or ``direct``. A goal takes the kind of its
-  team's last shot since the last restart (``other`` without one).
+  team's last shot since the last restart (``other`` without one). A shot's log entry
+  says where it was taken (:meth:`MatchStatsTracker.shot_geometry`: distance to the goal
+  centre, the open goal angle).
 
 Per team (:meth:`MatchStatsTracker.summary`): ``kicks``, ``shots``, ``goals``,
 ``passes_attempted``, ``passes_completed``, ``passes_intercepted`` (own passes the
@@ -64,7 +66,7 @@ import numpy as np
 from ..envs.game_control import FREE_KICK, KICKOFF
 from ..physics import ball_model
 from ..physics.field import FieldGeometry
-from ..physics.params import BallParams
+from ..physics.params import BallParams, RobotParams
 from ..physics.state import TEAMS, WorldState
 
 
@@ -179,6 +181,21 @@ class MatchStatsTracker:
         self._set_piece_chain: str | None = None  # its possession began with its set-piece kick
 
     # -------------------------------------------------------------- helpers
+    def shot_geometry(self, world: WorldState, team: str, kicker: int) -> dict:
+        """Where ``team``'s robot ``kicker`` shoots from (field frame): ``dist_m``, the ball's
+        distance to the centre of the goal it attacks (m), and ``open_rad``, the widest part
+        of that goal mouth not shadowed by another robot, seen from the ball (rad;
+        :func:`~ssl_marl.plays.pass_decision.open_goal_interval`, robots of the default size)."""
+        from .pass_decision import open_goal_interval
+
+        side = 1.0 if team == "blue" else -1.0  # the field is point-symmetric: yellow's shots turned by 180 degrees
+        ball = side * np.asarray(world.ball_pos, float)
+        rows = np.concatenate([world.blue.pos, world.yellow.pos]).reshape(-1, 2)
+        others = side * np.delete(rows, kicker + (world.blue.n if team == "yellow" else 0), axis=0)
+        open_rad, _ = open_goal_interval(ball, others, self.field, RobotParams(), self.ball)
+        return {"dist_m": round(float(np.hypot(*(self.field.goal_center(+1) - ball))), 3),
+                "open_rad": round(float(open_rad), 4)}
+
     def classify_kick(self, world: WorldState, team: str, kicker: int) -> str:
         """"shot", "pass" or "clear" for a kick by ``team``'s robot ``kicker`` (field frame)."""
         p = np.asarray(world.ball_pos, float)
@@ -260,7 +277,8 @@ class MatchStatsTracker:
                             else "direct")
                     setattr(s, f"shots_{shot}", getattr(s, f"shots_{shot}") + 1)
                     self._last_shot_kind[team] = shot
-                    self.log.append({"t": t, "type": "shot", "team": team, "kicker": idx, "kind": shot})
+                    self.log.append({"t": t, "type": "shot", "team": team, "kicker": idx, "kind": shot,
+                                     **self.shot_geometry(world, team, idx)})
                 elif what == "pass":
                     s.passes_attempted += 1
                     pk = "chip" if world.ball_vz > 0.0 else "flat"
