@@ -555,6 +555,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "league_96000": lambda r: m.league(r, "league_96000"),
     "league_100000": lambda r: m.league(r, "league_100000"),
     "league_ssl_105100": lambda r: m.league(r, "league_ssl_105100"),
+    "league_ssl_106100": lambda r: m.league(r, "league_ssl_106100"),
     "passing_contested_kick": lambda r: m.tuning(r, [("`contested_kick` on", "passing_contested_kick.json",
                                                       "contested_kick_on"),
                                                      ("`contested_kick` off (the default)",
