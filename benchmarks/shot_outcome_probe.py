@@ -18,7 +18,7 @@ blue's last kick before them.
 
     python benchmarks/shot_outcome_probe.py --blue attack-learned --yellow baseline --seconds 600 \\
         --seeds 61600-61603 --out results/tuning/shot_outcome_probe.json
-    python benchmarks/shot_outcome_probe.py --format ssl --yellow passing-learned --seeds 61760-61761 \
+    python benchmarks/shot_outcome_probe.py --format ssl --yellow passing-learned --seeds 61760-61761 \\
         --out results/tuning/shot_outcome_probe_ssl_passing.json
 """
 

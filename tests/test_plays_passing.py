@@ -737,7 +737,6 @@ def test_restart_play_applies_at_the_centre_mark_and_free_kick_spots():
     assert restart_applicable(dataclasses.replace(_ctx(mid), set_piece=True)) and not restart_applicable(_ctx(mid))
 
 
-
 def test_stats_shot_geometry_sees_the_goalie_shadow_for_either_team():
     """A robot on the goal line in front of the goal centre halves the open mouth of a shot from
     3 m straight in front: the same for a blue shot at +x and a yellow shot at -x."""

@@ -67,7 +67,7 @@ from ..envs.game_control import FREE_KICK, KICKOFF
 from ..physics import ball_model
 from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
-from ..physics.state import TEAMS, WorldState
+from ..physics.state import TEAMS, WorldState, to_team_frame
 
 
 @dataclass(frozen=True)
@@ -188,10 +188,9 @@ class MatchStatsTracker:
         :func:`~ssl_marl.plays.pass_decision.open_goal_interval`, robots of the default size)."""
         from .pass_decision import open_goal_interval
 
-        side = 1.0 if team == "blue" else -1.0  # the field is point-symmetric: yellow's shots turned by 180 degrees
-        ball = side * np.asarray(world.ball_pos, float)
-        rows = np.concatenate([world.blue.pos, world.yellow.pos]).reshape(-1, 2)
-        others = side * np.delete(rows, kicker + (world.blue.n if team == "yellow" else 0), axis=0)
+        tw = to_team_frame(world, team)  # the goal it attacks at +x
+        ball = np.asarray(tw.ball_pos, float)
+        others = np.concatenate([np.delete(tw.team(team).pos, kicker, axis=0), tw.opponents(team).pos]).reshape(-1, 2)
         open_rad, _ = open_goal_interval(ball, others, self.field, RobotParams(), self.ball)
         return {"dist_m": round(float(np.hypot(*(self.field.goal_center(+1) - ball))), 3),
                 "open_rad": round(float(open_rad), 4)}

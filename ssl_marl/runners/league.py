@@ -278,7 +278,7 @@ def team_series(team: str, matches: Sequence[dict[str, Any]]) -> dict[str, Any]:
     (:func:`~ssl_marl.runners.statistics.series_statistics`): wins, draws, losses, goals,
     the win rate with its Wilson 95 % interval and the goal difference per 600 s with its
     t 95 % interval (each match scaled by its match clock ``played_s``, else its ``sim_time_s``)."""
-    from .statistics import SSL_MATCH_S, series_statistics
+    from .statistics import played_seconds, series_statistics
 
     gf, ga, secs = [], [], []
     for m in matches:
@@ -286,7 +286,7 @@ def team_series(team: str, matches: Sequence[dict[str, Any]]) -> dict[str, Any]:
             if m[side] == team:
                 gf.append(m["score"][side])
                 ga.append(m["score"][opp])
-                secs.append(float(m.get("played_s") or m.get("sim_time_s") or SSL_MATCH_S))
+                secs.append(played_seconds(m.get("played_s"), m.get("sim_time_s")))
     st = series_statistics(gf, ga, secs)
     keys = ("matches", "wins", "draws", "losses", "goals_for", "goals_against", "win_rate", "win_rate_ci95",
             "goal_diff_per_600s", "goal_diff_per_600s_ci95")

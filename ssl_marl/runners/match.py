@@ -239,8 +239,7 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
             c.reset()
     dt = env.config.dt
     total_steps = int(round(seconds / dt))
-    task = getattr(env, "task", None)
-    clock = task.clock_s if hasattr(task, "clock_s") else (lambda e: stats.steps * dt)  # s on the match clock
+    clock = env.task.clock_s  # s on the match clock (MatchTask)
     every = max(int(round(env.config.control_hz / render_fps)), 1)
     sink = VideoSink(render, env.config.control_hz / every) if render is not None else None
     deadlines = {team: ControlDeadline(dt) for team in ctrls}

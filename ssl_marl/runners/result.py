@@ -98,11 +98,10 @@ def summarize(results: list[MatchResult]) -> dict:
 
 
 def _played_s(r: MatchResult) -> float:
-    """Seconds of play of a match: its match clock, else its simulated time, else its
-    configured length, else 600 s."""
-    from .statistics import SSL_MATCH_S
+    """Seconds of play of a match (:func:`~ssl_marl.runners.statistics.played_seconds`)."""
+    from .statistics import played_seconds
 
-    return r.played_s or r.sim_time_s or float(r.config.get("seconds") or SSL_MATCH_S)
+    return played_seconds(r.played_s, r.sim_time_s, r.config.get("seconds"))
 
 
 # ------------------------------------------------------------------ result records on disk

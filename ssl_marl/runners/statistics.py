@@ -25,6 +25,13 @@ SSL_MATCH_S = 600.0  #: s of play in an SSL match (two halves of 300 s)
 Z95 = 1.959964  #: two-sided 95 % normal quantile (7 significant digits)
 
 
+def played_seconds(played_s: float | None, sim_time_s: float | None, configured_s: float | None = None) -> float:
+    """Seconds of play of one match (what its goals count per): its match clock ``played_s``
+    (the SSL format stops it during STOP), else its simulated time, else its configured
+    length, else :data:`SSL_MATCH_S` (records that lack the newer fields)."""
+    return float(played_s or sim_time_s or configured_s or SSL_MATCH_S)
+
+
 def t_interval(values: Sequence[float], conf: float = 0.95) -> tuple[float, float]:
     """Two-sided Student-t confidence interval for the mean of ``values`` ((nan, nan)
     for none; (x, x) for one value)."""
