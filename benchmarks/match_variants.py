@@ -44,6 +44,9 @@ match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
 * ``edge-spots``: the plain format with the supports' spot grid extended by spots on the
   opponent defence area's border (``SpotParams.edge_spots`` 5; ``ATTACK_SPOTS``), where no
   marker can stand on the goal side;
+* ``ssl-mark-0.25``: the SSL format with the attacking team's marks turned a quarter towards the
+  ball (``ATTACK_MARK_BIAS`` 0.25, as the passing and standard plays' marks) instead of standing on
+  the marked opponent's line to our goal centre (0);
 * ``opp-one-defender`` / ``opp-no-defender``: the plain format against a weakened defence: the
   standard plays (the ``baseline`` / ``learned`` teams' plays) keep only their first defender /
   none of their defenders on the ball-goal line (the robots freed take the plays' next roles:
@@ -79,7 +82,9 @@ RULES = {"plain": {}, "free-kick": {"ssl_restarts": True, "stop_s": 0.0},
          "receiver-guard": {},
          "contested-kick": {}, "press-0.6": {}, "aim-reach": {}, "reach-shot": {}}
 #: the match format of each variant (:func:`ssl_marl.runners.match.format_options`; default plain)
-FORMAT = {"ssl": "ssl", "ssl-receiver-guard": "ssl", "ssl-tap-0.7": "ssl"}
+FORMAT = {"ssl": "ssl", "ssl-receiver-guard": "ssl", "ssl-tap-0.7": "ssl", "ssl-mark-0.25": "ssl"}
+#: the attacking plays' mark bias of each variant (``ATTACK_MARK_BIAS``)
+MARK_BIAS = {"ssl-mark-0.25": 0.25}
 #: ``ATTACK_PASSING`` fields of each variant
 PASSING = {"keep-2s": {"max_keep_s": 2.0}, "keep-inf": {"max_keep_s": math.inf}, "keep-pass": {"keep_expiry": "pass"},
            "keep-near-4": {"keep_shot_max_m": 4.0}, "keep-near-6": {"keep_shot_max_m": 6.0},
@@ -105,6 +110,14 @@ def set_attack_spots(fields: dict | None = None) -> None:
     from ssl_marl.plays import attack_play
 
     attack_play.ATTACK_SPOTS = dataclasses.replace(attack_play.ATTACK_SPOTS, **(fields or {}))
+
+
+def set_attack_mark_bias(bias: float | None) -> None:
+    """Replace the attacking plays' ``ATTACK_MARK_BIAS`` (read when a team is built); None: unchanged."""
+    if bias is not None:
+        from ssl_marl.plays import attack_play
+
+        attack_play.ATTACK_MARK_BIAS = float(bias)
 
 
 def set_standard_defenders(n: int | None) -> None:
@@ -153,7 +166,7 @@ def summarize(rows: list[dict], seconds: float) -> dict:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("variant", choices=sorted({*RULES, *FORMAT, *DECISION, *ATTACK, *SPOTS, *OPP_DEFENDERS}),
+    ap.add_argument("variant", choices=sorted({*RULES, *FORMAT, *DECISION, *ATTACK, *SPOTS, *OPP_DEFENDERS, *MARK_BIAS}),
                     help="the variant (module docstring)")
     ap.add_argument("--blue", default="attack-learned", help="blue team kind (default attack-learned)")
     ap.add_argument("--yellow", default="baseline", help="yellow team kind (default baseline)")
@@ -173,12 +186,14 @@ def main(argv: list[str] | None = None) -> int:
     set_attack_params(ATTACK.get(args.variant))
     set_attack_spots(SPOTS.get(args.variant))
     set_standard_defenders(OPP_DEFENDERS.get(args.variant))
+    set_attack_mark_bias(MARK_BIAS.get(args.variant))
     manifest = build_manifest(rules={"variant": args.variant, "env": env,
                                      "attack_passing": {k: str(v) for k, v in PASSING.get(args.variant, {}).items()},
                                      "decision": DECISION.get(args.variant, {}),
                                      "attack": ATTACK.get(args.variant, {}),
                                      "spots": SPOTS.get(args.variant, {}),
                                      "standard_plays_defenders": OPP_DEFENDERS.get(args.variant),
+                                     "attack_mark_bias": MARK_BIAS.get(args.variant),
                                      "blue": args.blue, "yellow": args.yellow, "seconds": args.seconds,
                                      "robots": args.robots, "field": args.field},
                               seeds={"seed": args.seed, "matches": args.matches})

@@ -76,6 +76,9 @@ ATTACK_PASSING = PassingParams(abort_margin_s=-math.inf, decide_at_restart=True,
 ATTACK_PARAMS = AttackParams()
 #: the supports' spot rating (a :class:`SpotPlanner` built without parameters reads it when built)
 ATTACK_SPOTS = SpotParams()
+#: the marks' turn towards the ball (``MarkParams.ball_bias``; 0: on the marked opponent's line to
+#: our goal centre, module docstring), in attack and in the defense play; read when the plays are built
+ATTACK_MARK_BIAS = 0.0
 
 
 @dataclass
@@ -232,13 +235,16 @@ def spot_support_role(k: int, planner: SpotPlanner, priority: int) -> RoleDef:
                    unfilled_cost=OPTIONAL_ROLE_UNFILLED_COST)
 
 
-def attack_roles(coord: PassCoordinator, decider: AttackDecider, planner: SpotPlanner) -> tuple[RoleDef, ...]:
-    """The roles of the attacking plays, in priority order (as the passing plays')."""
+def attack_roles(coord: PassCoordinator, decider: AttackDecider, planner: SpotPlanner,
+                 mark_bias: float | None = None) -> tuple[RoleDef, ...]:
+    """The roles of the attacking plays, in priority order (as the passing plays');
+    ``mark_bias``: the marks' ``ball_bias`` (None: :data:`ATTACK_MARK_BIAS`)."""
+    b = ATTACK_MARK_BIAS if mark_bias is None else mark_bias
     return (goalie_role(100), chip_passer_role(coord, decider, 95), redirect_receiver_role(coord, decider, 94),
             passing_attacker_role(coord, 90, aim_open_goal=True), wall_role(0, 85), defender_role(0, 80),
             spot_support_role(0, planner, 80), wall_role(1, 75), spot_support_role(1, planner, 70), defender_role(1, 70),
-            mark_role(0, 60, ball_bias=0.0), spot_support_role(2, planner, 60), mark_role(1, 50, ball_bias=0.0),
-            defender_role(2, 50), spot_support_role(3, planner, 40), mark_role(2, 40, ball_bias=0.0))
+            mark_role(0, 60, ball_bias=b), spot_support_role(2, planner, 60), mark_role(1, 50, ball_bias=b),
+            defender_role(2, 50), spot_support_role(3, planner, 40), mark_role(2, 40, ball_bias=b))
 
 
 def attack_plays(params: PassingParams | None = None, ball: BallParams | None = None,
@@ -258,7 +264,7 @@ def attack_plays(params: PassingParams | None = None, ball: BallParams | None = 
 
     restart = Play("restart", restart_applicable, roles, priority=1, prepare=AttackPrepare(coord, planner, True))
     offense = Play("offense_attack", offense_attack_applicable, roles, prepare=AttackPrepare(coord, planner))
-    return (restart, offense, defense_play(mark_ball_bias=0.0))
+    return (restart, offense, defense_play(mark_ball_bias=ATTACK_MARK_BIAS))
 
 
 def attack_decider_of(plays) -> AttackDecider | None:
@@ -270,6 +276,6 @@ def attack_decider_of(plays) -> AttackDecider | None:
     return None
 
 
-__all__ = ["ATTACK_PASSING", "ATTACK_PARAMS", "ATTACK_SPOTS", "AttackCounters", "AttackDecider", "SpotPlanner",
+__all__ = ["ATTACK_PASSING", "ATTACK_PARAMS", "ATTACK_SPOTS", "ATTACK_MARK_BIAS", "AttackCounters", "AttackDecider", "SpotPlanner",
            "AttackPrepare", "chip_passer_role",
            "redirect_receiver_role", "spot_support_role", "attack_roles", "attack_plays", "attack_decider_of"]
