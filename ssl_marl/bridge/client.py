@@ -9,7 +9,9 @@ uses the raw detections), let the team controller decide
 skills, its plays and carrier decision), and send the robot commands by the SSL
 simulation protocol (``RobotControl`` to the colour's port; the replies carry dribbler
 feedback) or as legacy grSim packets. The referee stream is read: ``HALT`` stops the
-robots, score changes reach the controller's play selection.
+robots, score changes reach the controller's play selection, and an STP team obeys the game
+controller's commands (:class:`~.referee_codec.RefereeFollower`: STOP, kickoffs and free kicks
+as it obeys the env's referee).
 
 :class:`PlayBrain` is the part without sockets (also driven by the lock-step runner
 :func:`run_lockstep_match`).
@@ -34,6 +36,7 @@ from .perception import VisionWorld
 from .proto import ssl_referee_pb2 as ref_pb
 from .proto import ssl_simulation_pb2 as sim_pb
 from .proto import ssl_vision_wrapper_pb2 as wrap_pb
+from .referee_codec import RefereeFollower
 from .transport import UdpReceiver, parse_address
 from .vision_codec import Detections, merge_frames
 
@@ -79,10 +82,15 @@ class PlayBrain:
         self.halted = False
         self.score: dict[str, int] | None = None
         self.decisions = 0
+        self.referee = RefereeFollower()
+        from ..plays.team import TeamController
+
+        self._obeys_referee = isinstance(self.controller, TeamController)
 
     def on_referee(self, msg: ref_pb.Referee) -> None:
-        """Follow HALT and tell play selection about goals."""
+        """Follow HALT and the game controller's commands; tell play selection about goals."""
         self.halted = msg.command == ref_pb.Referee.HALT
+        self.referee.on_message(msg)
         score = {"blue": msg.blue.score, "yellow": msg.yellow.score}
         if self.score is not None and hasattr(self.controller, "notify_goal"):
             other = "yellow" if self.team == "blue" else "blue"
@@ -106,15 +114,16 @@ class PlayBrain:
         if world is None:
             return None
         self.decisions += 1
+        extra = {"referee": self.referee.update(world.ball_pos)} if self._obeys_referee else {}
         if self.halted:
             actions = {f"{self.team}_{i}": STOP.copy() for i in range(self.n)}
         elif self.tracker is not None:
             from ..physics.state import to_team_frame
 
             self.tracker.update(to_team_frame(world, self.team))
-            actions = self.controller.act(self.tracker.predict(world.t + self.latency_steps * self.dt))
+            actions = self.controller.act(self.tracker.predict(world.t + self.latency_steps * self.dt), **extra)
         else:
-            actions = self.controller.act(world)
+            actions = self.controller.act(world, **extra)
         by_id = {int(name.rsplit("_", 1)[1]): fit_action(a, CHIP_ACTION_DIM) for name, a in actions.items()}
         if self.tracker is not None:
             rows = np.array([by_id.get(i, STOP) for i in range(self.n)])

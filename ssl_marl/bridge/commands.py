@@ -35,6 +35,10 @@ def _register_serve(subparsers) -> argparse.ArgumentParser:
     p.add_argument("--robots", type=int, default=6, help="robots per team (default 6)")
     p.add_argument("--field", default="div_b", choices=("div_a", "div_b"), help="field size (default div_b)")
     p.add_argument("--seconds", type=float, default=300.0, help="match length in simulated s (default 300)")
+    p.add_argument("--format", choices=("plain", "ssl"), default="plain",
+                   help="match format: plain (restarts at once) or ssl (SSL game control: STOP, kickoffs and "
+                        "free kicks in the referee packets, fouls, two halves on a clock that stops at STOP; "
+                        "default plain)")
     p.add_argument("--seed", type=int, default=0, help="env and fallback-team seed (default 0)")
     p.add_argument("--realism", default="none", choices=REALISM, help="vision noise/latency preset (default none)")
     p.add_argument("--cameras", type=int, default=1, choices=(1, 2, 4, 8), help="simulated cameras (default 1)")
@@ -108,7 +112,7 @@ def _run_serve(args: argparse.Namespace) -> int:
     world = WorldConfig(robots=args.robots, field=args.field, seconds=args.seconds, seed=args.seed,
                         realism=args.realism, n_cameras=args.cameras, blue_team=args.blue_team,
                         yellow_team=args.yellow_team, command_timeout_s=args.command_timeout, client_teams=teams,
-                        tracker=bool(args.tracker))
+                        tracker=bool(args.tracker), format=args.format)
     config = ServerConfig(vision=vision, referee=referee, tracker=tuple(args.tracker or ()),
                           listen_host=args.listen_host, control_port=args.control_port, blue_port=args.blue_port,
                           yellow_port=args.yellow_port, grsim_port=args.grsim_port, grsim_status_ports=status,

@@ -27,7 +27,7 @@ from ..envs.actions import ACTION_DIM
 from .command_codec import CommandError, decode_grsim_command, decode_robot_command
 from .proto import grsim_packet_pb2 as grsim_pb
 from .proto import ssl_simulation_pb2 as sim_pb
-from .referee_codec import RefereeState
+from .referee_codec import GameView, RefereeState
 from .tracker_codec import tracker_packet
 from .vision_codec import camera_regions, detection_frames, geometry_data
 
@@ -56,6 +56,11 @@ class WorldConfig:
         off, the world is the flat-kick env of :func:`~ssl_marl.runners.match.play_match`
         for teams that do not chip (what :func:`~.log_tools.record_match_log` replays),
         and a client's chip is kicked flat with a ``CHIP_KICK_UNSUPPORTED`` error.
+        format: the match format (:func:`ssl_marl.runners.match.format_options`): "plain"
+            (restarts at once, one period) or "ssl" (SSL game control: STOP, kickoffs and
+            free kicks the teams must obey, fouls, two halves of ``seconds / 2`` on a clock
+            that stops during STOP); the referee packets carry its commands
+            (:mod:`.referee_codec`).
     """
 
     robots: int = 6
@@ -72,6 +77,11 @@ class WorldConfig:
     start_jitter_m: float = 0.05
     restart_jitter_m: float = 0.1
     chip_kicks: bool = True
+    format: str = "plain"
+
+    def __post_init__(self) -> None:
+        if self.format not in ("plain", "ssl"):
+            raise ValueError(f"WorldConfig.format must be 'plain' or 'ssl', got {self.format!r}")
 
 
 class BridgeWorld:
@@ -81,15 +91,17 @@ class BridgeWorld:
         from ..envs import parallel_env
         from ..envs.tracking import with_tracker
         from ..runners.controllers import CHIP_KINDS, STP_KINDS, make_controller
+        from ..runners.match import format_options
 
         self.config = config
         if not config.chip_kicks:
             for team, kind in (("blue", config.blue_team), ("yellow", config.yellow_team)):
                 if kind in CHIP_KINDS:
                     raise ValueError(f"{team}_team {kind!r} chips; it needs WorldConfig(chip_kicks=True)")
+        options = {**format_options(config.format, float(config.seconds)), "restart_jitter_m": config.restart_jitter_m}
         env = parallel_env(n_blue=config.robots, n_yellow=config.robots, field=config.field,
                            max_time_s=float(config.seconds), realism=config.realism, after_goal="kickoff",
-                           restart_jitter_m=config.restart_jitter_m, chip_kicks=bool(config.chip_kicks))
+                           chip_kicks=bool(config.chip_kicks), **options)
         self.env = with_tracker(env, "on" if config.tracker else "auto")
         cfg = self.env.config
         self.robot, self.ball, self.field, self.dt = cfg.robot, cfg.ball, self.env.field, cfg.dt
@@ -128,12 +140,23 @@ class BridgeWorld:
         self.kicks: dict[str, dict[int, str]] = {"blue": {}, "yellow": {}}
         self.command_time = {t: np.full(self.n, -np.inf) for t in ("blue", "yellow")}
         self.finished = False
-        self.referee.start(0)
+        self.referee.start(0, self.game_view())
 
     @property
     def t(self) -> float:
         """Simulated time since the match start (s)."""
         return float(self.env.world_state().t)
+
+    def game_view(self) -> GameView | None:
+        """The match's SSL game control for the referee stream (None in the plain format):
+        the env's command, the half and the half's time left on the match clock (s)."""
+        task = getattr(self.env, "task", None)
+        rules = getattr(task, "rules", None)
+        if task is None or rules is None or not rules.ssl_restarts:
+            return None
+        clock = float(task.clock_s(self.env))
+        half_end = rules.half_time_s if task.half == 1 and rules.half_time_s is not None else self.config.seconds
+        return GameView(task.referee_state, int(task.half), float(half_end) - clock)
 
     def step(self, now_us: int) -> tuple[list[dict], bool]:
         """Advance one control period; (env events, referee command changed). ``now_us``
@@ -157,7 +180,8 @@ class BridgeWorld:
         events = next(iter(infos.values()))["events"] if infos else []
         self.finished = not self.env.agents
         time_left = self.config.seconds - self.t
-        changed = self.referee.update(events, self.env.world_state(), self.env.score, time_left, self.finished, now_us)
+        changed = self.referee.update(events, self.env.world_state(), self.env.score, time_left, self.finished, now_us,
+                                      game=self.game_view())
         self.events = events
         self.stats["steps"] += 1
         self._note_kicks(events)

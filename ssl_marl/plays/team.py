@@ -220,8 +220,11 @@ class TeamController:
                 out.append((r, np.asarray(target, float)))
         return out
 
-    def act(self, env_or_world: Any) -> dict[str, np.ndarray]:
-        """Actions ``{f"{team}_{i}": (5,) float32}`` for all robots of the team."""
+    def act(self, env_or_world: Any, referee: Any = None) -> dict[str, np.ndarray]:
+        """Actions ``{f"{team}_{i}": (5,) float32}`` for all robots of the team.
+        ``referee``: the referee's command (a :class:`~ssl_marl.envs.game_control.RefereeState`)
+        where ``env_or_world`` carries none (a world seen by a bridge client); None: the
+        env's ``task.referee_state`` (none for a bare world: play runs)."""
         world = self.team_world(env_or_world)
         if self._last_t is not None and world.t < self._last_t:
             self.new_episode()
@@ -229,7 +232,8 @@ class TeamController:
         ours = world.team(self.team)
         if ours.n != self.n:
             raise ValueError(f"TeamController({self.team!r}) was built for {self.n} robots, the world has {ours.n}")
-        referee = getattr(getattr(env_or_world, "task", None), "referee_state", None)
+        if referee is None:
+            referee = getattr(getattr(env_or_world, "task", None), "referee_state", None)
         set_piece = referee is not None and referee.is_set_piece_for(self.team)
         self._watch_set_piece_kicker(world, referee, set_piece)
         dribbled = self.dribble_watch.update(world)
