@@ -126,6 +126,25 @@ def test_attacker_waits_outside_own_defense_area():
     assert tac.state is S.GO_TO_BALL
 
 
+def test_attacker_keeps_out_of_the_opponents_defense_area_only_when_asked():
+    inside = ShootInputs(d_db=1.0, ball_in_opp_defense=True, ball_near_opp_defense=True)
+    assert GoToBallAndShoot.transition(S.GO_TO_BALL, inside, ShootParams(keep_out_of_own_defense_area=True)) \
+        is S.GO_TO_BALL  # the own area's guard alone goes for the ball in the opponent's area
+    p = ShootParams(keep_out_of_opp_defense_area=True)
+    for s in (S.GO_TO_BALL, S.DRIVE_FORWARD, S.AIM_TO_SHOOT, S.KEEP):
+        assert GoToBallAndShoot.transition(s, inside, p) is S.WAIT_OUTSIDE_DEFENSE_AREA
+    edge = ShootInputs(d_db=1.0, ball_near_opp_defense=True)
+    assert GoToBallAndShoot.transition(S.WAIT_OUTSIDE_DEFENSE_AREA, edge, p) is S.WAIT_OUTSIDE_DEFENSE_AREA
+    assert GoToBallAndShoot.transition(S.WAIT_OUTSIDE_DEFENSE_AREA, ShootInputs(d_db=1.0), p) is S.GO_TO_BALL
+    tac = Attacker(F, keep_out_of_opp_defense_area=True)
+    a = tac.act(scene((2.5, 0.5, 0.0), ball=(4.2, 0.2)), 0)
+    assert tac.state is S.WAIT_OUTSIDE_DEFENSE_AREA and legal(a)
+    target = np.asarray(tac.nav.target)
+    assert not F.in_defense_area(target, +1, margin=0.1) and target[0] > 0  # beside the opponent's area
+    tac.act(scene((2.5, 0.5, 0.0), ball=(2.0, 0.2), t=DT), 0)
+    assert tac.state is S.GO_TO_BALL
+
+
 def test_tactic_rejects_bad_use():
     tac = GoToBallAndShoot(F)
     with pytest.raises(ValueError, match="unknown parameter"):

@@ -166,6 +166,10 @@ class PassingParams:
             dribbled this far is *spent* (:class:`PassPlan`: the passer kicks as soon as it
             faces the receive point, without the receiver's READY and however fast it moves:
             in matches such passers are mostly pushed along by an opponent); None: off.
+        keep_out_of_opp_area: the attacker waits outside the opponent's defense area while
+            the ball is in it (:class:`~ssl_marl.plays.shoot.ShootParams`,
+            ``keep_out_of_opp_defense_area``: touching the ball there is a foul, a free kick
+            for the opponents); False: it goes for the ball there too.
     """
 
     decision: DecisionParams = DecisionParams()
@@ -191,6 +195,7 @@ class PassingParams:
     dead_ball_s: float | None = None
     press_urgent_m: float | None = None
     dribble_cut_m: float | None = None
+    keep_out_of_opp_area: bool = False
 
     def __post_init__(self) -> None:
         if self.keep_expiry not in KEEP_EXPIRY:

@@ -97,7 +97,8 @@ def passing_attacker_role(coord: PassCoordinator, priority: int = 90, aim_open_g
         t.set_params(hold_fire=coord.hold_fire(), drive_forward_s=coord.params.settle_s,
                      keep_target=coord.keep_target(), keep_speed=coord.keep_speed(),
                      snap_shot=coord.params.snap_shot, aim_open_goal=aim_open_goal,
-                     aim_reach=coord.params.aim_reach, keep_tap_m=coord.params.keep_tap_m, set_piece=ctx.set_piece)
+                     aim_reach=coord.params.aim_reach, keep_tap_m=coord.params.keep_tap_m, set_piece=ctx.set_piece,
+                     keep_out_of_opp_defense_area=coord.params.keep_out_of_opp_area)
 
     return RoleDef("attacker", priority, Attacker, target, update=update)
 

@@ -25,7 +25,9 @@ referee counts them and the runner reads them.
 (``keep_out_of_own_defense_area=True``): while the ball lies inside the own defense
 area (the goalie's), it waits just outside the area, facing the ball
 (state ``WAIT_OUTSIDE_DEFENSE_AREA``); with the default False the machine is exactly
-the paper's.
+the paper's. ``keep_out_of_opp_defense_area`` does the same at the opponent's defense
+area, where touching the ball is a foul (SSL rules: "attacker touches ball in opponent
+defense area", a free kick for the opponents): the opponent's goalie clears it.
 """
 
 from __future__ import annotations
@@ -68,6 +70,8 @@ class ShootParams:
         drive_forward_speed: its forward speed (m/s).
         keep_out_of_own_defense_area: wait outside the own defense area while the ball
             is in it (team play); False = the paper's machine.
+        keep_out_of_opp_defense_area: wait outside the opponent's defense area while
+            the ball is in it (touching it there is a foul); False = go for it.
         wait_margin: how far outside the defense area to wait (m, robot centre).
         wait_hysteresis_m: keep waiting until the ball is this far outside the own
             defense area (m), so a ball on the line does not flip the state every
@@ -139,6 +143,7 @@ class ShootParams:
     drive_forward_s: float = 1.0
     drive_forward_speed: float = 0.5
     keep_out_of_own_defense_area: bool = False
+    keep_out_of_opp_defense_area: bool = False
     wait_margin: float = 0.2
     wait_hysteresis_m: float = 0.1
     safe_drive_forward: bool = False
@@ -177,6 +182,7 @@ class ShootInputs:
         ball_near_own_defense: ball inside the own defense area grown by
             ``wait_hysteresis_m``
             (hysteresis for leaving the wait state).
+        ball_in_opp_defense, ball_near_opp_defense: the same at the opponent's defense area.
     """
 
     d_db: float
@@ -184,6 +190,8 @@ class ShootInputs:
     kicked: bool = False
     ball_in_own_defense: bool = False
     ball_near_own_defense: bool = False
+    ball_in_opp_defense: bool = False
+    ball_near_opp_defense: bool = False
 
 
 class GoToBallAndShoot(Tactic):
@@ -220,18 +228,24 @@ class GoToBallAndShoot(Tactic):
                                          else SkillStatus.RUNNING), kicked=self._kicked,
                            ball_in_own_defense=bool(self.field.in_defense_area(ball, -1)),
                            ball_near_own_defense=bool(self.field.in_defense_area(
-                               ball, -1, margin=self.params.wait_hysteresis_m)))
+                               ball, -1, margin=self.params.wait_hysteresis_m)),
+                           ball_in_opp_defense=bool(self.field.in_defense_area(ball, +1)),
+                           ball_near_opp_defense=bool(self.field.in_defense_area(
+                               ball, +1, margin=self.params.wait_hysteresis_m)))
 
     @staticmethod
     def transition(state: ShootState, inputs: ShootInputs, params: ShootParams) -> ShootState:
-        """Fig. 2 of the paper (plus the optional defense-area wait)."""
+        """Fig. 2 of the paper (plus the optional defense-area waits)."""
         S = ShootState
         near = inputs.d_db <= params.near_ball_m
-        if params.keep_out_of_own_defense_area:
-            if inputs.ball_in_own_defense and state is not S.WAIT_OUTSIDE_DEFENSE_AREA:
+        own, opp = params.keep_out_of_own_defense_area, params.keep_out_of_opp_defense_area
+        if own or opp:
+            inside = (own and inputs.ball_in_own_defense) or (opp and inputs.ball_in_opp_defense)
+            if inside and state is not S.WAIT_OUTSIDE_DEFENSE_AREA:
                 return S.WAIT_OUTSIDE_DEFENSE_AREA
             if state is S.WAIT_OUTSIDE_DEFENSE_AREA:
-                return S.WAIT_OUTSIDE_DEFENSE_AREA if inputs.ball_near_own_defense else S.GO_TO_BALL
+                near_area = (own and inputs.ball_near_own_defense) or (opp and inputs.ball_near_opp_defense)
+                return S.WAIT_OUTSIDE_DEFENSE_AREA if near_area else S.GO_TO_BALL
         elif state is S.WAIT_OUTSIDE_DEFENSE_AREA:
             return S.GO_TO_BALL
         if state is S.GO_TO_BALL:
@@ -271,7 +285,8 @@ class GoToBallAndShoot(Tactic):
             self.drive_forward.speed = p.drive_forward_speed * min(max(scale, 0.0), 1.0)
         if self.state is ShootState.WAIT_OUTSIDE_DEFENSE_AREA:
             pos = world.team(world.frame).pos[robot]
-            rect = defense_rect(self.field, -1, self.nav.params.defense_margin + self.params.wait_margin)
+            side = -1 if float(world.ball_pos[0]) < 0.0 else +1  # the area the ball is in (or near)
+            rect = defense_rect(self.field, side, self.nav.params.defense_margin + self.params.wait_margin)
             self.nav.target = push_out_of_rect(world.ball_pos, rect)
             self.nav.facing = facing_towards(pos, world.ball_pos)
         if self.state is ShootState.KEEP:
