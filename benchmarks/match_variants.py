@@ -55,7 +55,7 @@ match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
   none of their defenders on the ball-goal line (the robots freed take the plays' next roles:
   marks and supports); the goalie is unchanged. A probe of what limits scoring, not a team.
 
-Writes per match the score, the blue team's statistics and the referee's counts, and a
+Writes per match the score, the blue team's statistics, the referee's counts and the fouls by team, and a
 summary: :func:`ssl_marl.runners.statistics.series_statistics` (win-draw-loss, goals, the goal
 difference per 600 s with its 95 % interval), ball-outs and blue shots per match.
 
@@ -206,7 +206,8 @@ def main(argv: list[str] | None = None) -> int:
         r = play_match(args.blue, args.yellow, robots=args.robots, field=args.field, seconds=args.seconds,
                        seed=args.seed + i, render=None, progress=False, env_kwargs=dict(env))
         rows.append({"seed": args.seed + i, "score": r.score, "blue": dict(r.stats["blue"]),
-                     "referee": r.stats.get("referee", {}), "wall_s": round(time.time() - t0, 1)})
+                     "referee": r.stats.get("referee", {}), "fouls": r.stats.get("fouls", {}),
+                     "wall_s": round(time.time() - t0, 1)})
         print(args.variant, args.seed + i, r.score, flush=True)
         atomic_write_json(args.out, {"summary": summarize(rows, args.seconds), "matches": rows, "manifest": manifest})
     print(json.dumps(summarize(rows, args.seconds), indent=1))
