@@ -200,6 +200,12 @@ MATCH_VARIANTS_DEFENCE = [("the attacking team as it plays (pressed passer; seed
                            ("defence/edge-spots-61500.json", "defence/edge-spots-61510.json")),
                           ("the attacking team as it plays, the same 20 seeds",
                            ("press/press-0.6-61500.json", "press/press-0.6-61510.json"))]
+MATCH_VARIANTS_SSL_MARKS = [("the attacking team as it plays (SSL format)", "marks/ssl-passing-61770.json"),
+                            ("its marks turned a quarter towards the ball (`ssl-mark-0.25`)",
+                             "marks/ssl-mark-0.25-passing-61770.json")]
+MATCH_VARIANTS_SSL_OPP_AREA = [("the attacking team as it plays (SSL format)", "opp_area/ssl-baseline-61790.json"),
+                               ("its attacker waits outside the opponent's defense area (`ssl-opp-area`)",
+                                "opp_area/ssl-opp-area-baseline-61790.json")]
 SET_PIECE_SERIES = ["match_attack_learned_vs_baseline_600_ssl_058d181", "match_attack_learned_vs_baseline_600_ssl",
                     "match_attack_learned_vs_baseline_600_ssl_20261127"]
 SSL_FOULS_104100 = [("before the defender call and the braking fix", "match_attack_learned_vs_baseline_600_ssl_104100_8b7f0e3"),
@@ -518,6 +524,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
                                                    "colour_mirror_attack_learned.json"]),
     "match_variants": lambda r: m.match_variants(r, MATCH_VARIANTS),
     "match_variants_defence": lambda r: m.match_variants(r, MATCH_VARIANTS_DEFENCE),
+    "match_variants_ssl_marks": lambda r: m.match_variants(r, MATCH_VARIANTS_SSL_MARKS),
+    "match_variants_ssl_opp_area": lambda r: m.match_variants(r, MATCH_VARIANTS_SSL_OPP_AREA, fouls=True),
     "match_variants_selfplay_pass": lambda r: m.match_variants(r, MATCH_VARIANTS_SELFPLAY_PASS),
     "match_variants_shots": lambda r: m.match_variants(r, MATCH_VARIANTS_SHOTS),
     "match_variants_div_a": lambda r: m.match_variants(r, MATCH_VARIANTS_DIV_A),

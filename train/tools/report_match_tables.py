@@ -136,15 +136,17 @@ def tuning(results: Path, entries: Iterable[tuple[str, str, str | None]]) -> Lin
     return rows
 
 
-def match_variants(results: Path, entries: Iterable[tuple[str, str | tuple[str, ...]]]) -> Lines:
+def match_variants(results: Path, entries: Iterable[tuple[str, str | tuple[str, ...]]], fouls: bool = False) -> Lines:
     """Tuning matches under variants of the restarts and the carrier's keep rule
     (``benchmarks/match_variants.py``; ``results/tuning/match_variants/<file>``): (label, file
-    or files whose matches are pooled)."""
+    or files whose matches are pooled); ``fouls``: a column of blue's fouls per match (those in
+    the opponent's defense area / all; "-" where the records do not keep them)."""
     from ssl_marl.runners.statistics import series_statistics
 
     rows = _head("variant", "commit", "blue vs yellow", "seeds", "matches", "W-D-L (blue)", "goals for-against",
                  "goal diff per 600 s [95% CI]", "ball-outs per match", "blue shots per match",
-                 "blue passes completed (the referee's count)")
+                 "blue passes completed (the referee's count)",
+                 *(("blue fouls per match: in the defense area / all",) if fouls else ()))
     for label, files in entries:
         recs = [json.loads((results / "tuning" / "match_variants" / f).read_text())
                 for f in ((files,) if isinstance(files, str) else files)]
@@ -165,6 +167,11 @@ def match_variants(results: Path, entries: Iterable[tuple[str, str | tuple[str, 
                  str(len(ms)), f"{st['wins']}-{st['draws']}-{st['losses']}", f"{st['goals_for']}-{st['goals_against']}",
                  f"{st['goal_diff_per_600s']:+.2f} [{lo:+.2f}, {hi:+.2f}]", outs,
                  f"{sum(m['blue']['shots'] for m in ms) / len(ms):.1f}", passes]
+        if fouls:
+            kept = all("fouls" in m for m in ms)
+            area = sum(m.get("fouls", {}).get("blue", {}).get("attacker_in_defense_area", 0) for m in ms)
+            every = sum(sum(m.get("fouls", {}).get("blue", {}).values()) for m in ms)
+            cells.append(f"{area / len(ms):.1f} / {every / len(ms):.1f}" if kept else "-")
         rows.append("| " + " | ".join(cells) + " |")
     return rows
 
