@@ -144,3 +144,24 @@ def test_a_client_team_keeps_clear_of_the_ball_at_the_other_teams_free_kick():
     # other team's free kick it backs away and does not kick
     assert free[0] > 0.0 > kept[0]
     assert kept[4] == -1.0
+
+
+def test_an_ssl_format_match_is_recorded_as_the_match_played(tmp_path, capsys):
+    """``ssl-marl match --format ssl --ssl-log``: the bridge replays the same seeded match (same
+    score) and the log's referee packets carry SSL's game control (STOP, free kicks, both halves)."""
+    from ssl_marl.bridge.ssl_log import MESSAGE_TYPES, read_log
+    from ssl_marl.cli import main
+
+    out = tmp_path / "ssl.log"
+    assert main(["match", "--blue", "attack-baseline", "--yellow", "baseline", "--robots", "3", "--seconds", "20",
+                 "--format", "ssl", "--seed", "4", "--render", "none", "--quiet", "--ssl-log", str(out)]) == 0
+    printed = capsys.readouterr().out
+    assert "SSL log ->" in printed and "differs" not in printed
+    commands, stages = set(), set()
+    for msg in read_log(out):
+        if msg.message_type == MESSAGE_TYPES["referee_2013"]:
+            ref = R.FromString(msg.payload)
+            commands.add(ref.command)
+            stages.add(ref.stage)
+    assert {R.STOP, R.NORMAL_START} <= commands and commands & {R.DIRECT_FREE_BLUE, R.DIRECT_FREE_YELLOW}
+    assert {R.NORMAL_FIRST_HALF, R.NORMAL_SECOND_HALF, R.POST_GAME} <= stages

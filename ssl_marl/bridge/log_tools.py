@@ -14,20 +14,21 @@ from .ssl_log import MESSAGE_TYPES, LogWriter, read_log
 
 def record_match_log(path: str | os.PathLike, blue: str = "baseline", yellow: str = "baseline", robots: int = 6,
                      field: str = "div_b", seconds: float = 300.0, seed: int = 0, realism: str = "none",
-                     n_cameras: int = 1, time_origin: float = 0.0) -> dict[str, int]:
+                     n_cameras: int = 1, time_origin: float = 0.0, format: str = "plain") -> dict[str, int]:
     """Play a match of our teams ``blue`` / ``yellow`` in-process (the bridge's world,
     so the seeded start and referee are :func:`ssl_marl.runners.match.play_match`'s, and
     its env has chip kicks exactly when ``play_match``'s has: when a team chips) and
     write every vision frame (each camera, each control period; geometry every 3 s) and
     referee packet to an SSL log at ``path``; returns the score. Timestamps:
-    ``time_origin`` + simulated time (ns)."""
+    ``time_origin`` + simulated time (ns). ``format``: "plain" or "ssl" (the match format,
+    as ``ssl-marl match --format``; the referee packets carry SSL's game control)."""
     from ..runners.controllers import CHIP_KINDS
     from .vision_codec import wrapper
     from .world import BridgeWorld, WorldConfig
 
     world = BridgeWorld(WorldConfig(robots=robots, field=field, seconds=seconds, seed=seed, realism=realism,
                                     n_cameras=n_cameras, blue_team=blue, yellow_team=yellow,
-                                    chip_kicks=blue in CHIP_KINDS or yellow in CHIP_KINDS))
+                                    chip_kicks=blue in CHIP_KINDS or yellow in CHIP_KINDS, format=format))
     last_geometry = -float("inf")
     with LogWriter(path) as log:
         changed = True

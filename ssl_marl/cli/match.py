@@ -78,8 +78,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     m.add_argument("--ssl-log", default=None, metavar="PATH",
                    help="also write the match as an SSL log file (the SSL log recorder's format: vision and "
                         "referee packets, readable by SSL log players): the bridge plays the same seeded match "
-                        "again and records it; single plain-format matches of named teams without --skill or "
-                        "--*-decision options (needs the ssl extra)")
+                        "again and records it, in either --format (ssl: the referee packets carry SSL's game "
+                        "control); single matches of named teams without --skill or --*-decision options "
+                        "(needs the ssl extra)")
     m.add_argument("--no-progress-s", type=non_negative_float("--no-progress-s"), default=10.0,
                    help="the referee restarts play when the ball stays within 0.25 m of one spot this long "
                         "(SSL force start after a lack of progress; seconds, default 10; 0 switches the call off)")
@@ -157,11 +158,11 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         prepare_output_file(args.json, None, "--json")
     if args.ssl_log:
-        if args.matches != 1 or args.format != "plain" or blue_skills or yellow_skills or blue_decision \
+        if args.matches != 1 or blue_skills or yellow_skills or blue_decision \
                 or yellow_decision or args.realtime or args.no_progress_s != 10.0 \
                 or args.restart_jitter_m != 0.1:
-            raise ValueError("--ssl-log records single plain-format matches of named teams (no --matches > 1, "
-                             "--format ssl, --skill, --*-decision, --realtime, --no-progress-s or --restart-jitter-m)")
+            raise ValueError("--ssl-log records single matches of named teams (no --matches > 1, "
+                             "--skill, --*-decision, --realtime, --no-progress-s or --restart-jitter-m)")
         prepare_output_file(args.ssl_log, None, "--ssl-log")
     rules = {"runner": "match", "blue": args.blue, "yellow": args.yellow, **common,
              "no_progress_s": common["env_kwargs"]["no_progress_s"]}
@@ -219,7 +220,7 @@ def _write_ssl_log(args: argparse.Namespace, res) -> None:
     from ..bridge.log_tools import record_match_log
 
     score = record_match_log(args.ssl_log, blue=args.blue, yellow=args.yellow, robots=args.robots, field=args.field,
-                             seconds=args.seconds, seed=args.seed, realism=args.realism)
+                             seconds=args.seconds, seed=args.seed, realism=args.realism, format=args.format)
     same = score == dict(res.score)
     print(f"SSL log -> {args.ssl_log} (score {score['blue']}:{score['yellow']}"
           + ("" if same else f"; the recorded replay differs from the match played, {res.score}") + ")")
