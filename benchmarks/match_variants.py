@@ -47,9 +47,9 @@ match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
 * ``ssl-mark-0.25``: the SSL format with the attacking team's marks turned a quarter towards the
   ball (``ATTACK_MARK_BIAS`` 0.25, as the passing and standard plays' marks) instead of standing on
   the marked opponent's line to our goal centre (0);
-* ``ssl-opp-area``: the SSL format with the attacking team's attacker waiting outside the
-  opponent's defense area while the ball is in it (``keep_out_of_opp_area``; touching the ball
-  there is a foul) instead of going for it;
+* ``ssl-opp-area`` / ``ssl-in-opp-area``: the SSL format with the attacking team's attacker waiting
+  outside the opponent's defense area while the ball is in it (``keep_out_of_opp_area`` True, the
+  attacking plays' default; touching the ball there is a foul) / going for the ball there too (False);
 * ``opp-one-defender`` / ``opp-no-defender``: the plain format against a weakened defence: the
   standard plays (the ``baseline`` / ``learned`` teams' plays) keep only their first defender /
   none of their defenders on the ball-goal line (the robots freed take the plays' next roles:
@@ -85,7 +85,8 @@ RULES = {"plain": {}, "free-kick": {"ssl_restarts": True, "stop_s": 0.0},
          "receiver-guard": {},
          "contested-kick": {}, "press-0.6": {}, "aim-reach": {}, "reach-shot": {}}
 #: the match format of each variant (:func:`ssl_marl.runners.match.format_options`; default plain)
-FORMAT = {"ssl": "ssl", "ssl-receiver-guard": "ssl", "ssl-tap-0.7": "ssl", "ssl-mark-0.25": "ssl", "ssl-opp-area": "ssl"}
+FORMAT = {"ssl": "ssl", "ssl-receiver-guard": "ssl", "ssl-tap-0.7": "ssl", "ssl-mark-0.25": "ssl", "ssl-opp-area": "ssl",
+          "ssl-in-opp-area": "ssl"}
 #: the attacking plays' mark bias of each variant (``ATTACK_MARK_BIAS``)
 MARK_BIAS = {"ssl-mark-0.25": 0.25}
 #: ``ATTACK_PASSING`` fields of each variant
@@ -94,7 +95,8 @@ PASSING = {"keep-2s": {"max_keep_s": 2.0}, "keep-inf": {"max_keep_s": math.inf},
            "tap-0.7": {"keep_tap_m": 0.7}, "ssl-tap-0.7": {"keep_tap_m": 0.7},
            "contested-kick": {"contested_kick": True},
            "press-0.6": {"contested_kick": True, "press_urgent_m": 0.6},
-           "aim-reach": {"aim_reach": True}, "ssl-opp-area": {"keep_out_of_opp_area": True}}
+           "aim-reach": {"aim_reach": True}, "ssl-opp-area": {"keep_out_of_opp_area": True},
+           "ssl-in-opp-area": {"keep_out_of_opp_area": False}}
 #: ``ATTACK_PASSING.decision`` and ``.restart_decision`` fields of each variant
 DECISION = {"receiver-guard": {"receiver_guard_m": 1.0}, "ssl-receiver-guard": {"receiver_guard_m": 1.0},
             "pass-0.5": {"min_pass_success": 0.5}, "pass-0.65": {"min_pass_success": 0.65},
