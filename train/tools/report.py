@@ -206,6 +206,8 @@ MATCH_VARIANTS_SSL_MARKS = [("the attacking team as it plays (SSL format)", "mar
 MATCH_VARIANTS_SSL_OPP_AREA = [("the attacking team as it plays (SSL format)", "opp_area/ssl-baseline-61790.json"),
                                ("its attacker waits outside the opponent's defense area (`ssl-opp-area`)",
                                 "opp_area/ssl-opp-area-baseline-61790.json")]
+FOUL_PROBES = [("the attacker goes for the ball in the opponent's defense area", "attack_vs_baseline.json"),
+               ("waiting outside it (`--passing keep_out_of_opp_area=true`)", "attack_opp_area_vs_baseline.json")]
 SET_PIECE_SERIES = ["match_attack_learned_vs_baseline_600_ssl_058d181", "match_attack_learned_vs_baseline_600_ssl",
                     "match_attack_learned_vs_baseline_600_ssl_20261127"]
 SSL_FOULS_104100 = [("before the defender call and the braking fix", "match_attack_learned_vs_baseline_600_ssl_104100_8b7f0e3"),
@@ -526,6 +528,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "match_variants_defence": lambda r: m.match_variants(r, MATCH_VARIANTS_DEFENCE),
     "match_variants_ssl_marks": lambda r: m.match_variants(r, MATCH_VARIANTS_SSL_MARKS),
     "match_variants_ssl_opp_area": lambda r: m.match_variants(r, MATCH_VARIANTS_SSL_OPP_AREA, fouls=True),
+    "foul_probe": lambda r: m.foul_probe(r, FOUL_PROBES),
     "match_variants_selfplay_pass": lambda r: m.match_variants(r, MATCH_VARIANTS_SELFPLAY_PASS),
     "match_variants_shots": lambda r: m.match_variants(r, MATCH_VARIANTS_SHOTS),
     "match_variants_div_a": lambda r: m.match_variants(r, MATCH_VARIANTS_DIV_A),

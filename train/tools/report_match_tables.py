@@ -282,6 +282,26 @@ def shot_outcomes(path: Path) -> Lines:
     return rows
 
 
+def foul_probe(results: Path, entries: Iterable[tuple[str, str]]) -> Lines:
+    """``benchmarks/foul_probe.py``: (label, file under ``results/tuning/foul_probe/``): each team's
+    fouls by kind, and who touched the ball in the opponent's defense area (role (its tactic's state):
+    count)."""
+    rows = _head("blue", "seeds", "team", "fouls per match", "in the defense area / dribbling / double touch / "
+                 "too close", "in the defense area, by role (state)")
+    kinds = ("attacker_in_defense_area", "excessive_dribbling", "double_touch", "defender_too_close")
+    for label, name in entries:
+        d = json.loads((results / "tuning" / "foul_probe" / name).read_text())
+        s, seeds = d["summary"], d["manifest"]["seeds"]["seeds"]
+        for team in ("blue", "yellow"):
+            t = s[team]
+            who = t["by_foul_and_role"].get("attacker_in_defense_area", {})
+            rows.append(f"| {label} | {min(seeds)}-{max(seeds)} | {team} ({d['manifest']['rules'][team]}) | "
+                        f"{t['fouls'] / s['matches']:.1f} | "
+                        f"{' / '.join(str(t['by_foul'].get(k, 0)) for k in kinds)} | "
+                        f"{', '.join(f'{k}: {v}' for k, v in sorted(who.items(), key=lambda kv: -kv[1]))} |")
+    return rows
+
+
 def wall_probe(path: Path) -> Lines:
     """``benchmarks/wall_probe.py``: what a goalie and 0-3 defenders on the ball-goal line leave
     open of the goal, over the scoring zone's ball positions."""
