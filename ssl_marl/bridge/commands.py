@@ -34,7 +34,9 @@ def _register_serve(subparsers) -> argparse.ArgumentParser:
                                           "tracker packets.")
     p.add_argument("--robots", type=int, default=6, help="robots per team (default 6)")
     p.add_argument("--field", default="div_b", choices=("div_a", "div_b"), help="field size (default div_b)")
-    p.add_argument("--seconds", type=float, default=300.0, help="match length in simulated s (default 300)")
+    p.add_argument("--seconds", type=float, default=300.0,
+                   help="match length in simulated s (with --format ssl: s of playing time on the match clock, "
+                        "which stops at STOP; default 300)")
     p.add_argument("--format", choices=("plain", "ssl"), default="plain",
                    help="match format: plain (restarts at once) or ssl (SSL game control: STOP, kickoffs and "
                         "free kicks in the referee packets, fouls, two halves on a clock that stops at STOP; "
