@@ -116,6 +116,13 @@ ATTACK_TARGETS_SSL_105600 = ["match_attack_learned_vs_baseline_600_ssl_105600",
                              "match_attack_learned_selfplay_600_ssl_105800",
                              "match_attack_learned_vs_baseline_600_ssl_realistic_106000",
                              "match_attack_learned_vs_baseline_600_ssl_div_a_11v11_105900"]
+ATTACK_SSL_106200 = ["match_attack_learned_vs_baseline_600_ssl_106200",
+                     "match_attack_learned_vs_passing_learned_600_ssl_106300"]
+ATTACK_SSL_106200_FOULS = [("the attacker goes into the defense area", "match_attack_learned_vs_baseline_600_ssl_105600"),
+                           ("the attacker waits outside it", "match_attack_learned_vs_baseline_600_ssl_106200"),
+                           ("the attacker goes into the defense area",
+                            "match_attack_learned_vs_passing_learned_600_ssl_105700"),
+                           ("the attacker waits outside it", "match_attack_learned_vs_passing_learned_600_ssl_106300")]
 #: self-play series of one team, pooled: blue's surplus over yellow (a colour bias shows here)
 COLOUR_BALANCE = [("attacking team, the robot order decides a contested ball",
                    ("match_attack_learned_selfplay_600", "match_attack_learned_selfplay_600_85000",
@@ -551,6 +558,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "attack_realistic_ssl_105500": lambda r: m.series_600(r, ATTACK_REALISTIC_SSL_105500),
     "attack_targets_ssl_105600": lambda r: m.series_600(r, ATTACK_TARGETS_SSL_105600),
     "attack_targets_ssl_105600_set_pieces": lambda r: m.set_piece_series(r, ATTACK_TARGETS_SSL_105600),
+    "attack_ssl_106200": lambda r: m.series_600(r, ATTACK_SSL_106200),
+    "attack_ssl_106200_fouls": lambda r: m.ssl_fouls_series(r, ATTACK_SSL_106200_FOULS),
     "ssl_set_pieces_vs_passing_104500": lambda r: m.ssl_fouls_series(r, [(
         "set pieces kicked, walls", "match_attack_learned_vs_passing_learned_600_ssl_104500")]),
     "attack_skill_swaps": lambda r: m.series_600(r, ATTACK_SKILL_SWAPS),
