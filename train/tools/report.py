@@ -449,7 +449,8 @@ ATTACK_DRILL_44000 = [("hand-coded", "attack_drill_handcoded_44000"),
                        "attack_drill_learned_ft_s1_7098_44000")]
 
 #: the README's first command over seeds 0-19: its match length and the lengths around it
-README_GOAL_RATE = ["readme_match_selfplay_300", "readme_match_selfplay_450", "readme_match_selfplay_600"]
+README_GOAL_RATE = ["readme_match_selfplay_300", "readme_match_selfplay_450", "readme_match_selfplay_600",
+                    "readme_match_selfplay_450_fed7dee"]
 
 TABLES: dict[str, Callable[[Path], list[str]]] = {
     "skills_paper": lambda r: t.skills(r, SKILLS_PAPER),
