@@ -117,7 +117,8 @@ ATTACK_TARGETS_SSL_105600 = ["match_attack_learned_vs_baseline_600_ssl_105600",
                              "match_attack_learned_vs_baseline_600_ssl_realistic_106000",
                              "match_attack_learned_vs_baseline_600_ssl_div_a_11v11_105900"]
 ATTACK_SSL_106200 = ["match_attack_learned_vs_baseline_600_ssl_106200",
-                     "match_attack_learned_vs_passing_learned_600_ssl_106300"]
+                     "match_attack_learned_vs_passing_learned_600_ssl_106300",
+                     "match_attack_learned_vs_baseline_600_ssl_realistic_106400"]
 ATTACK_SSL_106200_FOULS = [("the attacker goes into the defense area", "match_attack_learned_vs_baseline_600_ssl_105600"),
                            ("the attacker waits outside it", "match_attack_learned_vs_baseline_600_ssl_106200"),
                            ("the attacker goes into the defense area",
