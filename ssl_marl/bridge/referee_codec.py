@@ -53,8 +53,13 @@ from .proto import ssl_referee_pb2 as ref_pb
 
 Referee = ref_pb.Referee
 
-_PREPARE_KICKOFF = {"blue": Referee.PREPARE_KICKOFF_BLUE, "yellow": Referee.PREPARE_KICKOFF_YELLOW}
-_DIRECT_FREE = {"blue": Referee.DIRECT_FREE_BLUE, "yellow": Referee.DIRECT_FREE_YELLOW}
+#: the game controller's set-piece commands as the env's (command, team); the first of each pair
+#: is the one the served stream sends (indirect free kicks are read, never sent)
+_SET_PIECES = {Referee.PREPARE_KICKOFF_BLUE: (gc.KICKOFF, "blue"), Referee.PREPARE_KICKOFF_YELLOW: (gc.KICKOFF, "yellow"),
+               Referee.DIRECT_FREE_BLUE: (gc.FREE_KICK, "blue"), Referee.DIRECT_FREE_YELLOW: (gc.FREE_KICK, "yellow"),
+               Referee.INDIRECT_FREE_BLUE: (gc.FREE_KICK, "blue"),
+               Referee.INDIRECT_FREE_YELLOW: (gc.FREE_KICK, "yellow")}
+_SENT_SET_PIECES = {pair: cmd for cmd, pair in reversed(list(_SET_PIECES.items()))}
 
 
 @dataclass(frozen=True)
@@ -76,13 +81,7 @@ class GameView:
 def set_piece_command(command: str, team: str | None) -> int | None:
     """The game controller's command for the env's ``KICKOFF`` / ``FREE_KICK`` of ``team``
     (``PREPARE_KICKOFF_<team>`` / ``DIRECT_FREE_<team>``); None for other commands."""
-    if team not in ("blue", "yellow"):
-        return None
-    if command == gc.KICKOFF:
-        return _PREPARE_KICKOFF[team]
-    if command == gc.FREE_KICK:
-        return _DIRECT_FREE[team]
-    return None
+    return _SENT_SET_PIECES.get((command, team))
 
 
 class RefereeState:
@@ -173,22 +172,20 @@ class RefereeState:
                 self._issue(Referee.STOP, now_us, nxt, designated=spot)
                 return True
             command = set_piece_command(ref.command, ref.team)
-            if ref.command == gc.KICKOFF and command is not None:
-                self._issue(command, now_us, Referee.NORMAL_START, designated=spot)
-                return True
             if command is not None:
-                self._issue(command, now_us, designated=spot)
+                self._issue(command, now_us, Referee.NORMAL_START if ref.command == gc.KICKOFF else None,
+                            designated=spot)
                 return True
             # RUNNING: a set piece that was taken keeps its command, one that timed out is forced
-            taken = (seen is None or seen.command not in (gc.KICKOFF, gc.FREE_KICK) or seen.position is None
-                     or truth is None or float(np.hypot(*(truth.ball_pos - np.asarray(seen.position, float))))
-                     >= gc.IN_PLAY_DISTANCE - 1e-9)
-            if taken and seen is not None:
-                return False
-            self._issue(Referee.FORCE_START, now_us)
-            return True
+            timed_out = (seen is not None and seen.command in (gc.KICKOFF, gc.FREE_KICK) and seen.position is not None
+                         and truth is not None and float(np.hypot(*(truth.ball_pos - np.asarray(seen.position, float))))
+                         < gc.IN_PLAY_DISTANCE - 1e-9)
+            if seen is None or timed_out:
+                self._issue(Referee.FORCE_START, now_us)
+                return True
+            return False
         if self.next_command == Referee.NORMAL_START and self.command != Referee.NORMAL_START \
-                and self.command in _PREPARE_KICKOFF.values():
+                and self.command in (Referee.PREPARE_KICKOFF_BLUE, Referee.PREPARE_KICKOFF_YELLOW):
             self._issue(Referee.NORMAL_START, now_us, designated=self.designated)
             if self.stage == half_pre:
                 self.stage = Referee.NORMAL_FIRST_HALF if game.half == 1 else Referee.NORMAL_SECOND_HALF
@@ -234,10 +231,6 @@ class RefereeState:
 _KEEP_CLEAR_COMMANDS = (Referee.HALT, Referee.STOP, Referee.BALL_PLACEMENT_BLUE, Referee.BALL_PLACEMENT_YELLOW,
                         Referee.TIMEOUT_BLUE, Referee.TIMEOUT_YELLOW, Referee.PREPARE_PENALTY_BLUE,
                         Referee.PREPARE_PENALTY_YELLOW)
-_SET_PIECES = {Referee.PREPARE_KICKOFF_BLUE: (gc.KICKOFF, "blue"), Referee.PREPARE_KICKOFF_YELLOW: (gc.KICKOFF, "yellow"),
-               Referee.DIRECT_FREE_BLUE: (gc.FREE_KICK, "blue"), Referee.DIRECT_FREE_YELLOW: (gc.FREE_KICK, "yellow"),
-               Referee.INDIRECT_FREE_BLUE: (gc.FREE_KICK, "blue"),
-               Referee.INDIRECT_FREE_YELLOW: (gc.FREE_KICK, "yellow")}
 
 
 class RefereeFollower:
