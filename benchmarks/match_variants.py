@@ -50,6 +50,9 @@ match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
 * ``ssl-opp-area`` / ``ssl-in-opp-area``: the SSL format with the attacking team's attacker waiting
   outside the opponent's defense area while the ball is in it (``keep_out_of_opp_area`` True, the
   attacking plays' default; touching the ball there is a foul) / going for the ball there too (False);
+* ``ssl-arrive-2.5`` / ``ssl-arrive-3``: the SSL format with the attacking team's flat passes kicked, and
+  rated, to arrive at 2.5 / 3 m/s (the decisions' ``pass_arrive_speed``, default 2: a firmer pass gives the
+  opponents less time to reach the lane; the receive skill was trained on passes kicked at 1.5-6 m/s);
 * ``opp-one-defender`` / ``opp-no-defender``: the plain format against a weakened defence: the
   standard plays (the ``baseline`` / ``learned`` teams' plays) keep only their first defender /
   none of their defenders on the ball-goal line (the robots freed take the plays' next roles:
@@ -86,7 +89,7 @@ RULES = {"plain": {}, "free-kick": {"ssl_restarts": True, "stop_s": 0.0},
          "contested-kick": {}, "press-0.6": {}, "aim-reach": {}, "reach-shot": {}}
 #: the match format of each variant (:func:`ssl_marl.runners.match.format_options`; default plain)
 FORMAT = {"ssl": "ssl", "ssl-receiver-guard": "ssl", "ssl-tap-0.7": "ssl", "ssl-mark-0.25": "ssl", "ssl-opp-area": "ssl",
-          "ssl-in-opp-area": "ssl"}
+          "ssl-in-opp-area": "ssl", "ssl-arrive-2.5": "ssl", "ssl-arrive-3": "ssl"}
 #: the attacking plays' mark bias of each variant (``ATTACK_MARK_BIAS``)
 MARK_BIAS = {"ssl-mark-0.25": 0.25}
 #: ``ATTACK_PASSING`` fields of each variant
@@ -100,7 +103,8 @@ PASSING = {"keep-2s": {"max_keep_s": 2.0}, "keep-inf": {"max_keep_s": math.inf},
 #: ``ATTACK_PASSING.decision`` and ``.restart_decision`` fields of each variant
 DECISION = {"receiver-guard": {"receiver_guard_m": 1.0}, "ssl-receiver-guard": {"receiver_guard_m": 1.0},
             "pass-0.5": {"min_pass_success": 0.5}, "pass-0.65": {"min_pass_success": 0.65},
-            "pass-8m": {"max_pass_m": 8.0}}
+            "pass-8m": {"max_pass_m": 8.0}, "ssl-arrive-2.5": {"pass_arrive_speed": 2.5},
+            "ssl-arrive-3": {"pass_arrive_speed": 3.0}}
 #: ``ATTACK_PARAMS`` fields of each variant
 ATTACK = {"redirect-4.5": {"redirect_arrive_speed": 4.5}, "reach-shot": {"reach_shot_s": 0.05}}
 #: ``ATTACK_SPOTS`` fields of each variant
