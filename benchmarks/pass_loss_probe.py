@@ -16,10 +16,14 @@ lost with the statistics' ``why``). The summary counts lost passes by cause:
 receiver: at its closest approach the receiver was still ahead of the ball),
 ``missed`` (nobody touched it and it passed the receiver's spot more than a robot radius
 away). ``by_kicker_tactic`` counts the outcomes per kicker tactic: how many of the passes the
-statistics count were passes the team meant.
+statistics count were passes the team meant; ``by_play`` the outcomes of set-piece passes (the first kick
+of a kickoff or free kick the referee awarded) and of passes in open play (``--format ssl``: SSL's game
+control, whose free kicks make most of the passes).
 
     python benchmarks/pass_loss_probe.py --blue attack-learned --yellow attack-learned \\
         --seconds 600 --seeds 61600-61601 --out results/tuning/pass_loss_probe.json
+    python benchmarks/pass_loss_probe.py --format ssl --yellow attack-learned --seeds 61810-61811 \
+        --out results/tuning/pass_loss_probe_ssl_selfplay.json
     # the same with every flat kick past a teammate counted as a pass:
     python benchmarks/pass_loss_probe.py ... --pass-max-arrive-speed inf --out results/tuning/pass_loss_probe_any_speed.json
 """
@@ -56,9 +60,10 @@ def _receiver(world, team: str, kicker: int, params) -> tuple[int | None, float,
 
 
 def probe_match(blue: str, yellow: str, seconds: float, seed: int,
-                max_arrive: float | None = None) -> list[dict]:
+                max_arrive: float | None = None, fmt: str = "plain") -> list[dict]:
     """Every pass of one match (see the module docstring); ``max_arrive`` (m/s) replaces the
-    statistics' ``pass_max_arrive_speed`` (inf: any flat kick past a teammate is a pass)."""
+    statistics' ``pass_max_arrive_speed`` (inf: any flat kick past a teammate is a pass);
+    ``fmt``: the match format (:func:`ssl_marl.runners.match.format_options`)."""
     from ssl_marl.plays import stats as stats_mod
     from ssl_marl.runners import match as match_runner
 
@@ -84,7 +89,7 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int,
     def observe(self, world, events=()):
         if max_arrive is not None and self.params.pass_max_arrive_speed != max_arrive:
             self.params = dataclasses.replace(self.params, pass_max_arrive_speed=max_arrive)
-        n_log = len(self.log)
+        n_log, set_piece_for = len(self.log), self._set_piece_for
         original(self, world, events)
         for entry in self.log[n_log:]:
             if entry["type"] == "pass":
@@ -94,7 +99,7 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int,
                 cur.clear()
                 role, tactic = intent(team, entry["kicker"])
                 cur.update(team=team, other=other, kicker=entry["kicker"], kind=entry["kind"], t=entry["t"],
-                           role=role, tactic=tactic,
+                           role=role, tactic=tactic, set_piece=set_piece_for == team,
                            speed=float(np.hypot(*world.ball_vel)), receiver=r, along_m=along, lateral_m=lat,
                            from_xy=np.round(world.ball_pos, 3).tolist(), rec_min_m=np.inf, opp_min_m=np.inf,
                            speed_at_rec=None, rec_behind=None, steps=0)
@@ -120,7 +125,8 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int,
     stats_mod.MatchStatsTracker.observe = observe
     match_runner.make_controller = capture
     try:
-        res = match_runner.play_match(blue=blue, yellow=yellow, seconds=seconds, seed=seed, progress=False)
+        res = match_runner.play_match(blue=blue, yellow=yellow, seconds=seconds, seed=seed, progress=False,
+                                      env_kwargs=match_runner.format_options(fmt, seconds))
     finally:
         stats_mod.MatchStatsTracker.observe = original
         match_runner.make_controller = make
@@ -142,8 +148,10 @@ def summarize(passes: list[dict]) -> dict:
     lost = [p for p in passes if p["outcome"] == "lost"]
     out: dict = {"passes": len(passes), "by_outcome": {}, "lost_by_why": {}, "lost_by_cause": {},
                  "ball_out_by_cause": {}}
-    out["by_kicker_tactic"] = {}
+    out["by_kicker_tactic"], out["by_play"] = {}, {}
     for p in passes:
+        play = out["by_play"].setdefault("set_piece" if p.get("set_piece") else "open_play", {})
+        play[p["outcome"]] = play.get(p["outcome"], 0) + 1
         out["by_outcome"][p["outcome"]] = out["by_outcome"].get(p["outcome"], 0) + 1
         tac = str(p.get("tactic")).split(":")[0]
         row = out["by_kicker_tactic"].setdefault(tac, {})
@@ -166,10 +174,12 @@ def main(argv: list[str] | None = None) -> int:
         ap.add_argument("--pass-max-arrive-speed", type=float, default=None,
                         help="replace the statistics' pass_max_arrive_speed (m/s; inf: every flat kick past "
                              "a teammate in its lane counts as a pass; default: the statistics' own)")
+        ap.add_argument("--format", choices=("plain", "ssl"), default="plain",
+                        help="match format (ssl_marl.runners.match.format_options; default plain)")
 
     args = probe_args(__doc__.splitlines()[0], "61600-61601", "JSON output (summary and every pass)", argv, extra)
     passes = [p for s in args.seeds
-              for p in probe_match(args.blue, args.yellow, args.seconds, s, args.pass_max_arrive_speed)]
+              for p in probe_match(args.blue, args.yellow, args.seconds, s, args.pass_max_arrive_speed, args.format)]
     for p in passes:
         p["cause"] = None if p["outcome"] == "completed" else cause(p)
     from ssl_marl.plays.stats import StatsParams
