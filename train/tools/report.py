@@ -179,6 +179,10 @@ MATCH_VARIANTS_SELFPLAY_PASS = [("self-play, plain format", "selfplay_pass/plain
                                  "selfplay_pass/pass-0.65-61700.json"),
                                 ("both teams with the 1 m receiver guard (`receiver-guard`)",
                                  "selfplay_pass/receiver-guard-61700.json")]
+MATCH_VARIANTS_SELFPLAY_ARRIVE = [("self-play, SSL format, the attacking team as it plays (flat passes arrive at 2 m/s)",
+                                   "arrive/ssl-selfplay-61810.json"),
+                                  ("both teams' flat passes kicked, and rated, to arrive at 3 m/s (`ssl-arrive-3`)",
+                                   "arrive/ssl-arrive-3-selfplay-61810.json")]
 #: shots aimed, and decided, by the shot lines' reach times (``benchmarks/match_variants.py``, this code's plain row)
 MATCH_VARIANTS_SHOTS = [("the attacking team as it plays (plain format)", "shots/plain-61500.json"),
                         ("shots aimed at the line the defence reaches last (`aim-reach`)", "shots/aim-reach-61500.json"),
@@ -541,6 +545,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "match_variants_ssl_opp_area": lambda r: m.match_variants(r, MATCH_VARIANTS_SSL_OPP_AREA, fouls=True),
     "foul_probe": lambda r: m.foul_probe(r, FOUL_PROBES),
     "match_variants_selfplay_pass": lambda r: m.match_variants(r, MATCH_VARIANTS_SELFPLAY_PASS),
+    "match_variants_selfplay_arrive": lambda r: m.match_variants(r, MATCH_VARIANTS_SELFPLAY_ARRIVE),
     "match_variants_shots": lambda r: m.match_variants(r, MATCH_VARIANTS_SHOTS),
     "match_variants_div_a": lambda r: m.match_variants(r, MATCH_VARIANTS_DIV_A),
     "match_variants_div_a_keep": lambda r: m.match_variants(r, MATCH_VARIANTS_DIV_A_KEEP),
@@ -550,6 +555,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "pass_losses": lambda r: m.pass_losses([r / "tuning" / "pass_loss_probe_d8f659c.json",
                                             r / "tuning" / "pass_loss_probe_any_speed.json",
                                             r / "tuning" / "pass_loss_probe.json"]),
+    "pass_losses_ssl": lambda r: m.pass_losses_by_play([r / "tuning" / "pass_loss_probe_ssl_selfplay.json",
+                                                        r / "tuning" / "pass_loss_probe_ssl_baseline.json"]),
     "pass_options": lambda r: m.pass_options(r, ["pass_option_probe.json", "pass_option_probe_guard1.json"]),
     "set_piece_series": lambda r: m.set_piece_series(r, SET_PIECE_SERIES),
     "ssl_fouls_104100": lambda r: m.ssl_fouls_series(r, SSL_FOULS_104100),

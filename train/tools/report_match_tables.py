@@ -349,6 +349,32 @@ def _pass_loss_rows(d: dict) -> Lines:
     return rows
 
 
+def pass_losses_by_play(paths: Iterable[Path]) -> Lines:
+    """``benchmarks/pass_loss_probe.py --format ssl`` records: each team's passes (the referee's
+    statistics' count) in set pieces (the first kick of an awarded kickoff or free kick) and in
+    open play, by how they ended, and the lost ones by cause."""
+    rows = _head("seeds", "commit", "team", "passes", "passes counted", "completed / intercepted / lost",
+                 "completion", "lost: ball out / other", "lost by cause: receiver touched / opponent touched / short / missed")
+    for path in paths:
+        d = json.loads(path.read_text())
+        seeds, rules = d["manifest"]["seeds"]["seeds"], d["manifest"]["rules"]
+        commit = commit_label(d["manifest"]["git"])
+        for team in ("blue", "yellow"):
+            for label, sp in (("set pieces", True), ("open play", False)):
+                ps = [q for q in d["passes"] if q["team"] == team and bool(q.get("set_piece")) == sp]
+                if not ps:
+                    continue
+                n = lambda o: sum(q["outcome"] == o for q in ps)  # noqa: E731
+                lost = [q for q in ps if q["outcome"] == "lost"]
+                out = sum(q["why"] == "ball_out" for q in lost)
+                causes = " / ".join(str(sum(q["cause"] == c for q in lost))
+                                    for c in ("receiver_touched", "opponent_touched", "short", "missed"))
+                rows.append(f"| {min(seeds)}-{max(seeds)} | {commit} | {team} ({rules[team]}) | {label} | {len(ps)} | "
+                            f"{n('completed')} / {n('intercepted')} / {n('lost')} | {100 * n('completed') / len(ps):.0f} % | "
+                            f"{out} / {len(lost) - out} | {causes} |")
+    return rows
+
+
 def pass_options(results: Path, files: Iterable[str]) -> Lines:
     """``benchmarks/pass_option_probe.py`` records (``results/tuning/<file>``): the pass options
     the attacking carrier's decision rated and its choices."""
