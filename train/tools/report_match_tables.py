@@ -337,16 +337,23 @@ def _pass_loss_rows(d: dict) -> Lines:
     for p in d["passes"]:
         by_tac.setdefault(str(p.get("tactic")).split(":")[0], []).append(p)
     for tac, ps in sorted(by_tac.items(), key=lambda kv: -len(kv[1])):
-        n = lambda o: sum(p["outcome"] == o for p in ps)  # noqa: E731
-        lost = [p for p in ps if p["outcome"] == "lost"]
-        out = sum(p["why"] == "ball_out" for p in lost)
-        causes = " / ".join(str(sum(p["cause"] == c for p in lost))
-                            for c in ("receiver_touched", "opponent_touched", "short", "missed"))
+        outcomes, _, lost_cells = _pass_outcome_cells(ps)
         rows.append(f"| {min(seeds)}-{max(seeds)} | {commit} | {teams} | {s['pass_max_arrive_speed']} | {tac} | {len(ps)} | "
-                    f"{n('completed')} / "
-                    f"{n('intercepted')} / {n('lost')} | {out} / {len(lost) - out} | {causes} | "
-                    f"{float(np.median([p['speed'] for p in ps])):.2f} |")
+                    f"{outcomes} | {lost_cells} | {float(np.median([p['speed'] for p in ps])):.2f} |")
     return rows
+
+
+def _pass_outcome_cells(ps: list[dict]) -> tuple[str, str, str]:
+    """Cells of a group of probed passes: "completed / intercepted / lost", the completion
+    ("NN %"), and "ball out / other | receiver touched / opponent touched / short / missed" of the
+    lost ones."""
+    n = {o: sum(p["outcome"] == o for p in ps) for o in ("completed", "intercepted", "lost")}
+    lost = [p for p in ps if p["outcome"] == "lost"]
+    out = sum(p["why"] == "ball_out" for p in lost)
+    causes = " / ".join(str(sum(p["cause"] == c for p in lost))
+                        for c in ("receiver_touched", "opponent_touched", "short", "missed"))
+    return (f"{n['completed']} / {n['intercepted']} / {n['lost']}", f"{100 * n['completed'] / max(len(ps), 1):.0f} %",
+            f"{out} / {len(lost) - out} | {causes}")
 
 
 def pass_losses_by_play(paths: Iterable[Path]) -> Lines:
@@ -364,14 +371,9 @@ def pass_losses_by_play(paths: Iterable[Path]) -> Lines:
                 ps = [q for q in d["passes"] if q["team"] == team and bool(q.get("set_piece")) == sp]
                 if not ps:
                     continue
-                n = lambda o: sum(q["outcome"] == o for q in ps)  # noqa: E731
-                lost = [q for q in ps if q["outcome"] == "lost"]
-                out = sum(q["why"] == "ball_out" for q in lost)
-                causes = " / ".join(str(sum(q["cause"] == c for q in lost))
-                                    for c in ("receiver_touched", "opponent_touched", "short", "missed"))
+                outcomes, completion, lost_cells = _pass_outcome_cells(ps)
                 rows.append(f"| {min(seeds)}-{max(seeds)} | {commit} | {team} ({rules[team]}) | {label} | {len(ps)} | "
-                            f"{n('completed')} / {n('intercepted')} / {n('lost')} | {100 * n('completed') / len(ps):.0f} % | "
-                            f"{out} / {len(lost) - out} | {causes} |")
+                            f"{outcomes} | {completion} | {lost_cells} |")
     return rows
 
 
