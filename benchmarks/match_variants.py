@@ -53,6 +53,11 @@ match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
 * ``ssl-arrive-2.5`` / ``ssl-arrive-3``: the SSL format with the attacking team's flat passes kicked, and
   rated, to arrive at 2.5 / 3 m/s (the decisions' ``pass_arrive_speed``, default 2: a firmer pass gives the
   opponents less time to reach the lane; the receive skill was trained on passes kicked at 1.5-6 m/s);
+* ``ssl-shoot-0.15``: the SSL format with the attacking team's decisions shooting at once from a shot value of
+  0.15 in open play (``shoot_threshold``, default 0.25; set pieces unchanged): more shots near the goal, whose
+  rebounds the supports may take;
+* ``ssl-spots-goal-0.5``: the SSL format with the supports' spots valuing nearness to the goal more
+  (``SpotParams.w_goal`` 0.5, default 0.2; ``ATTACK_SPOTS``): supports closer to the goal mouth;
 * ``opp-one-defender`` / ``opp-no-defender``: the plain format against a weakened defence: the
   standard plays (the ``baseline`` / ``learned`` teams' plays) keep only their first defender /
   none of their defenders on the ball-goal line (the robots freed take the plays' next roles:
@@ -89,7 +94,8 @@ RULES = {"plain": {}, "free-kick": {"ssl_restarts": True, "stop_s": 0.0},
          "contested-kick": {}, "press-0.6": {}, "aim-reach": {}, "reach-shot": {}}
 #: the match format of each variant (:func:`ssl_marl.runners.match.format_options`; default plain)
 FORMAT = {"ssl": "ssl", "ssl-receiver-guard": "ssl", "ssl-tap-0.7": "ssl", "ssl-mark-0.25": "ssl", "ssl-opp-area": "ssl",
-          "ssl-in-opp-area": "ssl", "ssl-arrive-2.5": "ssl", "ssl-arrive-3": "ssl"}
+          "ssl-in-opp-area": "ssl", "ssl-arrive-2.5": "ssl", "ssl-arrive-3": "ssl",
+          "ssl-shoot-0.15": "ssl", "ssl-spots-goal-0.5": "ssl"}
 #: the attacking plays' mark bias of each variant (``ATTACK_MARK_BIAS``)
 MARK_BIAS = {"ssl-mark-0.25": 0.25}
 #: ``ATTACK_PASSING`` fields of each variant
@@ -105,10 +111,12 @@ DECISION = {"receiver-guard": {"receiver_guard_m": 1.0}, "ssl-receiver-guard": {
             "pass-0.5": {"min_pass_success": 0.5}, "pass-0.65": {"min_pass_success": 0.65},
             "pass-8m": {"max_pass_m": 8.0}, "ssl-arrive-2.5": {"pass_arrive_speed": 2.5},
             "ssl-arrive-3": {"pass_arrive_speed": 3.0}}
+#: ``ATTACK_PASSING.decision`` fields of each variant (open play only; the set pieces' decision unchanged)
+OPEN_PLAY_DECISION = {"ssl-shoot-0.15": {"shoot_threshold": 0.15}}
 #: ``ATTACK_PARAMS`` fields of each variant
 ATTACK = {"redirect-4.5": {"redirect_arrive_speed": 4.5}, "reach-shot": {"reach_shot_s": 0.05}}
 #: ``ATTACK_SPOTS`` fields of each variant
-SPOTS = {"edge-spots": {"edge_spots": 5}}
+SPOTS = {"edge-spots": {"edge_spots": 5}, "ssl-spots-goal-0.5": {"w_goal": 0.5}}
 #: defenders the standard plays keep in each variant (the rest of their roles unchanged)
 OPP_DEFENDERS = {"opp-one-defender": 1, "opp-no-defender": 0}
 
@@ -144,16 +152,19 @@ def set_standard_defenders(n: int | None) -> None:
                                         for p in play.standard_plays())
 
 
-def set_attack_passing(passing: dict | None = None, decision: dict | None = None) -> None:
+def set_attack_passing(passing: dict | None = None, decision: dict | None = None,
+                       open_decision: dict | None = None) -> None:
     """Replace the attacking plays' ``ATTACK_PASSING`` (read when a team is built) by a copy
-    with the ``passing`` fields and, in both its open-play and restart decision parameters,
-    the ``decision`` fields."""
+    with the ``passing`` fields, in both its open-play and restart decision parameters the
+    ``decision`` fields, and in the open-play ones also the ``open_decision`` fields."""
     from ssl_marl.plays import attack_play
 
     ap = dataclasses.replace(attack_play.ATTACK_PASSING, **(passing or {}))
     if decision:
         ap = dataclasses.replace(ap, decision=dataclasses.replace(ap.decision, **decision),
                                  restart_decision=dataclasses.replace(ap.restart_decision, **decision))
+    if open_decision:
+        ap = dataclasses.replace(ap, decision=dataclasses.replace(ap.decision, **open_decision))
     attack_play.ATTACK_PASSING = ap
 
 
@@ -175,7 +186,7 @@ def summarize(rows: list[dict], seconds: float) -> dict:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("variant", choices=sorted({*RULES, *FORMAT, *DECISION, *ATTACK, *SPOTS, *OPP_DEFENDERS, *MARK_BIAS}),
+    ap.add_argument("variant", choices=sorted({*RULES, *FORMAT, *DECISION, *OPEN_PLAY_DECISION, *ATTACK, *SPOTS, *OPP_DEFENDERS, *MARK_BIAS}),
                     help="the variant (module docstring)")
     ap.add_argument("--blue", default="attack-learned", help="blue team kind (default attack-learned)")
     ap.add_argument("--yellow", default="baseline", help="yellow team kind (default baseline)")
@@ -191,7 +202,7 @@ def main(argv: list[str] | None = None) -> int:
     from ssl_marl.runners.provenance import build_manifest
 
     env = {**format_options(FORMAT.get(args.variant, "plain"), args.seconds), **RULES.get(args.variant, {})}
-    set_attack_passing(PASSING.get(args.variant), DECISION.get(args.variant))
+    set_attack_passing(PASSING.get(args.variant), DECISION.get(args.variant), OPEN_PLAY_DECISION.get(args.variant))
     set_attack_params(ATTACK.get(args.variant))
     set_attack_spots(SPOTS.get(args.variant))
     set_standard_defenders(OPP_DEFENDERS.get(args.variant))
@@ -199,6 +210,7 @@ def main(argv: list[str] | None = None) -> int:
     manifest = build_manifest(rules={"variant": args.variant, "env": env,
                                      "attack_passing": {k: str(v) for k, v in PASSING.get(args.variant, {}).items()},
                                      "decision": DECISION.get(args.variant, {}),
+                                     "open_play_decision": OPEN_PLAY_DECISION.get(args.variant, {}),
                                      "attack": ATTACK.get(args.variant, {}),
                                      "spots": SPOTS.get(args.variant, {}),
                                      "standard_plays_defenders": OPP_DEFENDERS.get(args.variant),
