@@ -220,6 +220,12 @@ MATCH_VARIANTS_SSL_MARKS = [("the attacking team as it plays (SSL format)", "mar
 MATCH_VARIANTS_SSL_OPP_AREA = [("the attacking team as it plays (SSL format)", "opp_area/ssl-baseline-61790.json"),
                                ("its attacker waits outside the opponent's defense area (`ssl-opp-area`)",
                                 "opp_area/ssl-opp-area-baseline-61790.json")]
+MATCH_VARIANTS_SSL_SCORING = [("the attacking team as it plays (the `ssl-opp-area` row above)",
+                               "opp_area/ssl-opp-area-baseline-61790.json"),
+                              ("open-play shot threshold 0.15 (`ssl-shoot-0.15`)",
+                               "scoring/ssl-shoot-0.15-baseline-61790.json"),
+                              ("supports' spots nearer the goal, `w_goal` 0.5 (`ssl-spots-goal-0.5`)",
+                               "scoring/ssl-spots-goal-0.5-baseline-61790.json")]
 FOUL_PROBES = [("the attacker goes for the ball in the opponent's defense area", "attack_vs_baseline.json"),
                ("waiting outside it (`--passing keep_out_of_opp_area=true`)", "attack_opp_area_vs_baseline.json")]
 SET_PIECE_SERIES = ["match_attack_learned_vs_baseline_600_ssl_058d181", "match_attack_learned_vs_baseline_600_ssl",
@@ -543,6 +549,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "match_variants_defence": lambda r: m.match_variants(r, MATCH_VARIANTS_DEFENCE),
     "match_variants_ssl_marks": lambda r: m.match_variants(r, MATCH_VARIANTS_SSL_MARKS),
     "match_variants_ssl_opp_area": lambda r: m.match_variants(r, MATCH_VARIANTS_SSL_OPP_AREA, fouls=True),
+    "match_variants_ssl_scoring": lambda r: m.match_variants(r, MATCH_VARIANTS_SSL_SCORING, fouls=True),
     "foul_probe": lambda r: m.foul_probe(r, FOUL_PROBES),
     "match_variants_selfplay_pass": lambda r: m.match_variants(r, MATCH_VARIANTS_SELFPLAY_PASS),
     "match_variants_selfplay_arrive": lambda r: m.match_variants(r, MATCH_VARIANTS_SELFPLAY_ARRIVE),
