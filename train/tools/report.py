@@ -119,8 +119,12 @@ ATTACK_TARGETS_SSL_105600 = ["match_attack_learned_vs_baseline_600_ssl_105600",
 ATTACK_SSL_106200 = ["match_attack_learned_vs_baseline_600_ssl_106200",
                      "match_attack_learned_vs_passing_learned_600_ssl_106300",
                      "match_attack_learned_vs_baseline_600_ssl_realistic_106400",
+                     "match_attack_learned_vs_baseline_600_ssl_106700",
                      "match_attack_learned_selfplay_600_ssl_106500",
                      "match_attack_learned_vs_baseline_600_ssl_div_a_11v11_106600"]
+ATTACK_SSL_106200_POOLED = [("attack-learned vs baseline, the attacker that waits outside the defense area",
+                             (("match_attack_learned_vs_baseline_600_ssl_106200", "blue"),
+                              ("match_attack_learned_vs_baseline_600_ssl_106700", "blue")))]
 ATTACK_SSL_106200_FOULS = [("the attacker goes into the defense area", "match_attack_learned_vs_baseline_600_ssl_105600"),
                            ("the attacker waits outside it", "match_attack_learned_vs_baseline_600_ssl_106200"),
                            ("the attacker goes into the defense area",
@@ -577,6 +581,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "attack_targets_ssl_105600": lambda r: m.series_600(r, ATTACK_TARGETS_SSL_105600),
     "attack_targets_ssl_105600_set_pieces": lambda r: m.set_piece_series(r, ATTACK_TARGETS_SSL_105600),
     "attack_ssl_106200": lambda r: m.series_600(r, ATTACK_SSL_106200),
+    "attack_ssl_106200_pooled": lambda r: m.pooled_attack(r, ATTACK_SSL_106200_POOLED),
     "attack_ssl_106200_fouls": lambda r: m.ssl_fouls_series(r, ATTACK_SSL_106200_FOULS),
     "ssl_set_pieces_vs_passing_104500": lambda r: m.ssl_fouls_series(r, [(
         "set pieces kicked, walls", "match_attack_learned_vs_passing_learned_600_ssl_104500")]),
