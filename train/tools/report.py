@@ -120,11 +120,15 @@ ATTACK_SSL_106200 = ["match_attack_learned_vs_baseline_600_ssl_106200",
                      "match_attack_learned_vs_passing_learned_600_ssl_106300",
                      "match_attack_learned_vs_baseline_600_ssl_realistic_106400",
                      "match_attack_learned_vs_baseline_600_ssl_106700",
+                     "match_attack_learned_vs_baseline_600_ssl_realistic_106800",
                      "match_attack_learned_selfplay_600_ssl_106500",
                      "match_attack_learned_vs_baseline_600_ssl_div_a_11v11_106600"]
 ATTACK_SSL_106200_POOLED = [("attack-learned vs baseline, the attacker that waits outside the defense area",
                              (("match_attack_learned_vs_baseline_600_ssl_106200", "blue"),
-                              ("match_attack_learned_vs_baseline_600_ssl_106700", "blue")))]
+                              ("match_attack_learned_vs_baseline_600_ssl_106700", "blue"))),
+                            ("the same under `--realism realistic`",
+                             (("match_attack_learned_vs_baseline_600_ssl_realistic_106400", "blue"),
+                              ("match_attack_learned_vs_baseline_600_ssl_realistic_106800", "blue")))]
 ATTACK_SSL_106200_FOULS = [("the attacker goes into the defense area", "match_attack_learned_vs_baseline_600_ssl_105600"),
                            ("the attacker waits outside it", "match_attack_learned_vs_baseline_600_ssl_106200"),
                            ("the attacker goes into the defense area",
