@@ -22,7 +22,7 @@ control, whose free kicks make most of the passes).
 
     python benchmarks/pass_loss_probe.py --blue attack-learned --yellow attack-learned \\
         --seconds 600 --seeds 61600-61601 --out results/tuning/pass_loss_probe.json
-    python benchmarks/pass_loss_probe.py --format ssl --yellow attack-learned --seeds 61810-61811 \
+    python benchmarks/pass_loss_probe.py --format ssl --yellow attack-learned --seeds 61810-61811 \\
         --out results/tuning/pass_loss_probe_ssl_selfplay.json
     # the same with every flat kick past a teammate counted as a pass:
     python benchmarks/pass_loss_probe.py ... --pass-max-arrive-speed inf --out results/tuning/pass_loss_probe_any_speed.json

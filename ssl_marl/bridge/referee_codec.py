@@ -53,13 +53,13 @@ from .proto import ssl_referee_pb2 as ref_pb
 
 Referee = ref_pb.Referee
 
-#: the game controller's set-piece commands as the env's (command, team); the first of each pair
-#: is the one the served stream sends (indirect free kicks are read, never sent)
-_SET_PIECES = {Referee.PREPARE_KICKOFF_BLUE: (gc.KICKOFF, "blue"), Referee.PREPARE_KICKOFF_YELLOW: (gc.KICKOFF, "yellow"),
-               Referee.DIRECT_FREE_BLUE: (gc.FREE_KICK, "blue"), Referee.DIRECT_FREE_YELLOW: (gc.FREE_KICK, "yellow"),
-               Referee.INDIRECT_FREE_BLUE: (gc.FREE_KICK, "blue"),
-               Referee.INDIRECT_FREE_YELLOW: (gc.FREE_KICK, "yellow")}
-_SENT_SET_PIECES = {pair: cmd for cmd, pair in reversed(list(_SET_PIECES.items()))}
+#: the env's set pieces (command, team) as the served stream sends them
+_SENT_SET_PIECES = {(gc.KICKOFF, "blue"): Referee.PREPARE_KICKOFF_BLUE, (gc.KICKOFF, "yellow"): Referee.PREPARE_KICKOFF_YELLOW,
+                    (gc.FREE_KICK, "blue"): Referee.DIRECT_FREE_BLUE, (gc.FREE_KICK, "yellow"): Referee.DIRECT_FREE_YELLOW}
+#: the game controller's set-piece commands as the env's (command, team) when read: those sent, and the
+#: indirect free kicks (read as free kicks, never sent)
+_SET_PIECES = {**{cmd: pair for pair, cmd in _SENT_SET_PIECES.items()},
+               Referee.INDIRECT_FREE_BLUE: (gc.FREE_KICK, "blue"), Referee.INDIRECT_FREE_YELLOW: (gc.FREE_KICK, "yellow")}
 
 
 @dataclass(frozen=True)
