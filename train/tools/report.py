@@ -107,7 +107,7 @@ ATTACK_TARGETS_SSL_104600 = ["match_attack_learned_vs_baseline_600_ssl_104600",
                              "match_attack_learned_selfplay_600_ssl_104800",
                              "match_attack_learned_vs_baseline_600_ssl_realistic_104900",
                              "match_attack_learned_vs_baseline_600_ssl_div_a_11v11_105000"]
-#: issue 24's realistic target again with the code of commit 2c63231 (spent pass setups, dribble limit)
+#: the attacking team's realistic target series again with the code of commit 2c63231 (spent pass setups, dribble limit)
 ATTACK_REALISTIC_SSL_105500 = ["match_attack_learned_vs_baseline_600_ssl_realistic_104900",
                                "match_attack_learned_vs_baseline_600_ssl_realistic_105500"]
 #: the attacking team's target series in the SSL format with its clock stopped during STOP (commit 1772b71)
