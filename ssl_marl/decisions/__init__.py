@@ -9,11 +9,12 @@ Registries (names used by ``ssl-marl eval-task`` and the trainers):
   ("keepaway": :class:`~ssl_marl.decisions.keepaway.env.KeepawayEnv`; "attack-3v2":
   ``ssl_marl.decisions.attack:Attack3v2Env``, the passing play's options; "attack-drill":
   ``ssl_marl.decisions.attack_drill:AttackDrillEnv``, the attacking plays' options;
-  "attack-drill-ssl": ``AttackDrillSSLEnv``, the same drill under SSL rules).
+  "attack-drill-ssl": ``AttackDrillSSLEnv``, the same drill under SSL rules;
+  "attack-drill-defended": ``AttackDrillDefendedEnv``, under SSL rules against the match's defence).
 * :data:`HANDCODED_POLICIES`: task name -> the task's hand-coded benchmark policy class
   ("keepaway": ``HandcodedKeepawayPolicy``; "attack-3v2":
   ``ssl_marl.decisions.attack:HandcodedAttackPolicy``; "attack-drill":
-  ``ssl_marl.decisions.attack_drill:HandcodedAttackDrillPolicy``, for both drills).
+  ``ssl_marl.decisions.attack_drill:HandcodedAttackDrillPolicy``, for all three drills).
 * :data:`DECISION_POLICIES`: policy name -> factory ``(task, seed=0, actor=None) ->
   DecisionPolicy`` ("random", "always-hold" (keepaway only), "handcoded", "learned"
   (``ssl_marl.decisions.learned``, the shipped actor or ``actor``), "improved" (the hand-coded
@@ -37,6 +38,7 @@ _TASK_SPECS: dict[str, str] = {
     "attack-3v2": "ssl_marl.decisions.attack:Attack3v2Env",
     "attack-drill": "ssl_marl.decisions.attack_drill:AttackDrillEnv",
     "attack-drill-ssl": "ssl_marl.decisions.attack_drill:AttackDrillSSLEnv",
+    "attack-drill-defended": "ssl_marl.decisions.attack_drill:AttackDrillDefendedEnv",
 }
 #: task name -> "module:hand-coded benchmark policy class" (constructor takes no required arguments)
 _HANDCODED_SPECS: dict[str, str] = {
@@ -44,6 +46,7 @@ _HANDCODED_SPECS: dict[str, str] = {
     "attack-3v2": "ssl_marl.decisions.attack:HandcodedAttackPolicy",
     "attack-drill": "ssl_marl.decisions.attack_drill:HandcodedAttackDrillPolicy",
     "attack-drill-ssl": "ssl_marl.decisions.attack_drill:HandcodedAttackDrillPolicy",
+    "attack-drill-defended": "ssl_marl.decisions.attack_drill:HandcodedAttackDrillPolicy",
 }
 
 

@@ -39,7 +39,8 @@ entry is 0) raises ValueError (``illegal_option="raise"``) or becomes ``shoot``
 
 **State** (:meth:`Attack3v2Env.global_state`, 36 values for a centralised critic):
 per attacker (x / (L/2), y / (W/2), cos, sin, vx / 3, vy / 3, ball on its dribbler),
-goalie and defender (x, y, vx, vy, scaled alike), the ball (x, y, vx / 6.5, vy / 6.5),
+goalie and defender (x, y, vx, vy, scaled alike; 4 values more for each further defender
+of a larger defence, ``n_defence``), the ball (x, y, vx / 6.5, vy / 6.5),
 the shot value from the ball, elapsed time / 15 s, and whether a pass is running.
 
 **Benchmark.** :class:`HandcodedAttackPolicy` is the passing play's cost decision
@@ -187,6 +188,8 @@ class Attack3v2Env(CarrierRequestHooks, DecisionEnv):
     n_agents = N_ATTACKERS
     team = "blue"
     default_option = SHOOT
+    #: yellow robots: the goalie and the defender (a subclass may field the match's defence)
+    n_defence = 2
     #: the skills the attackers' tactics build (those of the passing plays); the defence builds the passing team's
     attacker_skills: tuple[str, ...] = TEAM_SKILLS
 
@@ -206,8 +209,8 @@ class Attack3v2Env(CarrierRequestHooks, DecisionEnv):
         self.blue = build_team(attack, "blue", N_ATTACKERS + 1, self.field, self.rp, self.bp, dt=self.dt)
         self.coordinator = coordinator_of(self.blue.selector.plays)
         self.decider.coordinator = self.coordinator
-        self.yellow = build_team(TeamSpec(plays=drill_defence_plays, skills=self.defence_skills), "yellow", 2, self.field,
-                                 self.rp, self.bp, dt=self.dt)
+        self.yellow = build_team(TeamSpec(plays=self.defence_plays_factory(), skills=self.defence_skills), "yellow",
+                                 self.n_defence, self.field, self.rp, self.bp, dt=self.dt)
         self._request_obs: np.ndarray | None = None
         self._request_mask: np.ndarray | None = None
 
@@ -220,11 +223,15 @@ class Attack3v2Env(CarrierRequestHooks, DecisionEnv):
         """The attackers' :class:`~ssl_marl.plays.team.PlaysFactory` (``ball``, ``decider`` keywords)."""
         return functools.partial(drill_attack_plays, self.passing)
 
+    def defence_plays_factory(self) -> Any:
+        """The defence's :class:`~ssl_marl.plays.team.PlaysFactory` (``ball``, ``decider`` keywords)."""
+        return drill_defence_plays
+
     def make_task(self) -> AttackTask:
         return AttackTask(self.rules, self.spawn)
 
     def engine_kwargs(self) -> dict:
-        return {"n_blue": N_ATTACKERS + 1, "n_yellow": 2}
+        return {"n_blue": N_ATTACKERS + 1, "n_yellow": self.n_defence}
 
     def agent_robot(self, agent: str) -> str:
         return ATTACKER_ROBOTS[int(agent.rsplit("_", 1)[1])]
@@ -276,23 +283,29 @@ class Attack3v2Env(CarrierRequestHooks, DecisionEnv):
     def global_state(self) -> np.ndarray:
         w = self.engine.vision_state("blue")
         L2, W2, sv, bv = self.field.half_length, self.field.half_width, self.rp.max_speed, self.rp.kick_speed_max
-        s = np.zeros(STATE_DIM)
+        s = np.zeros(self.state_dim)
         b, y = w.blue, w.yellow
         for j in range(N_ATTACKERS):
             k = j + 1
             h = float(b.heading[k])
             s[7 * j:7 * j + 7] = (b.pos[k, 0] / L2, b.pos[k, 1] / W2, math.cos(h), math.sin(h), b.vel[k, 0] / sv,
                                   b.vel[k, 1] / sv, float(bool(b.ball_on_dribbler[k])))
-        for j in range(2):
+        for j in range(y.n):
             s[21 + 4 * j:25 + 4 * j] = (y.pos[j, 0] / L2, y.pos[j, 1] / W2, y.vel[j, 0] / sv, y.vel[j, 1] / sv)
-        s[29:33] = (w.ball_pos[0] / L2, w.ball_pos[1] / W2, w.ball_vel[0] / bv, w.ball_vel[1] / bv)
-        s[33] = shot_value(w.ball_pos, y.pos, b.pos[1:], self.field, self.rp, self.bp, self.decision_params)
-        s[34] = self.t / self.rules.max_time_s
-        s[35] = float(self.coordinator.active)
+        i = 21 + 4 * y.n
+        s[i:i + 4] = (w.ball_pos[0] / L2, w.ball_pos[1] / W2, w.ball_vel[0] / bv, w.ball_vel[1] / bv)
+        s[i + 4] = shot_value(w.ball_pos, y.pos, b.pos[1:], self.field, self.rp, self.bp, self.decision_params)
+        s[i + 5] = self.t / self.rules.max_time_s
+        s[i + 6] = float(self.coordinator.active)
         return np.clip(s, -OBS_BOUND, OBS_BOUND).astype(np.float32)
 
+    @property
+    def state_dim(self) -> int:
+        """Length of :meth:`global_state`: :data:`STATE_DIM` with two defenders, 4 more per further defender."""
+        return STATE_DIM + 4 * (self.n_defence - 2)
+
     def state_bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        return np.full(STATE_DIM, -OBS_BOUND, np.float32), np.full(STATE_DIM, OBS_BOUND, np.float32)
+        return np.full(self.state_dim, -OBS_BOUND, np.float32), np.full(self.state_dim, OBS_BOUND, np.float32)
 
     def episode_info(self) -> dict:
         return {"outcome": self.task.outcome, "goal": int(self.task.goal)}

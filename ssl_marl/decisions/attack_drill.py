@@ -32,6 +32,16 @@ the match's attacking plays in place of the passing play:
   applies, :mod:`~ssl_marl.decisions.dribble_limit`; a masked choice of the hand-coded policy
   is a shot, as its keep clock's). Same observation and options, so its actors play in matches
   as the drill's do.
+* **Against the match's defence** (:class:`AttackDrillDefendedEnv`, task ``attack-drill-defended``):
+  the drill under SSL rules with the defence a 6v6 attacking team plays when its opponent has the
+  ball (:func:`match_defence_plays`: the attacking plays' ``defense_play``, always applicable): a
+  goalie, two defenders on the ball-goal line, one robot pressing the ball and marks on the two
+  attackers without it (six robots, placed as :class:`~ssl_marl.envs.tasks.attack.AttackSpawn`
+  documents); a contested ball plays on (``AttackRules.contested_plays_on``: the attack is lost
+  when a defender holds the ball alone). The three attackers are the carrier and the two supports
+  of a match's attack. Same
+  observation and options (the observation's opponent slots are the goalie and the defender
+  nearest the ball; the others count in its cost features, as in matches).
 """
 
 from __future__ import annotations
@@ -46,12 +56,13 @@ from ..envs.actions import CHIP_ACTION_DIM, fit_action
 from ..envs.tasks.attack import AttackRules
 from ..physics.params import BallParams
 from ..plays.attack_decision import AttackOption, AttackParams, decide_attack
-from ..plays.attack_play import (ATTACK_PASSING, AttackDecider, AttackPrepare, SpotPlanner, chip_passer_role,
-                                 redirect_receiver_role, spot_support_role)
+from ..plays.attack_play import (ATTACK_MARK_BIAS, ATTACK_PASSING, AttackDecider, AttackPrepare, SpotPlanner,
+                                 chip_passer_role, redirect_receiver_role, spot_support_role)
 from ..plays.pass_coordinator import CarrierRequest, PassCoordinator, PassingParams
 from ..plays.passing_roles import passing_attacker_role
 from ..plays.skillset import ATTACK_SKILLS
-from ..plays.play import Play, goalie_role
+from ..envs.tasks.attack import MAX_DEFENCE
+from ..plays.play import Play, defense_play, goalie_role
 from .attack import Attack3v2Env, CarrierRequestHooks, DrillDecider, HandcodedCarrierPolicy
 from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, DRIBBLE_GOAL_OPTION, DRIBBLE_OPTIONS,
                                     SHOOT, SlotPasses,
@@ -99,6 +110,14 @@ def drill_attacking_plays(passing: PassingParams, *, ball: BallParams | None,
              passing_attacker_role(coord, 90, aim_open_goal=True), spot_support_role(0, planner, 80),
              spot_support_role(1, planner, 70))
     return (Play("attack_drill", lambda ctx: True, roles, prepare=AttackPrepare(coord, planner)),)
+
+
+def match_defence_plays(*, ball: BallParams | None, decider: Any) -> tuple[Play, ...]:
+    """The defence of :class:`AttackDrillDefendedEnv` (a :class:`~ssl_marl.plays.team.PlaysFactory`):
+    the attacking plays' defense play (goalie, presser, two defenders, marks; marks with
+    :data:`~ssl_marl.plays.attack_play.ATTACK_MARK_BIAS`), applicable throughout."""
+    play = defense_play(mark_ball_bias=ATTACK_MARK_BIAS)
+    return (dataclasses.replace(play, name="match_defence", applicable=lambda ctx: True),)
 
 
 class AttackOptionsMixin(CarrierRequestHooks):
@@ -193,6 +212,26 @@ class AttackDrillSSLEnv(AttackDrillEnv):
         super().__init__(**kwargs)
 
 
+class AttackDrillDefendedEnv(AttackDrillSSLEnv):
+    """The attack drill under SSL rules against the match's defence (module docstring). Arguments
+    as :class:`AttackDrillSSLEnv` (``rules`` default: fouls called, a contested ball plays on) plus
+    ``n_defence``: the defence's robots, goalie included (3-6, default 6: a 6v6 team's defence; the
+    defense play fills goalie, presser, the two defenders, then the marks)."""
+
+    task_name = "attack-drill-defended"
+
+    def __init__(self, n_defence: int = MAX_DEFENCE, **kwargs: Any) -> None:
+        if isinstance(n_defence, bool) or not isinstance(n_defence, (int, np.integer)) or not 3 <= n_defence <= MAX_DEFENCE:
+            raise ValueError(f"{type(self).__name__}: n_defence must be an integer 3-{MAX_DEFENCE} (goalie "
+                             f"included), got {n_defence!r}")
+        self.n_defence = int(n_defence)
+        kwargs.setdefault("rules", AttackRules(fouls=True, contested_plays_on=True))
+        super().__init__(**kwargs)
+
+    def defence_plays_factory(self) -> Any:
+        return match_defence_plays
+
+
 class HandcodedAttackDrillPolicy(HandcodedCarrierPolicy):
     """The attacking plays' cost decision as an attack-drill policy (module docstring)."""
 
@@ -206,5 +245,5 @@ class HandcodedAttackDrillPolicy(HandcodedCarrierPolicy):
         return option, option == DRIBBLE_GOAL_OPTION
 
 
-__all__ = ["AttackDrillEnv", "AttackDrillSSLEnv", "AttackOptionsMixin", "SSL_DRILL_PASSING", "HandcodedAttackDrillPolicy", "DrillAttackDecider",
+__all__ = ["AttackDrillEnv", "AttackDrillSSLEnv", "AttackDrillDefendedEnv", "match_defence_plays", "AttackOptionsMixin", "SSL_DRILL_PASSING", "HandcodedAttackDrillPolicy", "DrillAttackDecider",
            "drill_attacking_plays", "DRILL_PASSING"]

@@ -1,6 +1,6 @@
 """CLI: ``python -m train mappo --task TASK --seed S --out DIR [--resume] [--decisions N] [--set k=v ...]``.
 
-TASK: keepaway, attack-3v2, attack-drill, attack-drill-ssl, attack-match, pass-and-score, toy-signal, toy-tempo (:mod:`train.mappo.tasks`),
+TASK: keepaway, attack-3v2, attack-drill, attack-drill-ssl, attack-drill-defended, attack-match, pass-and-score, toy-signal, toy-tempo (:mod:`train.mappo.tasks`),
 each starting from its default run config; ``--set`` overrides one key of
 :class:`train.mappo.loop.MAPPORunConfig` (values parsed as JSON; ``algo.NAME=V`` sets a
 :class:`train.mappo.algorithm.MAPPOConfig` field, e.g. ``--set algo.lr=3e-4 --set num_envs=16``).

@@ -102,6 +102,10 @@ MARL_TASKS: dict[str, MARLTask] = {
     "attack-drill-ssl": MARLTask(DecisionTaskFactory("attack-drill-ssl"), "goal", {"val_seed": 49600, **_DRILL_DEFAULTS},
                                  "the attack drill under SSL rules: the attackers' fouls end the attack, dribbles "
                                  "cut and masked as in matches (ssl_marl.decisions)"),
+    "attack-drill-defended": MARLTask(DecisionTaskFactory("attack-drill-defended"), "goal",
+                                      {**_DRILL_DEFAULTS, "val_seed": 48500, "val_every": 0},
+                                      "the attack drill under SSL rules against the match's defence: goalie, two "
+                                      "defenders, a presser and two marks (ssl_marl.decisions)"),
     "attack-match": MARLTask(_attack_match, "goal_diff",
                              {"val_seed": 49500, "num_envs": 2, "rollout_steps": 32, "total_decisions": 2_000,
                               "checkpoint_every": 2, "val_every": 0, "val_episodes": 4,

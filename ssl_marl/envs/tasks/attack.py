@@ -7,7 +7,11 @@ is the decision env's business; this task only reads the world.
 Robots (field frame, blue attacks +x): ``blue_1..3`` are the attackers; ``blue_0`` is
 the attacking team's goalie, parked in its own goal (x = -L/2 + 0.3 m) far from the
 play (it keeps the passing play's team layout, where robot 0 is the goalie, and never
-takes part); ``yellow_0`` is the goalie, ``yellow_1`` the defender.
+takes part); ``yellow_0`` is the goalie, ``yellow_1`` the defender. The task also binds to
+a larger defence (``n_yellow`` 3-6, :data:`MAX_DEFENCE`; the match's defence of a 6v6 team:
+:class:`~ssl_marl.decisions.attack_drill.AttackDrillDefendedEnv`): ``yellow_2`` a second
+defender, ``yellow_3`` a robot pressing the ball, ``yellow_4`` / ``yellow_5`` marks on the two
+attackers without the ball.
 
 Start (:class:`AttackSpawn`, drawn from ``env.np_random``; distances along x are measured
 from the +x goal line, so the attack is the same on any field: on Division B, L/2 = 4.5 m,
@@ -25,7 +29,13 @@ lie 1.5 m farther up the field):
 * the defender: on the ball-goal segment at 40-70 % of the way from the ball, moved
   sideways by up to +-0.5 m, kept outside its defense area (x <= L/2 - 1.15 m) and at
   least 0.8 m from the ball, facing the ball;
-* ``blue_0`` at (-L/2 + 0.3, 0), facing +x.
+* ``blue_0`` at (-L/2 + 0.3, 0), facing +x;
+* with a larger defence (drawn after the above, so the first six robots are placed alike):
+  the second defender 0.22-0.35 m beside the first, on the other side of the ball-goal line
+  (its spacing on the lane in matches is 0.22 m); the presser 1.5-2.5 m from the ball, within
+  +-1.0 rad of the ball-goal direction; each mark 0.35-0.8 m from its attacker towards the goal
+  centre, moved sideways by up to +-0.3 m; every defender kept outside its defense area (as the
+  first), stepped sideways (0.3 m at a time, up to 0.9 m) off a robot nearer than 0.25 m, and facing the ball.
 
 Reset options ``{"robots": {...}, "ball": {...}}`` (as :mod:`.scene`) replace the draw
 for constructed scenes; robots not named then take the kickoff formation.
@@ -40,8 +50,9 @@ End (checked after every control tick, in this order):
   ``attacker_in_defense_area``); the free kick would go to the defence, so the attack is over
   (terminated; event ``foul``). The defence's fouls are not called: a defender that gains the
   ball has ended the episode already;
-* ``"lost_goalie"`` / ``"lost_defender"``: the ball is on that defender's dribbler, or
-  (goalie) rests (< ``rest_speed``) inside the yellow defense area (terminated);
+* ``"lost_goalie"`` / ``"lost_defender"``: the ball is on that defender's dribbler (with
+  ``AttackRules.contested_plays_on``: and on no attacker's), or (goalie) rests (< ``rest_speed``)
+  inside the yellow defense area (terminated);
 * ``"out"``: the ball fully left the field, or left the attacking half (x < 0)
   (terminated);
 * ``"timeout"``: ``max_time_s`` (15 s) of play (truncated).
@@ -64,6 +75,8 @@ from .scene import Scene, scene_from_options
 
 OUTCOMES = ("goal", "lost_goalie", "lost_defender", "foul", "out", "timeout")
 N_ATTACKERS = 3
+#: the largest defence the task places (goalie, two defenders, a presser, two marks)
+MAX_DEFENCE = 6
 ATTACKER_ROBOTS = ("blue_1", "blue_2", "blue_3")
 
 
@@ -86,6 +99,11 @@ class AttackSpawn:
     defender_min_ball_m: float = 0.8
     defender_area_gap_m: float = 0.15
     parked_inset_m: float = 0.3
+    second_defender_gap_m: tuple[float, float] = (0.22, 0.35)
+    presser_ball_m: tuple[float, float] = (1.5, 2.5)
+    presser_angle: float = 1.0
+    mark_goal_side_m: tuple[float, float] = (0.35, 0.8)
+    mark_side_m: float = 0.3
 
 
 @dataclass(frozen=True)
@@ -94,15 +112,20 @@ class AttackRules:
         max_time_s: truncation after this much play (s).
         rest_speed: a ball slower than this (m/s) inside the yellow defense area is the goalie's.
         fouls: call the attackers' SSL fouls (outcome ``"foul"``, module docstring).
+        contested_plays_on: a ball on a defender's dribbler ends the attack only while no
+            attacker's dribbler holds it too (a contested ball plays on, as in matches); False:
+            any defender's contact ends it (Attack 3v2).
     """
 
     max_time_s: float = 15.0
     rest_speed: float = 0.2
     fouls: bool = False
+    contested_plays_on: bool = False
 
 
 class AttackTask(Task):
-    """Attack 3v2's scene and judge (module docstring). Needs ``n_blue=4, n_yellow=2``."""
+    """Attack 3v2's scene and judge (module docstring). Needs ``n_blue=4`` and ``n_yellow`` 2 (Attack 3v2)
+    to :data:`MAX_DEFENCE`."""
 
     name = "attack_3v2"
 
@@ -118,9 +141,10 @@ class AttackTask(Task):
 
     def bind(self, env: Engine) -> None:
         cfg = env.config
-        if cfg.n_blue != N_ATTACKERS + 1 or cfg.n_yellow != 2:
-            raise ValueError(f"AttackTask needs n_blue=4 (a parked goalie and 3 attackers) and n_yellow=2, got "
-                             f"n_blue={cfg.n_blue}, n_yellow={cfg.n_yellow}")
+        if cfg.n_blue != N_ATTACKERS + 1 or not 2 <= cfg.n_yellow <= MAX_DEFENCE:
+            raise ValueError(f"AttackTask needs n_blue=4 (a parked goalie and 3 attackers) and n_yellow 2-{MAX_DEFENCE} "
+                             f"(a goalie and 1-{MAX_DEFENCE - 1} defenders), got n_blue={cfg.n_blue}, "
+                             f"n_yellow={cfg.n_yellow}")
         super().bind(env)
         if self.rules.fouls:
             self.touch = TouchWatch(cfg.n_blue, cfg.n_yellow, cfg.robot.radius, cfg.ball.radius)
@@ -174,8 +198,44 @@ class AttackTask(Task):
             if np.hypot(*(q - r)) < 0.25:
                 q = q + 0.3 * np.array([-u[1], u[0]])
         pose[n_blue + 1] = (q[0], q[1], math.atan2(ball[1] - q[1], ball[0] - q[0]))
+        n_yellow = len(pose) - n_blue
+        if n_yellow > 2:
+            self._place_more_defenders(env, pose, n_blue, n_yellow, ball, u, [placed[1 + i] for i in range(2)])
         self.carrier_robot = ATTACKER_ROBOTS[k]
         return Scene(pose, ball, np.zeros(2))
+
+    def _place_more_defenders(self, env: Engine, pose: np.ndarray, n_blue: int, n_yellow: int, ball: np.ndarray,
+                              u: np.ndarray, mates: list[np.ndarray]) -> None:
+        """Rows ``n_blue + 2 ..`` of ``pose``: second defender, presser, marks on ``mates`` (module docstring)."""
+        f, s, rng = env.field, self.spawn, env.np_random
+        L2 = f.half_length
+        goal = f.goal_center(+1)
+        normal = np.array([-u[1], u[0]])
+        first = pose[n_blue + 1, :2]
+        side = -1.0 if float(np.dot(first - ball, normal)) > 0.0 else 1.0
+        spots = [first + side * rng.uniform(*s.second_defender_gap_m) * normal]
+        a = math.atan2(u[1], u[0]) + rng.uniform(-s.presser_angle, s.presser_angle)
+        spots.append(ball + rng.uniform(*s.presser_ball_m) * np.array([math.cos(a), math.sin(a)]))
+        for m in mates:
+            v = goal - m
+            v = v / max(float(np.hypot(*v)), 1e-9)
+            spots.append(m + rng.uniform(*s.mark_goal_side_m) * v
+                         + rng.uniform(-s.mark_side_m, s.mark_side_m) * np.array([-v[1], v[0]]))
+        taken = [pose[i, :2].copy() for i in range(1, n_blue + 2)]
+        for j, spot in enumerate(spots[:n_yellow - 2]):
+            best, best_gap = None, -1.0
+            for step in (0.0, 0.3, -0.3, 0.6, -0.6, 0.9, -0.9):  # step sideways off a robot already placed
+                q = np.array(spot, float) + step * normal
+                q[0] = min(q[0], L2 - f.defense_depth - s.defender_area_gap_m)
+                q[1] = min(max(q[1], -f.half_width + 0.2), f.half_width - 0.2)
+                gap = min(float(np.hypot(*(q - r))) for r in taken)
+                if gap > best_gap:
+                    best, best_gap = q, gap
+                if gap >= 0.25:
+                    break
+            q = best
+            taken.append(q)
+            pose[n_blue + 2 + j] = (q[0], q[1], math.atan2(ball[1] - q[1], ball[0] - q[0]))
 
     def start(self, env: Engine) -> None:
         self.outcome = None
@@ -211,9 +271,10 @@ class AttackTask(Task):
         side = f.in_goal(ball, r)
         if side > 0:
             return "goal"
-        if bool(w.yellow.ball_on_dribbler[0]):
+        held = not (self.rules.contested_plays_on and bool(w.blue.ball_on_dribbler.any()))
+        if held and bool(w.yellow.ball_on_dribbler[0]):
             return "lost_goalie"
-        if w.yellow.n > 1 and bool(w.yellow.ball_on_dribbler[1:].any()):
+        if held and w.yellow.n > 1 and bool(w.yellow.ball_on_dribbler[1:].any()):
             return "lost_defender"
         if (bool(f.in_defense_area(ball, +1)) and float(np.hypot(*w.ball_vel)) < self.rules.rest_speed):
             return "lost_goalie"
@@ -249,4 +310,4 @@ class AttackTask(Task):
         return self.outcome != "timeout", self.outcome == "timeout"
 
 
-__all__ = ["AttackTask", "AttackSpawn", "AttackRules", "OUTCOMES", "ATTACKER_ROBOTS", "N_ATTACKERS"]
+__all__ = ["AttackTask", "AttackSpawn", "AttackRules", "OUTCOMES", "ATTACKER_ROBOTS", "N_ATTACKERS", "MAX_DEFENCE"]
