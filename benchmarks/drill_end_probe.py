@@ -31,13 +31,13 @@ def probe_episode(env, policy, seed: int) -> dict:
 
     obs, info = env.reset(seed=seed)
     policy.reset(env)
-    last, n, roles = None, 0, {}
+    last, n, roles = None, 0, dict(env.yellow.roles)
     while env.agents:
         acts = {a: int(policy.act(env, a, obs[a], info[a])) for a in env.agents if info[a].get("decision")}
         for o in acts.values():
             last, n = (round(float(env.t), 2), ATTACK_DRILL_OPTIONS[o]), n + 1
-        roles = dict(env.yellow.roles)
         obs, _, _, _, info = env.step(acts)
+        roles = dict(env.yellow.roles)  # the defence's roles at the last tick played
     w = env.engine.world_state()
     holders = [roles.get(int(k), "unassigned") for k in np.flatnonzero(w.yellow.ball_on_dribbler)]
     return {"seed": seed, "outcome": env.task.outcome, "t_s": round(float(env.t), 2), "decisions": n,
