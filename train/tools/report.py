@@ -675,6 +675,15 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
          "attack_drill_ssl_learned_ssl_153000")]),
     "mappo_attack_drill_ssl": lambda r: t.mappo_runs(r, [("mappo_attack_drill_ssl_s0", "attack_drill_ssl_learned_ssl_153000")],
                                                      "attack_drill_ssl_handcoded_153000", "goal"),
+    "attack_drill_defended_154000": lambda r: t.attack(r, [
+        ("hand-coded (the attacking plays' cost decision)", "attack_drill_defended_handcoded_154000"),
+        ("learned, shipped `attack_drill.pt` (trained in the drill against a goalie and one defender)",
+         "attack_drill_defended_learned_154000"),
+        ("learned, fine-tuned under SSL rules (`attack_drill_ssl.pt`)", "attack_drill_defended_learned_ssl_154000")]),
+    "drill_end_probe_155000": lambda r: t.drill_ends([
+        ("hand-coded", r / "tuning" / "drill_end_probe" / "handcoded_155000.json"),
+        ("shipped `attack_drill.pt`", r / "tuning" / "drill_end_probe" / "learned_155000.json"),
+        ("fine-tuned under SSL rules (`attack_drill_ssl.pt`)", r / "tuning" / "drill_end_probe" / "learned_ssl_155000.json")]),
     "decision_tasks_realistic": lambda r: t.decision_tasks(r, "*_realistic*"),
     "mappo_keepaway": lambda r: t.mappo_runs(r, [("mappo_keepaway_s0", "keepaway_learned_s0"),
                                                  ("mappo_keepaway_s1", "keepaway_learned"),

@@ -184,6 +184,21 @@ def probe_rows(path: Path, key: str) -> Lines:
     return rows
 
 
+def drill_ends(entries: Iterable[tuple[str, Path]]) -> Lines:
+    """``benchmarks/drill_end_probe.py`` records: outcomes, who won the lost balls, the carrier's
+    last option before a ball lost to a defender, median times (s)."""
+    rows = _head("policy", "episodes", "outcomes", "ball lost to a defender: the defence's role",
+                 "the carrier's last option before it (none: no decision yet)", "median end (s): lost / out / goal")
+    for label, path in entries:
+        s = json.loads(path.read_text())["summary"]
+        last = {("none" if k == "null" else k): v for k, v in s["last_option_before"]["lost_defender"].items()}
+        roles = {"+".join("presser" if x == "attacker" else x for x in k.split("+")): v
+                 for k, v in s["lost_defender_by_role"].items()}
+        med = " / ".join(f"{s['median_t_s'][o]:.2f}" if o in s["median_t_s"] else "-" for o in ("lost_defender", "out", "goal"))
+        rows.append(f"| {label} | {s['episodes']} | {_counts(s['outcomes'])} | {_counts(roles)} | {_counts(last)} | {med} |")
+    return rows
+
+
 def departure_scores(path: Path, names: dict[str, str] | None = None) -> Lines:
     """``python -m train.mappo_rollout_pi score`` rows: the departure rule's goal rate, the
     benchmark's and the best option's on the same labelled episodes, the paired difference
