@@ -33,7 +33,7 @@ from ssl_marl.decisions.policies import run_episode
 from ssl_marl.io import atomic_write_json
 from ssl_marl.runners.provenance import build_manifest
 
-DRILLS = ("keepaway", "attack-3v2", "attack-drill", "attack-drill-ssl")
+DRILLS = ("keepaway", "attack-3v2", "attack-drill", "attack-drill-ssl", "attack-drill-defended")
 
 
 def drill_speed(task: str, policy: str, episodes: int, seed: int) -> dict:
