@@ -364,6 +364,13 @@ DECISION_SSL_DRILL_105400 = ["match_attack_drill_ssl_decision_vs_attack_learned_
 DECISION_SSL_DRILL_105400_POOLED = [m.both_colours(
     "decision fine-tuned under SSL rules (`attack_drill_ssl.pt`) vs attack-learned, SSL format, 6v6 Division B",
     *DECISION_SSL_DRILL_105400)]
+#: the decision fine-tuned against the match's defence against the cost decision, both colours
+DECISION_DEFENDED_106900 = [name for lo in (106900, 106920, 106940) for name in (
+    f"match_attack_drill_defended_decision_vs_attack_learned_600_ssl_{lo}",
+    f"match_attack_learned_vs_attack_drill_defended_decision_600_ssl_{lo + 10}")]
+DECISION_DEFENDED_106900_POOLED = m.both_colours_rounds(
+    "decision fine-tuned against the match's defence (`attack_drill_defended.pt`) vs attack-learned, SSL format",
+    DECISION_DEFENDED_106900, 106900)
 #: the improved decision with the second-iteration value actor against the cost decision, both colours (commit 646fe1b)
 DECISION_IMPROVED_103 = ["match_attack_improved_decision_vs_attack_learned_600_103100",
                          "match_attack_learned_vs_attack_improved_decision_600_103105"]
@@ -520,6 +527,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_div_a_102_pooled": lambda r: m.pooled_sides(r, DECISION_DIV_A_102_POOLED),
     "decision_series_ssl_103": lambda r: m.series_600(r, DECISION_SSL_103),
     "decision_ssl_103_pooled": lambda r: m.pooled_sides(r, DECISION_SSL_103_POOLED),
+    "decision_series_ssl_106900": lambda r: m.series_600(r, DECISION_DEFENDED_106900),
+    "decision_ssl_106900_pooled": lambda r: m.pooled_sides(r, DECISION_DEFENDED_106900_POOLED),
     "decision_series_ssl_105400": lambda r: m.series_600(r, DECISION_SSL_DRILL_105400),
     "decision_ssl_105400_pooled": lambda r: m.pooled_sides(r, DECISION_SSL_DRILL_105400_POOLED),
     "decision_series_ssl_105300": lambda r: m.series_600(r, DECISION_SSL_105300),
@@ -679,7 +688,16 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
         ("hand-coded (the attacking plays' cost decision)", "attack_drill_defended_handcoded_154000"),
         ("learned, shipped `attack_drill.pt` (trained in the drill against a goalie and one defender)",
          "attack_drill_defended_learned_154000"),
-        ("learned, fine-tuned under SSL rules (`attack_drill_ssl.pt`)", "attack_drill_defended_learned_ssl_154000")]),
+        ("learned, fine-tuned under SSL rules (`attack_drill_ssl.pt`)", "attack_drill_defended_learned_ssl_154000"),
+        ("learned, fine-tuned against the match's defence (`mappo_attack_drill_defended_s1`, `attack_drill_defended.pt`)",
+         "attack_drill_defended_learned_defended_154000")]),
+    "attack_drill_defended_selection": lambda r: t.attack(r, [
+        ("seed 0, 18,035 decisions", "tuning/attack_drill_defended_selection/val_s0_48600"),
+        ("seed 1, 12,029 decisions", "tuning/attack_drill_defended_selection/val_s1_48600")]),
+    "mappo_attack_drill_defended": lambda r: t.mappo_runs(
+        r, [("mappo_attack_drill_defended_s0", ""),
+            ("mappo_attack_drill_defended_s1", "attack_drill_defended_learned_defended_154000")],
+        "attack_drill_defended_handcoded_154000", "goal"),
     "drill_end_probe_155000": lambda r: t.drill_ends([
         ("hand-coded", r / "tuning" / "drill_end_probe" / "handcoded_155000.json"),
         ("shipped `attack_drill.pt`", r / "tuning" / "drill_end_probe" / "learned_155000.json"),
