@@ -701,7 +701,9 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "drill_end_probe_155000": lambda r: t.drill_ends([
         ("hand-coded", r / "tuning" / "drill_end_probe" / "handcoded_155000.json"),
         ("shipped `attack_drill.pt`", r / "tuning" / "drill_end_probe" / "learned_155000.json"),
-        ("fine-tuned under SSL rules (`attack_drill_ssl.pt`)", r / "tuning" / "drill_end_probe" / "learned_ssl_155000.json")]),
+        ("fine-tuned under SSL rules (`attack_drill_ssl.pt`)", r / "tuning" / "drill_end_probe" / "learned_ssl_155000.json"),
+        ("fine-tuned against the match's defence (`attack_drill_defended.pt`)",
+         r / "tuning" / "drill_end_probe" / "learned_defended_155000.json")]),
     "decision_tasks_realistic": lambda r: t.decision_tasks(r, "*_realistic*"),
     "mappo_keepaway": lambda r: t.mappo_runs(r, [("mappo_keepaway_s0", "keepaway_learned_s0"),
                                                  ("mappo_keepaway_s1", "keepaway_learned"),
