@@ -32,7 +32,7 @@ def test_the_defence_is_placed_as_documented(defended):
     env, f = defended, defended.field
     plain = AttackDrillSSLEnv(skills="baseline")
     assert env.n_defence == MAX_DEFENCE == 6
-    for seed in range(154_900, 154_930):  # outside every evaluation and validation range
+    for seed in range(159_900, 159_930):  # outside every evaluation, validation and tuning range
         env.reset(seed=seed)
         plain.reset(seed=seed)
         blue, yellow, ball = _poses(env)
@@ -44,9 +44,10 @@ def test_the_defence_is_placed_as_documented(defended):
         np.testing.assert_array_equal(ball, ball0)
         for q in yellow[1:]:  # field defenders: outside their defense area, inside the field
             assert not f.in_defense_area(q, +1) and abs(q[1]) <= f.half_width - 0.2 + 1e-9
-        centres = np.vstack([blue[1:], yellow])
-        gaps = np.hypot(*(centres[:, None, :] - centres[None, :, :]).transpose(2, 0, 1))
-        assert gaps[np.triu_indices(len(centres), 1)].min() >= 0.18  # robots do not overlap (0.18 m wide)
+        centres = np.vstack([blue[1:], yellow[:2]])
+        for q in yellow[2:]:  # the defenders this drill adds stand on nobody (robots are 0.18 m wide)
+            assert np.hypot(*(centres - q).T).min() >= 0.18
+            centres = np.vstack([centres, q])
         presser_ball = float(np.hypot(*(yellow[3] - ball)))
         assert 0.5 <= presser_ball <= 2.6  # 1.5-2.5 m, less where kept out of the defense area
         carrier = int(env.task.carrier_robot.rsplit("_", 1)[1])
@@ -91,14 +92,14 @@ def test_episodes_observation_state_and_registry(defended):
     assert env.rules.fouls and env.rules.contested_plays_on and env.dribble_mask_m is not None
     assert env.state_space.shape == (STATE_DIM + 4 * 4,)
     assert env.observation_space("attacker_0").shape == (ATTACK_DRILL_OBS_DIM,)
-    res = run_episode(env, HandcodedAttackDrillPolicy(), seed=154_950)
+    res = run_episode(env, HandcodedAttackDrillPolicy(), seed=159_950)
     assert res["outcome"] in OUTCOMES and res["terminated"] != res["truncated"]
     s = env.global_state()
     assert s.shape == (STATE_DIM + 16,) and np.isfinite(s).all()
     # the defence is the match's: its robots take the defense play's roles
     assert env.yellow.selector.plays[0].name == "match_defence"
-    a = run_episode(AttackDrillDefendedEnv(skills="baseline"), RandomPolicy(3), seed=154_951, record=True)
-    b = run_episode(AttackDrillDefendedEnv(skills="baseline"), RandomPolicy(3), seed=154_951, record=True)
+    a = run_episode(AttackDrillDefendedEnv(skills="baseline"), RandomPolicy(3), seed=159_951, record=True)
+    b = run_episode(AttackDrillDefendedEnv(skills="baseline"), RandomPolicy(3), seed=159_951, record=True)
     assert a["trace"] == b["trace"] and a["outcome"] == b["outcome"]
 
 
@@ -110,6 +111,6 @@ def test_bad_defence_sizes_are_refused(bad):
 
 def test_smaller_defences_field_the_first_roles():
     env = AttackDrillDefendedEnv(skills="baseline", n_defence=3)
-    env.reset(seed=154_960)
+    env.reset(seed=159_960)
     assert len(env.engine.world_state().yellow.pos) == 3 and env.state_space.shape == (STATE_DIM + 4,)
-    assert run_episode(env, HandcodedAttackDrillPolicy(), seed=154_961)["outcome"] in OUTCOMES
+    assert run_episode(env, HandcodedAttackDrillPolicy(), seed=159_961)["outcome"] in OUTCOMES
