@@ -26,23 +26,17 @@ from benchmarks.ball_out_probe import seed_range  # noqa: E402
 
 
 def probe_episode(env, policy, seed: int) -> dict:
-    """One episode's end (module docstring)."""
-    from ssl_marl.decisions.attack_drill_features import ATTACK_DRILL_OPTIONS
+    """One episode's end (module docstring): :func:`~ssl_marl.decisions.policies.run_episode`'s
+    record, then the env's last tick (its world and the defence's roles)."""
+    from ssl_marl.decisions.policies import run_episode
 
-    obs, info = env.reset(seed=seed)
-    policy.reset(env)
-    last, n, roles = None, 0, dict(env.yellow.roles)
-    while env.agents:
-        acts = {a: int(policy.act(env, a, obs[a], info[a])) for a in env.agents if info[a].get("decision")}
-        for o in acts.values():
-            last, n = (round(float(env.t), 2), ATTACK_DRILL_OPTIONS[o]), n + 1
-        obs, _, _, _, info = env.step(acts)
-        roles = dict(env.yellow.roles)  # the defence's roles at the last tick played
-    w = env.engine.world_state()
-    holders = [roles.get(int(k), "unassigned") for k in np.flatnonzero(w.yellow.ball_on_dribbler)]
-    return {"seed": seed, "outcome": env.task.outcome, "t_s": round(float(env.t), 2), "decisions": n,
-            "last_option": last[1] if last else None, "last_option_t_s": last[0] if last else None,
-            "defence_holders": holders}
+    r = run_episode(env, policy, seed=seed, record=True)
+    last = r["trace"][-1] if r["trace"] else None  # (t, agent, option)
+    roles = dict(env.yellow.roles)
+    holders = [roles.get(int(k), "unassigned") for k in np.flatnonzero(env.engine.world_state().yellow.ball_on_dribbler)]
+    return {"seed": seed, "outcome": r["outcome"], "t_s": round(r["t_s"], 2), "decisions": r["decisions"],
+            "last_option": env.option_names[last[2]] if last else None,
+            "last_option_t_s": round(last[0], 2) if last else None, "defence_holders": holders}
 
 
 def summarize(rows: list[dict]) -> dict:

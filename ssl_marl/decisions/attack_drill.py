@@ -39,9 +39,8 @@ the match's attacking plays in place of the passing play:
   attackers without it (six robots, placed as :class:`~ssl_marl.envs.tasks.attack.AttackSpawn`
   documents); a contested ball plays on (``AttackRules.contested_plays_on``: the attack is lost
   when a defender holds the ball alone). The three attackers are the carrier and the two supports
-  of a match's attack. Same
-  observation and options (the observation's opponent slots are the goalie and the defender
-  nearest the ball; the others count in its cost features, as in matches).
+  of a match's attack. Same observation and options (the observation's opponent slots are the
+  goalie and the defender nearest the ball; the others count in its cost features, as in matches).
 """
 
 from __future__ import annotations
@@ -53,7 +52,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from ..envs.actions import CHIP_ACTION_DIM, fit_action
-from ..envs.tasks.attack import AttackRules
+from ..envs.tasks.attack import MAX_DEFENCE, AttackRules
 from ..physics.params import BallParams
 from ..plays.attack_decision import AttackOption, AttackParams, decide_attack
 from ..plays.attack_play import (ATTACK_MARK_BIAS, ATTACK_PASSING, AttackDecider, AttackPrepare, SpotPlanner,
@@ -61,7 +60,6 @@ from ..plays.attack_play import (ATTACK_MARK_BIAS, ATTACK_PASSING, AttackDecider
 from ..plays.pass_coordinator import CarrierRequest, PassCoordinator, PassingParams
 from ..plays.passing_roles import passing_attacker_role
 from ..plays.skillset import ATTACK_SKILLS
-from ..envs.tasks.attack import MAX_DEFENCE
 from ..plays.play import Play, defense_play, goalie_role
 from .attack import Attack3v2Env, CarrierRequestHooks, DrillDecider, HandcodedCarrierPolicy
 from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, DRIBBLE_GOAL_OPTION, DRIBBLE_OPTIONS,
@@ -245,5 +243,5 @@ class HandcodedAttackDrillPolicy(HandcodedCarrierPolicy):
         return option, option == DRIBBLE_GOAL_OPTION
 
 
-__all__ = ["AttackDrillEnv", "AttackDrillSSLEnv", "AttackDrillDefendedEnv", "match_defence_plays", "AttackOptionsMixin", "SSL_DRILL_PASSING", "HandcodedAttackDrillPolicy", "DrillAttackDecider",
-           "drill_attacking_plays", "DRILL_PASSING"]
+__all__ = ["AttackDrillEnv", "AttackDrillSSLEnv", "AttackDrillDefendedEnv", "match_defence_plays", "AttackOptionsMixin",
+           "SSL_DRILL_PASSING", "HandcodedAttackDrillPolicy", "DrillAttackDecider", "drill_attacking_plays", "DRILL_PASSING"]

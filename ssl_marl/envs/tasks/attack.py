@@ -77,6 +77,8 @@ OUTCOMES = ("goal", "lost_goalie", "lost_defender", "foul", "out", "timeout")
 N_ATTACKERS = 3
 #: the largest defence the task places (goalie, two defenders, a presser, two marks)
 MAX_DEFENCE = 6
+#: m: a placed defender moves off any robot whose centre is nearer than this
+CLEAR_M = 0.25
 ATTACKER_ROBOTS = ("blue_1", "blue_2", "blue_3")
 
 
@@ -121,6 +123,11 @@ class AttackRules:
     rest_speed: float = 0.2
     fouls: bool = False
     contested_plays_on: bool = False
+
+
+def _facing(q: np.ndarray, ball: np.ndarray) -> tuple[float, float, float]:
+    """The pose (x, y, heading) of a robot at ``q`` facing ``ball`` (m, rad, field frame)."""
+    return (q[0], q[1], math.atan2(ball[1] - q[1], ball[0] - q[0]))
 
 
 class AttackTask(Task):
@@ -186,31 +193,35 @@ class AttackTask(Task):
         u = goal - ball
         dist = float(np.hypot(*u))
         u = u / max(dist, 1e-9)
-        q = ball + frac * dist * u + rng.uniform(-s.defender_side_m, s.defender_side_m) * np.array([-u[1], u[0]])
-        q[0] = min(q[0], L2 - f.defense_depth - s.defender_area_gap_m)
-        q[1] = min(max(q[1], -f.half_width + 0.2), f.half_width - 0.2)
+        normal = np.array([-u[1], u[0]])
+        q = self._keep_out(f, ball + frac * dist * u + rng.uniform(-s.defender_side_m, s.defender_side_m) * normal)
         gap = float(np.hypot(*(q - ball)))
         if gap < s.defender_min_ball_m:  # push it along the ball-defender line (or the goal line of sight)
             v = (q - ball) / gap if gap > 1e-6 else u
             q = ball + s.defender_min_ball_m * v
             q[0] = min(q[0], L2 - f.defense_depth - s.defender_area_gap_m)
         for r in placed:  # do not stand on an attacker
-            if np.hypot(*(q - r)) < 0.25:
-                q = q + 0.3 * np.array([-u[1], u[0]])
-        pose[n_blue + 1] = (q[0], q[1], math.atan2(ball[1] - q[1], ball[0] - q[0]))
-        n_yellow = len(pose) - n_blue
-        if n_yellow > 2:
-            self._place_more_defenders(env, pose, n_blue, n_yellow, ball, u, [placed[1 + i] for i in range(2)])
+            if np.hypot(*(q - r)) < CLEAR_M:
+                q = q + 0.3 * normal
+        pose[n_blue + 1] = _facing(q, ball)
+        if len(pose) - n_blue > 2:
+            self._place_more_defenders(env, pose, n_blue, ball, u, normal, placed[1:])
         self.carrier_robot = ATTACKER_ROBOTS[k]
         return Scene(pose, ball, np.zeros(2))
 
-    def _place_more_defenders(self, env: Engine, pose: np.ndarray, n_blue: int, n_yellow: int, ball: np.ndarray,
-                              u: np.ndarray, mates: list[np.ndarray]) -> None:
-        """Rows ``n_blue + 2 ..`` of ``pose``: second defender, presser, marks on ``mates`` (module docstring)."""
+    def _keep_out(self, f, q: np.ndarray) -> np.ndarray:
+        """``q`` (m, field frame) moved out of the +x defense area (``defender_area_gap_m`` before
+        it) and 0.2 m inside the side lines, in place."""
+        q[0] = min(q[0], f.half_length - f.defense_depth - self.spawn.defender_area_gap_m)
+        q[1] = min(max(q[1], -f.half_width + 0.2), f.half_width - 0.2)
+        return q
+
+    def _place_more_defenders(self, env: Engine, pose: np.ndarray, n_blue: int, ball: np.ndarray, u: np.ndarray,
+                              normal: np.ndarray, mates: list[np.ndarray]) -> None:
+        """Rows ``n_blue + 2 ..`` of ``pose``: second defender, presser, marks on ``mates``
+        (module docstring); ``u``: the unit vector from the ball to the goal centre, ``normal``: u turned left."""
         f, s, rng = env.field, self.spawn, env.np_random
-        L2 = f.half_length
         goal = f.goal_center(+1)
-        normal = np.array([-u[1], u[0]])
         first = pose[n_blue + 1, :2]
         side = -1.0 if float(np.dot(first - ball, normal)) > 0.0 else 1.0
         spots = [first + side * rng.uniform(*s.second_defender_gap_m) * normal]
@@ -222,20 +233,17 @@ class AttackTask(Task):
             spots.append(m + rng.uniform(*s.mark_goal_side_m) * v
                          + rng.uniform(-s.mark_side_m, s.mark_side_m) * np.array([-v[1], v[0]]))
         taken = [pose[i, :2].copy() for i in range(1, n_blue + 2)]
-        for j, spot in enumerate(spots[:n_yellow - 2]):
+        for j, spot in enumerate(spots[:len(pose) - n_blue - 2]):
             best, best_gap = None, -1.0
             for step in (0.0, 0.3, -0.3, 0.6, -0.6, 0.9, -0.9):  # step sideways off a robot already placed
-                q = np.array(spot, float) + step * normal
-                q[0] = min(q[0], L2 - f.defense_depth - s.defender_area_gap_m)
-                q[1] = min(max(q[1], -f.half_width + 0.2), f.half_width - 0.2)
+                q = self._keep_out(f, np.array(spot, float) + step * normal)
                 gap = min(float(np.hypot(*(q - r))) for r in taken)
                 if gap > best_gap:
                     best, best_gap = q, gap
-                if gap >= 0.25:
+                if gap >= CLEAR_M:
                     break
-            q = best
-            taken.append(q)
-            pose[n_blue + 2 + j] = (q[0], q[1], math.atan2(ball[1] - q[1], ball[0] - q[0]))
+            taken.append(best)
+            pose[n_blue + 2 + j] = _facing(best, ball)
 
     def start(self, env: Engine) -> None:
         self.outcome = None
