@@ -433,17 +433,17 @@ SKILLS_SSL_105200 = ["match_attack_learned_vs_attack_baseline_600_ssl_105200",
 SKILLS_SSL_105200_POOLED = m.both_colours_rounds("attack-learned vs attack-baseline, SSL format", SKILLS_SSL_105200,
                                                  105200)
 ATTACK_DRILL = [("hand-coded (the attacking plays' cost decision)", "attack_drill_handcoded"),
-                ("learned (shipped `attack_drill.pt`: cloned, then MAPPO `mappo_attack_drill_bc_s0`)",
+                ("learned (`mappo_attack_drill_bc_s0`: cloned, then MAPPO)",
                  "attack_drill_learned")]
 ATTACK_DRILL_SELECTION = [("hand-coded", "tuning/attack_drill_handcoded_val49000"),
                           ("cloned hand-coded decision (`bc_attack_drill.pt`)", "tuning/attack_drill_bc_val49000"),
-                          ("`mappo_attack_drill_bc_s0` at 1,678 decisions (shipped)", "tuning/attack_drill_s0_1678_val49000"),
+                          ("`mappo_attack_drill_bc_s0` at 1,678 decisions (its exported actor)", "tuning/attack_drill_s0_1678_val49000"),
                           ("`mappo_attack_drill_bc_s0` at 2,020 decisions", "tuning/attack_drill_s0_2020_val49000"),
                           ("`mappo_attack_drill_bc_s0` at 2,528 decisions", "tuning/attack_drill_s0_2528_val49000")]
 
 #: the second fine-tuning run of the attack-drill decision: selection (seeds 49300-49599), then held out (44000)
 ATTACK_DRILL_FT_SELECTION = [("hand-coded", "tuning/attack_drill_handcoded_val49300"),
-                             ("learned, shipped `attack_drill.pt`", "tuning/attack_drill_shipped_val49300"),
+                             ("learned, `mappo_attack_drill_bc_s0` actor", "tuning/attack_drill_shipped_val49300"),
                              ("`mappo_attack_drill_ft_s1` at 5,084 decisions", "tuning/attack_drill_ft_s1_5084_val49300"),
                              ("`mappo_attack_drill_ft_s1` at 7,098 decisions", "tuning/attack_drill_ft_s1_7098_val49300")]
 #: display names of the value actors scored offline on the drill's tuning labels (seeds 49000-49299)
@@ -472,7 +472,7 @@ ATTACK_DRILL_RPI = [("hand-coded", "tuning/attack_drill_handcoded_val49000_87714
                     ("value actor, weight decay 1e-4 (`rollout_pi_attack_drill/a_1e-4_300.pt`)",
                      "tuning/attack_drill_rpi_wd1e-4_val49000")]
 ATTACK_DRILL_44000 = [("hand-coded", "attack_drill_handcoded_44000"),
-                      ("learned, shipped `attack_drill.pt`", "attack_drill_learned_44000"),
+                      ("learned, `mappo_attack_drill_bc_s0` actor", "attack_drill_learned_44000"),
                       ("`mappo_attack_drill_ft_s1` at 7,098 decisions (not shipped)",
                        "attack_drill_learned_ft_s1_7098_44000")]
 
@@ -632,13 +632,13 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "attack_drill_shoot_threshold": lambda r: t.probe_rows(r / "tuning" / "attack_drill_shoot_threshold.json",
                                                            "shoot_threshold"),
     "attack_drill_42000": lambda r: t.attack(r, [("hand-coded", "attack_drill_handcoded_42000"),
-                                                 ("learned, shipped `attack_drill.pt`", "attack_drill_learned_42000"),
+                                                 ("learned, `mappo_attack_drill_bc_s0` actor", "attack_drill_learned_42000"),
                                                  ("learned, retrained in the fixed drill (`mappo_attack_drill_v2_s0`, not shipped)",
                                                   "attack_drill_learned_v2_42000"),
                                                  ("improved: hand-coded, the value actor's option at the first decision "
                                                   "(first iteration, `attack_drill_value_1st.pt`)", "attack_drill_improved_42000")]),
     "attack_drill_realistic_42000": lambda r: t.attack(r, [("hand-coded", "attack_drill_handcoded_realistic"),
-                                                           ("learned, shipped `attack_drill.pt`", "attack_drill_learned_realistic"),
+                                                           ("learned, `mappo_attack_drill_bc_s0` actor", "attack_drill_learned_realistic"),
                                                            ("improved (first iteration, `attack_drill_value_1st.pt`, at the first decision)",
                                                             "attack_drill_improved_realistic")]),
     "attack_drill_first_decision": lambda r: t.probe_rows(r / "tuning" / "attack_drill_first_decision.json", "policy"),
@@ -679,14 +679,14 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
                                                     "attack_drill_handcoded_42000", "goal"),
     "attack_drill_ssl_153000": lambda r: t.attack(r, [
         ("hand-coded (the attacking plays' cost decision)", "attack_drill_ssl_handcoded_153000"),
-        ("learned, shipped `attack_drill.pt` (trained in the drill without fouls)", "attack_drill_ssl_learned_153000"),
+        ("learned, `mappo_attack_drill_bc_s0` actor (trained in the drill without fouls)", "attack_drill_ssl_learned_153000"),
         ("learned, fine-tuned under SSL rules (`mappo_attack_drill_ssl_s0`, `attack_drill_ssl.pt`)",
          "attack_drill_ssl_learned_ssl_153000")]),
     "mappo_attack_drill_ssl": lambda r: t.mappo_runs(r, [("mappo_attack_drill_ssl_s0", "attack_drill_ssl_learned_ssl_153000")],
                                                      "attack_drill_ssl_handcoded_153000", "goal"),
     "attack_drill_defended_154000": lambda r: t.attack(r, [
         ("hand-coded (the attacking plays' cost decision)", "attack_drill_defended_handcoded_154000"),
-        ("learned, shipped `attack_drill.pt` (trained in the drill against a goalie and one defender)",
+        ("learned, `mappo_attack_drill_bc_s0` actor (trained in the drill against a goalie and one defender)",
          "attack_drill_defended_learned_154000"),
         ("learned, fine-tuned under SSL rules (`attack_drill_ssl.pt`)", "attack_drill_defended_learned_ssl_154000"),
         ("learned, fine-tuned against the match's defence (`mappo_attack_drill_defended_s1`, `attack_drill_defended.pt`)",
@@ -700,7 +700,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
         "attack_drill_defended_handcoded_154000", "goal"),
     "drill_end_probe_155000": lambda r: t.drill_ends([
         ("hand-coded", r / "tuning" / "drill_end_probe" / "handcoded_155000.json"),
-        ("shipped `attack_drill.pt`", r / "tuning" / "drill_end_probe" / "learned_155000.json"),
+        ("`mappo_attack_drill_bc_s0` actor", r / "tuning" / "drill_end_probe" / "learned_155000.json"),
         ("fine-tuned under SSL rules (`attack_drill_ssl.pt`)", r / "tuning" / "drill_end_probe" / "learned_ssl_155000.json"),
         ("fine-tuned against the match's defence (`attack_drill_defended.pt`)",
          r / "tuning" / "drill_end_probe" / "learned_defended_155000.json")]),
