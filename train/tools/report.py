@@ -371,6 +371,17 @@ DECISION_DEFENDED_106900 = [name for lo in (106900, 106920, 106940) for name in 
 DECISION_DEFENDED_106900_POOLED = m.both_colours_rounds(
     "decision fine-tuned against the match's defence (`attack_drill_defended.pt`) vs attack-learned, SSL format",
     DECISION_DEFENDED_106900, 106900)
+#: the same decision under the realistic preset, 10 matches on each colour (commit bdf646b)
+DECISION_DEFENDED_REALISTIC_107000 = ["match_attack_drill_defended_decision_vs_attack_learned_600_ssl_realistic_107000",
+                                      "match_attack_learned_vs_attack_drill_defended_decision_600_ssl_realistic_107010"]
+DECISION_DEFENDED_REALISTIC_107000_POOLED = [m.both_colours(
+    "decision fine-tuned against the match's defence vs attack-learned, SSL format, `--realism realistic`",
+    *DECISION_DEFENDED_REALISTIC_107000)]
+#: the attacking team with the shipped learned decision against the baseline team (commit c041229)
+DECISION_SHIPPED_BASELINE_107100 = ["match_attack_learned_decision_vs_baseline_600_ssl_107100",
+                                    "match_attack_learned_decision_vs_baseline_600_ssl_107110"]
+DECISION_SHIPPED_BASELINE_107100_POOLED = [("attack-learned-decision vs baseline",
+                                            tuple((n, "blue") for n in DECISION_SHIPPED_BASELINE_107100))]
 #: the improved decision with the second-iteration value actor against the cost decision, both colours (commit 646fe1b)
 DECISION_IMPROVED_103 = ["match_attack_improved_decision_vs_attack_learned_600_103100",
                          "match_attack_learned_vs_attack_improved_decision_600_103105"]
@@ -529,6 +540,10 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_ssl_103_pooled": lambda r: m.pooled_sides(r, DECISION_SSL_103_POOLED),
     "decision_series_ssl_106900": lambda r: m.series_600(r, DECISION_DEFENDED_106900),
     "decision_ssl_106900_pooled": lambda r: m.pooled_sides(r, DECISION_DEFENDED_106900_POOLED),
+    "decision_series_realistic_107000": lambda r: m.series_600(r, DECISION_DEFENDED_REALISTIC_107000),
+    "decision_realistic_107000_pooled": lambda r: m.pooled_sides(r, DECISION_DEFENDED_REALISTIC_107000_POOLED),
+    "decision_shipped_baseline_107100": lambda r: m.series_600(r, DECISION_SHIPPED_BASELINE_107100),
+    "decision_shipped_baseline_107100_pooled": lambda r: m.pooled_attack(r, DECISION_SHIPPED_BASELINE_107100_POOLED),
     "decision_series_ssl_105400": lambda r: m.series_600(r, DECISION_SSL_DRILL_105400),
     "decision_ssl_105400_pooled": lambda r: m.pooled_sides(r, DECISION_SSL_DRILL_105400_POOLED),
     "decision_series_ssl_105300": lambda r: m.series_600(r, DECISION_SSL_105300),
