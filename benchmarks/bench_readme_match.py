@@ -57,7 +57,7 @@ def main() -> None:
            "simulated_s": float(line[2]), "match_wall_s": float(line[3]), "process_wall_s": float(wall),
            "max_rss_kb": int(rss), "gif_bytes": gif,
            "load_average_1min_before_after": [load_before, os.getloadavg()[0]], "date": time.strftime("%Y-%m-%d %H:%M"),
-           "manifest": build_manifest(rules={"blue": "attack-learned", "yellow": "attack-learned"},
+           "manifest": build_manifest(rules={side: ARGS[ARGS.index(f"--{side}") + 1] for side in ("blue", "yellow")},
                                       seeds={"seed": int(ARGS[ARGS.index("--seed") + 1])})}
     print(json.dumps({k: v for k, v in rec.items() if k != "manifest"}, indent=1))
     if a.out:

@@ -382,6 +382,11 @@ DECISION_SHIPPED_BASELINE_107100 = ["match_attack_learned_decision_vs_baseline_6
                                     "match_attack_learned_decision_vs_baseline_600_ssl_107110"]
 DECISION_SHIPPED_BASELINE_107100_POOLED = [("attack-learned-decision vs baseline",
                                             tuple((n, "blue") for n in DECISION_SHIPPED_BASELINE_107100))]
+#: the shipped learned decision against the cost decision in 11v11 Division A, SSL format, both colours (commit c041229)
+DECISION_SHIPPED_DIV_A_107300 = ["match_attack_learned_decision_vs_attack_learned_600_ssl_div_a_11v11_107300",
+                                 "match_attack_learned_vs_attack_learned_decision_600_ssl_div_a_11v11_107310"]
+DECISION_SHIPPED_DIV_A_107300_POOLED = [m.both_colours(
+    "attack-learned-decision vs attack-learned, 11v11 Division A, SSL format", *DECISION_SHIPPED_DIV_A_107300)]
 #: the improved decision with the second-iteration value actor against the cost decision, both colours (commit 646fe1b)
 DECISION_IMPROVED_103 = ["match_attack_improved_decision_vs_attack_learned_600_103100",
                          "match_attack_learned_vs_attack_improved_decision_600_103105"]
@@ -489,7 +494,7 @@ ATTACK_DRILL_44000 = [("hand-coded", "attack_drill_handcoded_44000"),
 
 #: the README's first command over seeds 0-19: its match length and the lengths around it
 README_GOAL_RATE = ["readme_match_selfplay_300", "readme_match_selfplay_450", "readme_match_selfplay_600",
-                    "readme_match_selfplay_450_fed7dee"]
+                    "readme_match_selfplay_450_fed7dee", "readme_match_learned_decision_360"]
 
 TABLES: dict[str, Callable[[Path], list[str]]] = {
     "skills_paper": lambda r: t.skills(r, SKILLS_PAPER),
@@ -544,6 +549,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_realistic_107000_pooled": lambda r: m.pooled_sides(r, DECISION_DEFENDED_REALISTIC_107000_POOLED),
     "decision_shipped_baseline_107100": lambda r: m.series_600(r, DECISION_SHIPPED_BASELINE_107100),
     "decision_shipped_baseline_107100_pooled": lambda r: m.pooled_attack(r, DECISION_SHIPPED_BASELINE_107100_POOLED),
+    "decision_shipped_div_a_107300": lambda r: m.series_600(r, DECISION_SHIPPED_DIV_A_107300),
+    "decision_shipped_div_a_107300_pooled": lambda r: m.pooled_sides(r, DECISION_SHIPPED_DIV_A_107300_POOLED),
     "decision_series_ssl_105400": lambda r: m.series_600(r, DECISION_SSL_DRILL_105400),
     "decision_ssl_105400_pooled": lambda r: m.pooled_sides(r, DECISION_SSL_DRILL_105400_POOLED),
     "decision_series_ssl_105300": lambda r: m.series_600(r, DECISION_SSL_105300),
