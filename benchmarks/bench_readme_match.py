@@ -6,6 +6,10 @@ time and peak memory, the match's own wall time and score (from its summary line
 size and the load average before and after. A benchmark: run it on an idle machine.
 
     python benchmarks/bench_readme_match.py [--out results/bench_readme_match.json]
+    python benchmarks/bench_readme_match.py --args "match --blue attack-learned --yellow attack-learned --seconds 450 --seed 1 --render-fps 5"
+
+``--args`` times another ``ssl-marl match`` command the same way (e.g. an earlier first command beside the
+current one on the same host).
 """
 
 from __future__ import annotations
@@ -39,26 +43,34 @@ ARGS = readme_args()
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", default=None, help="write the record (JSON) here")
+    ap.add_argument("--args", default=None,
+                    help="time these ssl-marl arguments instead of the README's (a quoted string naming --blue, "
+                         "--yellow and --seed, e.g. an earlier first command, for a side-by-side run)")
     a = ap.parse_args()
+    args = ARGS if a.args is None else shlex.split(a.args)
+    for flag in ("--blue", "--yellow", "--seed"):
+        if flag not in args:
+            raise SystemExit(f"bench_readme_match: --args must name {flag}")
     exe = shutil.which("ssl-marl")
     if exe is None:
         raise SystemExit("bench_readme_match: the ssl-marl command is not on PATH (install the package)")
     load_before = os.getloadavg()[0]
     with tempfile.TemporaryDirectory() as tmp:
         env = {**os.environ, "SDL_VIDEODRIVER": "dummy"}
-        proc = subprocess.run(["/usr/bin/time", "-f", "TIME %e %M", exe, *ARGS], cwd=tmp, env=env,
+        proc = subprocess.run(["/usr/bin/time", "-f", "TIME %e %M", exe, *args], cwd=tmp, env=env,
                               capture_output=True, text=True, check=True)
         gif = Path(tmp, "match.gif").stat().st_size
     out = proc.stdout + proc.stderr
     wall, rss = re.findall(r"TIME ([\d.]+) (\d+)", out)[-1]
     line = re.findall(r"blue \([^)]*\) (\d+) - (\d+) yellow .*? ([\d.]+) s simulated in ([\d.]+) s wall", out)[-1]
-    rec = {"what": "the README's first command (after setup): wall time of the match with its GIF, /usr/bin/time",
-           "command": ["ssl-marl", *ARGS], "score": {"blue": int(line[0]), "yellow": int(line[1])},
+    what = "the README's first command (after setup)" if a.args is None else "the ssl-marl command given by --args"
+    rec = {"what": f"{what}: wall time of the match with its GIF, /usr/bin/time",
+           "command": ["ssl-marl", *args], "readme_command": a.args is None, "score": {"blue": int(line[0]), "yellow": int(line[1])},
            "simulated_s": float(line[2]), "match_wall_s": float(line[3]), "process_wall_s": float(wall),
            "max_rss_kb": int(rss), "gif_bytes": gif,
            "load_average_1min_before_after": [load_before, os.getloadavg()[0]], "date": time.strftime("%Y-%m-%d %H:%M"),
-           "manifest": build_manifest(rules={side: ARGS[ARGS.index(f"--{side}") + 1] for side in ("blue", "yellow")},
-                                      seeds={"seed": int(ARGS[ARGS.index("--seed") + 1])})}
+           "manifest": build_manifest(rules={side: args[args.index(f"--{side}") + 1] for side in ("blue", "yellow")},
+                                      seeds={"seed": int(args[args.index("--seed") + 1])})}
     print(json.dumps({k: v for k, v in rec.items() if k != "manifest"}, indent=1))
     if a.out:
         atomic_write_json(a.out, rec)

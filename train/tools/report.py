@@ -551,6 +551,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_shipped_baseline_107100_pooled": lambda r: m.pooled_attack(r, DECISION_SHIPPED_BASELINE_107100_POOLED),
     "decision_shipped_div_a_107300": lambda r: m.series_600(r, DECISION_SHIPPED_DIV_A_107300),
     "decision_shipped_div_a_107300_pooled": lambda r: m.pooled_sides(r, DECISION_SHIPPED_DIV_A_107300_POOLED),
+    "league_ssl_107200": lambda r: m.league(r, "league_ssl_107200"),
+    "decision_shipped_passing_107400": lambda r: m.series_600(r, ["match_attack_learned_decision_vs_passing_learned_600_ssl_107400"]),
     "decision_series_ssl_105400": lambda r: m.series_600(r, DECISION_SSL_DRILL_105400),
     "decision_ssl_105400_pooled": lambda r: m.pooled_sides(r, DECISION_SSL_DRILL_105400_POOLED),
     "decision_series_ssl_105300": lambda r: m.series_600(r, DECISION_SSL_105300),
