@@ -382,6 +382,11 @@ DECISION_SHIPPED_BASELINE_107100 = ["match_attack_learned_decision_vs_baseline_6
                                     "match_attack_learned_decision_vs_baseline_600_ssl_107110"]
 DECISION_SHIPPED_BASELINE_107100_POOLED = [("attack-learned-decision vs baseline",
                                             tuple((n, "blue") for n in DECISION_SHIPPED_BASELINE_107100))]
+#: the attacking-game targets with the shipped learned decision: realistic and Division A against the baseline,
+#: self-play (commit c041229)
+DECISION_SHIPPED_BASELINE_TARGETS = ["match_attack_learned_decision_vs_baseline_600_ssl_realistic_107500",
+                                     "match_attack_learned_decision_vs_baseline_600_ssl_div_a_11v11_107600",
+                                     "match_attack_learned_decision_selfplay_600_ssl_107700"]
 #: the shipped learned decision against the cost decision in 11v11 Division A, SSL format, both colours (commit c041229)
 DECISION_SHIPPED_DIV_A_107300 = ["match_attack_learned_decision_vs_attack_learned_600_ssl_div_a_11v11_107300",
                                  "match_attack_learned_vs_attack_learned_decision_600_ssl_div_a_11v11_107310"]
@@ -552,6 +557,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_shipped_div_a_107300": lambda r: m.series_600(r, DECISION_SHIPPED_DIV_A_107300),
     "decision_shipped_div_a_107300_pooled": lambda r: m.pooled_sides(r, DECISION_SHIPPED_DIV_A_107300_POOLED),
     "league_ssl_107200": lambda r: m.league(r, "league_ssl_107200"),
+    "decision_shipped_baseline_targets_107500": lambda r: m.series_600(r, DECISION_SHIPPED_BASELINE_TARGETS),
     "decision_shipped_passing_107400": lambda r: m.series_600(r, ["match_attack_learned_decision_vs_passing_learned_600_ssl_107400"]),
     "decision_series_ssl_105400": lambda r: m.series_600(r, DECISION_SSL_DRILL_105400),
     "decision_ssl_105400_pooled": lambda r: m.pooled_sides(r, DECISION_SSL_DRILL_105400_POOLED),
