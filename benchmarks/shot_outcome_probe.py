@@ -8,7 +8,8 @@ the posts, and no teammate stands in its lane). From the world one step after th
 (rad; both :meth:`~ssl_marl.plays.stats.MatchStatsTracker.shot_geometry`, every robot but
 the kicker an obstacle), its speed (m/s), whether the path is between the posts, the blue
 carrier's last attack decision if it came at most 1.5 s before (choice, shot and keep
-values; none: a kick no carrier decision chose, e.g. a defender's clearance), and how the
+values; a learned decision's open-play choice with ``policy`` true and no values; none: a
+kick no carrier decision chose, e.g. a defender's clearance), and how the
 shot ended, whichever comes first: ``goal``; ``keeper`` (first touched by an opponent
 inside its defense area), ``defender`` (by another opponent), ``teammate``; ``out`` (the
 ball left the field, or a no-progress restart); ``stopped`` (slower than 0.3 m/s
@@ -39,7 +40,9 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int, fmt: str = "p
     from ssl_marl.envs.game_control import TouchWatch
     from ssl_marl.physics.field import FieldGeometry
     from ssl_marl.physics.params import BallParams, RobotParams
+    from ssl_marl.decisions import match_decider
     from ssl_marl.plays import attack_play
+    from ssl_marl.plays.pass_decision import Choice
     from ssl_marl.plays.stats import MatchStatsTracker
     from ssl_marl.runners import match as match_runner
 
@@ -50,12 +53,21 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int, fmt: str = "p
     goals_other: list[dict] = []  #: blue goals that no shot above led to (deflections, pushes)
     state: dict = {"open": None, "pending": None, "decision": None, "last_kick": None, "t": 0.0}
     original_decide, original_record = attack_play.AttackDecider.decide, match_runner.MatchStats.record
+    original_policy_decide = match_decider.PolicyAttackDecider.decide
 
     def decide(self, request):
         out = original_decide(self, request)
         d = self.last
         state["decision"] = {"t": state["t"], "choice": d.choice.value, "shot_value": round(float(d.shot), 3),
                              "keep_value": round(float(d.keep), 3)}
+        return out
+
+    def policy_decide(self, request):
+        """A learned decision's open-play choice (its restarts reach ``decide`` above): no shot or keep values."""
+        out = original_policy_decide(self, request)
+        if not request.restart and request.on_ball:
+            choice = {Choice.SHOOT: "shoot", Choice.KEEP: "dribble"}.get(out.choice)
+            state["decision"] = {"t": state["t"], "choice": choice or self.option.kind.value, "policy": True}
         return out
 
     def close(outcome: str) -> None:
@@ -106,6 +118,7 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int, fmt: str = "p
 
     match_runner.MatchStats.record = record
     attack_play.AttackDecider.decide = decide
+    match_decider.PolicyAttackDecider.decide = policy_decide
     try:
         res = match_runner.play_match(blue=blue, yellow=yellow, robots=6, field="div_b", seconds=seconds, seed=seed,
                                       progress=False, render=None,
@@ -113,6 +126,7 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int, fmt: str = "p
     finally:
         match_runner.MatchStats.record = original_record
         attack_play.AttackDecider.decide = original_decide
+        match_decider.PolicyAttackDecider.decide = original_policy_decide
     return ([{**s, "seed": seed, "score": res.score} for s in shots],
             [{**g, "seed": seed} for g in goals_other])
 
