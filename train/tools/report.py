@@ -712,6 +712,14 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
         ("learned, `mappo_attack_drill_bc_s0` actor (trained in the drill without fouls)", "attack_drill_ssl_learned_153000"),
         ("learned, fine-tuned under SSL rules (`mappo_attack_drill_ssl_s0`, `attack_drill_ssl.pt`)",
          "attack_drill_ssl_learned_ssl_153000")]),
+    "attack_drill_shipped_152000": lambda r: t.attack(r, [
+        ("hand-coded (the attacking plays' cost decision)", "attack_drill_handcoded_152000"),
+        ("learned, the shipped decision (`attack_drill.pt`, fine-tuned against the match's defence)",
+         "attack_drill_learned_shipped_152000")]),
+    "attack_drill_ssl_shipped_153000": lambda r: t.attack(r, [
+        ("hand-coded (the attacking plays' cost decision)", "attack_drill_ssl_handcoded_153000"),
+        ("learned, the shipped decision (`attack_drill.pt`, fine-tuned against the match's defence)",
+         "attack_drill_ssl_learned_shipped_153000")]),
     "mappo_attack_drill_ssl": lambda r: t.mappo_runs(r, [("mappo_attack_drill_ssl_s0", "attack_drill_ssl_learned_ssl_153000")],
                                                      "attack_drill_ssl_handcoded_153000", "goal"),
     "attack_drill_defended_154000": lambda r: t.attack(r, [
