@@ -25,6 +25,7 @@ import tempfile
 import time
 from pathlib import Path
 
+from ssl_marl.cli import build_parser
 from ssl_marl.io import atomic_write_json
 from ssl_marl.runners.provenance import build_manifest
 
@@ -44,13 +45,13 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", default=None, help="write the record (JSON) here")
     ap.add_argument("--args", default=None,
-                    help="time these ssl-marl arguments instead of the README's (a quoted string naming --blue, "
-                         "--yellow and --seed, e.g. an earlier first command, for a side-by-side run)")
+                    help="time these ssl-marl match arguments instead of the README's (a quoted string, e.g. an "
+                         "earlier first command, for a side-by-side run)")
     a = ap.parse_args()
     args = ARGS if a.args is None else shlex.split(a.args)
-    for flag in ("--blue", "--yellow", "--seed"):
-        if flag not in args:
-            raise SystemExit(f"bench_readme_match: --args must name {flag}")
+    parsed = build_parser().parse_args(args)  # the CLI's own parser: its defaults, its errors
+    if parsed.command != "match":
+        raise SystemExit(f"bench_readme_match: --args must be an ssl-marl match command, got {parsed.command!r}")
     exe = shutil.which("ssl-marl")
     if exe is None:
         raise SystemExit("bench_readme_match: the ssl-marl command is not on PATH (install the package)")
@@ -69,8 +70,7 @@ def main() -> None:
            "simulated_s": float(line[2]), "match_wall_s": float(line[3]), "process_wall_s": float(wall),
            "max_rss_kb": int(rss), "gif_bytes": gif,
            "load_average_1min_before_after": [load_before, os.getloadavg()[0]], "date": time.strftime("%Y-%m-%d %H:%M"),
-           "manifest": build_manifest(rules={side: args[args.index(f"--{side}") + 1] for side in ("blue", "yellow")},
-                                      seeds={"seed": int(args[args.index("--seed") + 1])})}
+           "manifest": build_manifest(rules={"blue": parsed.blue, "yellow": parsed.yellow}, seeds={"seed": parsed.seed})}
     print(json.dumps({k: v for k, v in rec.items() if k != "manifest"}, indent=1))
     if a.out:
         atomic_write_json(a.out, rec)

@@ -42,6 +42,7 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int, fmt: str = "p
     from ssl_marl.physics.params import BallParams, RobotParams
     from ssl_marl.decisions import match_decider
     from ssl_marl.plays import attack_play
+    from ssl_marl.plays.attack_decision import AttackChoice
     from ssl_marl.plays.pass_decision import Choice
     from ssl_marl.plays.stats import MatchStatsTracker
     from ssl_marl.runners import match as match_runner
@@ -63,11 +64,14 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int, fmt: str = "p
         return out
 
     def policy_decide(self, request):
-        """A learned decision's open-play choice (its restarts reach ``decide`` above): no shot or keep values."""
+        """A learned decision's own choice (requests it hands to the cost decision reach ``decide`` above):
+        the option's kind as the decider counts it, no shot or keep values."""
+        asked = self.decisions
         out = original_policy_decide(self, request)
-        if not request.restart and request.on_ball:
-            choice = {Choice.SHOOT: "shoot", Choice.KEEP: "dribble"}.get(out.choice)
-            state["decision"] = {"t": state["t"], "choice": choice or self.option.kind.value, "policy": True}
+        if self.decisions > asked:
+            kind = (AttackChoice.SHOOT if out.choice is Choice.SHOOT else AttackChoice.DRIBBLE
+                    if out.choice is Choice.KEEP else self.option.kind)
+            state["decision"] = {"t": state["t"], "choice": kind.value, "policy": True}
         return out
 
     def close(outcome: str) -> None:

@@ -383,8 +383,9 @@ DECISION_SHIPPED_BASELINE_107100 = ["match_attack_learned_decision_vs_baseline_6
 DECISION_SHIPPED_BASELINE_107100_POOLED = [("attack-learned-decision vs baseline",
                                             tuple((n, "blue") for n in DECISION_SHIPPED_BASELINE_107100))]
 #: the attacking-game targets with the shipped learned decision: realistic and Division A against the baseline,
-#: self-play (commit c041229)
-DECISION_SHIPPED_BASELINE_TARGETS = ["match_attack_learned_decision_vs_baseline_600_ssl_realistic_107500",
+#: against the passing team, self-play (commit c041229)
+DECISION_SHIPPED_PASSING_107400 = ["match_attack_learned_decision_vs_passing_learned_600_ssl_107400"]
+DECISION_SHIPPED_TARGETS_107500 = ["match_attack_learned_decision_vs_baseline_600_ssl_realistic_107500",
                                      "match_attack_learned_decision_vs_baseline_600_ssl_div_a_11v11_107600",
                                      "match_attack_learned_decision_selfplay_600_ssl_107700"]
 #: the shipped learned decision against the cost decision in 11v11 Division A, SSL format, both colours (commit c041229)
@@ -487,6 +488,14 @@ def drill_vs_d0(tag: str) -> list[tuple[str, str]]:
             ("improved, first-decision labels (`attack_drill_value_d0.pt`)", f"attack_drill_improved_d0_{tag}")]
 
 
+def drill_vs_shipped(drill: str, seed: int) -> list[tuple[str, str]]:
+    """A drill's hand-coded decision and the shipped learned decision on one held-out run family
+    (``<drill>_handcoded_<seed>``, ``<drill>_learned_shipped_<seed>``)."""
+    return [("hand-coded (the attacking plays' cost decision)", f"{drill}_handcoded_{seed}"),
+            ("learned, the shipped decision (`attack_drill.pt`, fine-tuned against the match's defence)",
+             f"{drill}_learned_shipped_{seed}")]
+
+
 ATTACK_DRILL_RPI = [("hand-coded", "tuning/attack_drill_handcoded_val49000_87714dd"),
                     ("value actor, weight decay 1e-3 (`rollout_pi_attack_drill/a_1e-3_300.pt`)",
                      "tuning/attack_drill_rpi_wd1e-3_val49000"),
@@ -557,8 +566,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_shipped_div_a_107300": lambda r: m.series_600(r, DECISION_SHIPPED_DIV_A_107300),
     "decision_shipped_div_a_107300_pooled": lambda r: m.pooled_sides(r, DECISION_SHIPPED_DIV_A_107300_POOLED),
     "league_ssl_107200": lambda r: m.league(r, "league_ssl_107200"),
-    "decision_shipped_baseline_targets_107500": lambda r: m.series_600(r, DECISION_SHIPPED_BASELINE_TARGETS),
-    "decision_shipped_passing_107400": lambda r: m.series_600(r, ["match_attack_learned_decision_vs_passing_learned_600_ssl_107400"]),
+    "decision_shipped_baseline_targets_107500": lambda r: m.series_600(r, DECISION_SHIPPED_TARGETS_107500),
+    "decision_shipped_passing_107400": lambda r: m.series_600(r, DECISION_SHIPPED_PASSING_107400),
     "decision_series_ssl_105400": lambda r: m.series_600(r, DECISION_SSL_DRILL_105400),
     "decision_ssl_105400_pooled": lambda r: m.pooled_sides(r, DECISION_SSL_DRILL_105400_POOLED),
     "decision_series_ssl_105300": lambda r: m.series_600(r, DECISION_SSL_105300),
@@ -712,14 +721,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
         ("learned, `mappo_attack_drill_bc_s0` actor (trained in the drill without fouls)", "attack_drill_ssl_learned_153000"),
         ("learned, fine-tuned under SSL rules (`mappo_attack_drill_ssl_s0`, `attack_drill_ssl.pt`)",
          "attack_drill_ssl_learned_ssl_153000")]),
-    "attack_drill_shipped_152000": lambda r: t.attack(r, [
-        ("hand-coded (the attacking plays' cost decision)", "attack_drill_handcoded_152000"),
-        ("learned, the shipped decision (`attack_drill.pt`, fine-tuned against the match's defence)",
-         "attack_drill_learned_shipped_152000")]),
-    "attack_drill_ssl_shipped_153000": lambda r: t.attack(r, [
-        ("hand-coded (the attacking plays' cost decision)", "attack_drill_ssl_handcoded_153000"),
-        ("learned, the shipped decision (`attack_drill.pt`, fine-tuned against the match's defence)",
-         "attack_drill_ssl_learned_shipped_153000")]),
+    "attack_drill_shipped_152000": lambda r: t.attack(r, drill_vs_shipped("attack_drill", 152000)),
+    "attack_drill_ssl_shipped_153000": lambda r: t.attack(r, drill_vs_shipped("attack_drill_ssl", 153000)),
     "mappo_attack_drill_ssl": lambda r: t.mappo_runs(r, [("mappo_attack_drill_ssl_s0", "attack_drill_ssl_learned_ssl_153000")],
                                                      "attack_drill_ssl_handcoded_153000", "goal"),
     "attack_drill_defended_154000": lambda r: t.attack(r, [
