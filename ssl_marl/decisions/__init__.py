@@ -10,11 +10,13 @@ Registries (names used by ``ssl-marl eval-task`` and the trainers):
   ``ssl_marl.decisions.attack:Attack3v2Env``, the passing play's options; "attack-drill":
   ``ssl_marl.decisions.attack_drill:AttackDrillEnv``, the attacking plays' options;
   "attack-drill-ssl": ``AttackDrillSSLEnv``, the same drill under SSL rules;
-  "attack-drill-defended": ``AttackDrillDefendedEnv``, under SSL rules against the match's defence).
+  "attack-drill-defended": ``AttackDrillDefendedEnv``, under SSL rules against the match's defence;
+  "attack-drill-mix": ``ssl_marl.decisions.attack_drill_mix:AttackDrillMixEnv``, one of the last two
+  drawn per episode).
 * :data:`HANDCODED_POLICIES`: task name -> the task's hand-coded benchmark policy class
   ("keepaway": ``HandcodedKeepawayPolicy``; "attack-3v2":
   ``ssl_marl.decisions.attack:HandcodedAttackPolicy``; "attack-drill":
-  ``ssl_marl.decisions.attack_drill:HandcodedAttackDrillPolicy``, for all three drills).
+  ``ssl_marl.decisions.attack_drill:HandcodedAttackDrillPolicy``, for all four drills).
 * :data:`DECISION_POLICIES`: policy name -> factory ``(task, seed=0, actor=None) ->
   DecisionPolicy`` ("random", "always-hold" (keepaway only), "handcoded", "learned"
   (``ssl_marl.decisions.learned``, the shipped actor or ``actor``), "improved" (the hand-coded
@@ -39,6 +41,7 @@ _TASK_SPECS: dict[str, str] = {
     "attack-drill": "ssl_marl.decisions.attack_drill:AttackDrillEnv",
     "attack-drill-ssl": "ssl_marl.decisions.attack_drill:AttackDrillSSLEnv",
     "attack-drill-defended": "ssl_marl.decisions.attack_drill:AttackDrillDefendedEnv",
+    "attack-drill-mix": "ssl_marl.decisions.attack_drill_mix:AttackDrillMixEnv",
 }
 #: task name -> "module:hand-coded benchmark policy class" (constructor takes no required arguments)
 _HANDCODED_SPECS: dict[str, str] = {
@@ -47,6 +50,7 @@ _HANDCODED_SPECS: dict[str, str] = {
     "attack-drill": "ssl_marl.decisions.attack_drill:HandcodedAttackDrillPolicy",
     "attack-drill-ssl": "ssl_marl.decisions.attack_drill:HandcodedAttackDrillPolicy",
     "attack-drill-defended": "ssl_marl.decisions.attack_drill:HandcodedAttackDrillPolicy",
+    "attack-drill-mix": "ssl_marl.decisions.attack_drill:HandcodedAttackDrillPolicy",
 }
 
 

@@ -47,7 +47,7 @@ _TRAIN_CMD = {
 #: tasks whose agents decide with another task's observation and options (an actor of one
 #: plays the other): the full-match task continues the attack drill's decision
 SHARED_DECISIONS: dict[str, str] = {"attack-match": "attack-drill", "attack-drill-ssl": "attack-drill",
-                                     "attack-drill-defended": "attack-drill"}
+                                     "attack-drill-defended": "attack-drill", "attack-drill-mix": "attack-drill"}
 
 
 def decision_family(task: str | None) -> str | None:

@@ -106,6 +106,10 @@ MARL_TASKS: dict[str, MARLTask] = {
                                       {**_DRILL_DEFAULTS, "val_seed": 48500, "val_every": 0},
                                       "the attack drill under SSL rules against the match's defence: goalie, two "
                                       "defenders, a presser and two marks (ssl_marl.decisions)"),
+    "attack-drill-mix": MARLTask(DecisionTaskFactory("attack-drill-mix"), "goal",
+                                 {**_DRILL_DEFAULTS, "val_seed": 47500, "val_every": 0},
+                                 "the attack drill under SSL rules with its defence drawn per episode: a goalie and "
+                                 "one defender, or the match's defence (ssl_marl.decisions.attack_drill_mix)"),
     "attack-match": MARLTask(_attack_match, "goal_diff",
                              {"val_seed": 49500, "num_envs": 2, "rollout_steps": 32, "total_decisions": 2_000,
                               "checkpoint_every": 2, "val_every": 0, "val_episodes": 4,
