@@ -15,10 +15,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                                           "results do not depend on --workers. Writes OUT/results.json (keepaway: "
                                           "mean_duration_s, attack-3v2 / attack drills: goal_rate, with 95% intervals, outcomes, "
                                           "every episode) and OUT/duration_hist.png.")
-    k.add_argument("task", choices=("keepaway", "attack-3v2", "attack-drill", "attack-drill-ssl", "attack-drill-defended"),
+    k.add_argument("task", choices=("keepaway", "attack-3v2", "attack-drill", "attack-drill-ssl", "attack-drill-defended",
+                                     "attack-drill-mix"),
                    help="the decision task (attack-drill: the attacking plays' options; attack-drill-ssl: the "
                         "same under SSL rules, the attackers' fouls ending the attack; attack-drill-defended: "
-                        "under SSL rules against the match's defence, a goalie, two defenders, a presser and two marks)")
+                        "under SSL rules against the match's defence, a goalie, two defenders, a presser and two marks; "
+                        "attack-drill-mix: one of the last two drawn per episode, half of each)")
     k.add_argument("--policy", choices=("learned", "handcoded", "random", "always-hold", "improved"),
                    default="handcoded",
                    help="decision policy: learned (ssl_marl.decisions.learned, the shipped actor or --actor), "
@@ -30,13 +32,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         "(default handcoded)")
     k.add_argument("--actor", default=None, metavar="PATH",
                    help="decision actor file (.pt, loaded with weights_only=True); with --policy learned the "
-                        "policy's actor (default: ssl_marl/decisions/pretrained/TASK.pt, attack_drill.pt for attack-drill-ssl and attack-drill-defended), with --policy improved "
+                        "policy's actor (default: ssl_marl/decisions/pretrained/TASK.pt, attack_drill.pt for the other attack drills), with --policy improved "
                         "the value actor (python -m train.mappo_rollout_pi fit; default: "
                         "ssl_marl/decisions/pretrained/TASK_value.pt)")
     k.add_argument("--episodes", type=positive_int("--episodes"), default=1000, help="episodes (default 1000)")
     k.add_argument("--seed", type=int, default=None,
                    help="evaluation seed: episode i uses SEED+i (default 40000 keepaway, 41000 attack-3v2, 43000 "
-                        "attack-drill, 153000 attack-drill-ssl, 154000 attack-drill-defended)")
+                        "attack-drill, 153000 attack-drill-ssl, 154000 attack-drill-defended, 156000 attack-drill-mix)")
     k.add_argument("--workers", type=positive_int("--workers"), default=None,
                    help="worker processes (default 1; with --backend ray: tasks in flight, default the cluster's CPUs)")
     k.add_argument("--realism", choices=("none", "realistic"), default="none", help="noise / latency preset")

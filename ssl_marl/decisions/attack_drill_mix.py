@@ -130,4 +130,26 @@ class AttackDrillMixEnv(ParallelEnv):
             d.close()
 
 
-__all__ = ["AttackDrillMixEnv", "MIX_DRILLS", "drill_of_seed", "check_p_defended"]
+class PerDrillPolicy:
+    """A decision policy of the mix that plays ``policies[drill name]`` in each drill (e.g. to
+    clone two teachers into one actor: ``python -m train.mappo_bc --teacher``). Every drill of
+    :data:`MIX_DRILLS` needs a policy."""
+
+    name = "per-drill"
+
+    def __init__(self, policies: Mapping[str, Any]) -> None:
+        missing = [d for d in MIX_DRILLS if d not in policies]
+        unknown = [d for d in policies if d not in MIX_DRILLS]
+        if missing or unknown:
+            raise ValueError(f"PerDrillPolicy needs a policy for each drill of {MIX_DRILLS}; "
+                             f"missing {missing}, unknown {unknown}")
+        self.policies = dict(policies)
+
+    def reset(self, env: Any) -> None:
+        self.policies[env.drill_name].reset(env)
+
+    def act(self, env: Any, agent: str, obs: np.ndarray, info: dict) -> int:
+        return int(self.policies[env.drill_name].act(env, agent, obs, info))
+
+
+__all__ = ["AttackDrillMixEnv", "PerDrillPolicy", "MIX_DRILLS", "drill_of_seed", "check_p_defended"]

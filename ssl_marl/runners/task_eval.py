@@ -38,9 +38,9 @@ from .result import write_result_folder
 from .statistics import t_interval, time_summary, wilson_interval
 
 TASK_SCORES = {"keepaway": "duration", "attack-3v2": "goal", "attack-drill": "goal", "attack-drill-ssl": "goal",
-               "attack-drill-defended": "goal"}
+               "attack-drill-defended": "goal", "attack-drill-mix": "goal"}
 DEFAULT_SEEDS = {"keepaway": 40_000, "attack-3v2": 41_000, "attack-drill": 43_000, "attack-drill-ssl": 153_000,
-                 "attack-drill-defended": 154_000}
+                 "attack-drill-defended": 154_000, "attack-drill-mix": 156_000}
 
 _CACHE: dict[tuple, Any] = {}
 
@@ -153,11 +153,12 @@ def evaluate_task(task: str, policy: str, episodes: int = 1000, seed: int | None
     written to ``out/results.json`` with ``out/duration_hist.png`` when ``out`` is given).
 
     Args:
-        task: "keepaway", "attack-3v2", "attack-drill", "attack-drill-ssl" or "attack-drill-defended".
+        task: "keepaway", "attack-3v2", "attack-drill", "attack-drill-ssl", "attack-drill-defended" or
+            "attack-drill-mix".
         policy: "learned", "handcoded", "random", "always-hold" (keepaway only) or "improved".
         episodes: number of episodes.
         seed: episode i uses seed + i (default: 40000 keepaway, 41000 attack-3v2, 43000 attack-drill,
-            153000 attack-drill-ssl, 154000 attack-drill-defended).
+            153000 attack-drill-ssl, 154000 attack-drill-defended, 156000 attack-drill-mix).
         workers: worker processes (or Ray tasks in flight); results do not depend on it.
         realism: "none" or "realistic".
         field: "div_b" or "div_a".

@@ -39,20 +39,38 @@ from train.mappo.loop import space_scaling, save_decision_actor, task_config
 from train.mappo.tasks import get_task
 
 
-def collect_demonstrations(task: str, policy: str, episodes: int, seed: int,
+def parse_teachers(task: str, teachers: list[str], seed: int = 0) -> Any:
+    """``DRILL=POLICY[:ACTOR]`` strings (one per drill of the mix task) as a
+    :class:`~ssl_marl.decisions.attack_drill_mix.PerDrillPolicy`; ValueError naming a malformed entry."""
+    from ssl_marl.decisions import make_decision_policy
+    from ssl_marl.decisions.attack_drill_mix import PerDrillPolicy
+
+    policies = {}
+    for t in teachers:
+        drill, sep, rest = t.partition("=")
+        if not sep or not drill or not rest:
+            raise ValueError(f"--teacher {t!r}: expected DRILL=POLICY[:ACTOR]")
+        name, _, actor = rest.partition(":")
+        policies[drill] = make_decision_policy(name, task, seed=seed, actor=actor or None)
+    return PerDrillPolicy(policies)
+
+
+def collect_demonstrations(task: str, policy: str | Any, episodes: int, seed: int,
                            progress: bool = True) -> dict[str, np.ndarray]:
     """The policy's decisions on seeds ``seed + i``: raw ``obs``, ``mask``, ``option``, ``agent``
-    (index in ``possible_agents``) and ``episode`` (i), one row per decision."""
+    (index in ``possible_agents``) and ``episode`` (i), one row per decision. ``policy``: a name
+    of the decision-policy registry or a policy object."""
     from ssl_marl.decisions import make_decision_policy
 
     if episodes < 1:
         raise ValueError(f"episodes must be >= 1, got {episodes}")
     cfg = task_config(task)
     env = get_task(task).factory(**cfg.task_kwargs)
-    pol = make_decision_policy(policy, task, seed=seed)
+    pol = make_decision_policy(policy, task, seed=seed) if isinstance(policy, str) else policy
+    label = policy if isinstance(policy, str) else getattr(policy, "name", "policy")
     agents = list(env.possible_agents)
     rows: dict[str, list[Any]] = {k: [] for k in ("obs", "mask", "option", "agent", "episode")}
-    for i in tqdm(range(episodes), disable=not progress, desc=f"demos {task}/{policy}", unit="ep"):
+    for i in tqdm(range(episodes), disable=not progress, desc=f"demos {task}/{label}", unit="ep"):
         obs, infos = env.reset(seed=seed + i)
         pol.reset(env)
         while env.agents:
@@ -148,6 +166,9 @@ def main(argv: list[str] | None = None) -> int:
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--task", required=True, help="decision task (keepaway, attack-3v2, attack-drill)")
     p.add_argument("--policy", default="handcoded", help="benchmark policy to imitate (default handcoded)")
+    p.add_argument("--teacher", action="append", default=[], metavar="DRILL=POLICY[:ACTOR]",
+                   help="attack-drill-mix only, once per drill (one-defender, defended): the policy to imitate "
+                        "in that drill, with its actor file if it takes one (replaces --policy)")
     p.add_argument("--episodes", type=int, default=300, help="demonstration episodes (default 300)")
     p.add_argument("--seed", type=int, default=100000, help="episode i uses seed SEED+i (default 100000)")
     p.add_argument("--epochs", type=int, default=200, help="passes over the training decisions (default 200)")
@@ -158,8 +179,13 @@ def main(argv: list[str] | None = None) -> int:
     args = p.parse_args(argv)
     if not 0 <= args.holdout < 1:
         p.error(f"--holdout must be in [0, 1), got {args.holdout}")
-    demos = collect_demonstrations(args.task, args.policy, args.episodes, args.seed, progress=not args.no_progress)
+    try:
+        policy = parse_teachers(args.task, args.teacher, seed=args.seed) if args.teacher else args.policy
+    except (ValueError, FileNotFoundError) as e:
+        p.error(str(e))
+    name = ", ".join(args.teacher) if args.teacher else args.policy
+    demos = collect_demonstrations(args.task, policy, args.episodes, args.seed, progress=not args.no_progress)
     agent, stats = fit_actor(args.task, demos, epochs=args.epochs, lr=args.lr, holdout=args.holdout, seed=args.seed)
-    save_bc_actor(agent, args.task, args.out, seed=args.seed, bc={"policy": args.policy, **stats})
-    print(json.dumps({"out": str(args.out), "policy": args.policy, **stats}))
+    save_bc_actor(agent, args.task, args.out, seed=args.seed, bc={"policy": name, **stats})
+    print(json.dumps({"out": str(args.out), "policy": name, **stats}))
     return 0
