@@ -371,6 +371,12 @@ DECISION_DEFENDED_106900 = [name for lo in (106900, 106920, 106940) for name in 
 DECISION_DEFENDED_106900_POOLED = m.both_colours_rounds(
     "decision fine-tuned against the match's defence (`attack_drill_defended.pt`) vs attack-learned, SSL format",
     DECISION_DEFENDED_106900, 106900)
+#: the decision cloned from two teachers in the mixed drill against the cost decision, both colours (commit 229f9cc)
+DECISION_MIX_107800 = [f"match_attack_drill_mix_bc_decision_vs_attack_learned_600_ssl_{lo}" for lo in (107800, 107820, 107840)] + \
+    [f"match_attack_learned_vs_attack_drill_mix_bc_decision_600_ssl_{lo}" for lo in (107810, 107830, 107850)]
+DECISION_MIX_107800_POOLED = m.both_colours_rounds(
+    "decision cloned from two teachers in the mixed drill (`attack_drill_mix_bc.pt`) vs attack-learned, SSL format",
+    [DECISION_MIX_107800[k] for i in range(3) for k in (i, i + 3)], 107800)
 #: the same decision under the realistic preset, 10 matches on each colour (commit bdf646b)
 DECISION_DEFENDED_REALISTIC_107000 = ["match_attack_drill_defended_decision_vs_attack_learned_600_ssl_realistic_107000",
                                       "match_attack_learned_vs_attack_drill_defended_decision_600_ssl_realistic_107010"]
@@ -496,6 +502,28 @@ def drill_vs_shipped(drill: str, seed: int) -> list[tuple[str, str]]:
              f"{drill}_learned_shipped_{seed}")]
 
 
+#: the decision cloned from two teachers in attack-drill-mix (`bc_attack_drill_mix/attack_drill_mix_bc.pt`)
+MIX_CLONE = "cloned from two teachers in attack-drill-mix (`attack_drill_mix_bc.pt`)"
+
+
+def drill_vs_mix(drill: str, seed: int, shipped: str) -> list[tuple[str, str]]:
+    """A drill's hand-coded decision, the shipped learned decision (its run ``shipped``) and the
+    decision cloned in the mix (``<drill>_learned_mix_bc_<seed>``) on one held-out run family."""
+    return [("hand-coded (the attacking plays' cost decision)", f"{drill}_handcoded_{seed}"),
+            ("learned, the shipped decision (`attack_drill.pt`, fine-tuned against the match's defence)", shipped),
+            (f"learned, {MIX_CLONE}", f"{drill}_learned_mix_bc_{seed}")]
+
+
+def mix_selection(drill: str) -> list[tuple[str, str]]:
+    """The candidates of the mix's selection on 300 validation episodes of one drill (seeds 47600-47899)."""
+    d = "tuning/attack_drill_mix_selection"
+    return [("hand-coded", f"{d}/handcoded_{drill}_47600"),
+            ("the clone (`bc_attack_drill_mix`)", f"{d}/bc_clone_{drill}_47600"),
+            ("`mappo_attack_drill_mix_s0`, final (12,004 decisions)", f"{d}/s0_final_{drill}_47600"),
+            ("`mappo_attack_drill_mix_bc_s1`, best validation (6,597 decisions)", f"{d}/s1_6597_{drill}_47600"),
+            ("`mappo_attack_drill_mix_bc_s1`, final (12,042 decisions)", f"{d}/s1_final_{drill}_47600")]
+
+
 ATTACK_DRILL_RPI = [("hand-coded", "tuning/attack_drill_handcoded_val49000_87714dd"),
                     ("value actor, weight decay 1e-3 (`rollout_pi_attack_drill/a_1e-3_300.pt`)",
                      "tuning/attack_drill_rpi_wd1e-3_val49000"),
@@ -559,6 +587,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_ssl_103_pooled": lambda r: m.pooled_sides(r, DECISION_SSL_103_POOLED),
     "decision_series_ssl_106900": lambda r: m.series_600(r, DECISION_DEFENDED_106900),
     "decision_ssl_106900_pooled": lambda r: m.pooled_sides(r, DECISION_DEFENDED_106900_POOLED),
+    "decision_series_ssl_mix_107800": lambda r: m.series_600(r, DECISION_MIX_107800),
+    "decision_ssl_mix_107800_pooled": lambda r: m.pooled_sides(r, DECISION_MIX_107800_POOLED),
     "decision_series_realistic_107000": lambda r: m.series_600(r, DECISION_DEFENDED_REALISTIC_107000),
     "decision_realistic_107000_pooled": lambda r: m.pooled_sides(r, DECISION_DEFENDED_REALISTIC_107000_POOLED),
     "decision_shipped_baseline_107100": lambda r: m.series_600(r, DECISION_SHIPPED_BASELINE_107100),
@@ -722,6 +752,16 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
         ("learned, fine-tuned under SSL rules (`mappo_attack_drill_ssl_s0`, `attack_drill_ssl.pt`)",
          "attack_drill_ssl_learned_ssl_153000")]),
     "attack_drill_shipped_152000": lambda r: t.attack(r, drill_vs_shipped("attack_drill", 152000)),
+    "attack_drill_mix_selection_ssl": lambda r: t.attack(r, mix_selection("attack-drill-ssl")),
+    "attack_drill_mix_selection_defended": lambda r: t.attack(r, mix_selection("attack-drill-defended")),
+    "mappo_attack_drill_mix": lambda r: t.mappo_runs(
+        r, [("mappo_attack_drill_mix_s0", ""), ("mappo_attack_drill_mix_bc_s1", "")], None, "goal"),
+    "attack_drill_mix_152000": lambda r: t.attack(r, drill_vs_mix("attack_drill", 152000,
+                                                                  "attack_drill_learned_shipped_152000")),
+    "attack_drill_ssl_mix_153000": lambda r: t.attack(r, drill_vs_mix("attack_drill_ssl", 153000,
+                                                                      "attack_drill_ssl_learned_shipped_153000")),
+    "attack_drill_defended_mix_154000": lambda r: t.attack(r, drill_vs_mix(
+        "attack_drill_defended", 154000, "attack_drill_defended_learned_defended_154000")),
     "attack_drill_ssl_shipped_153000": lambda r: t.attack(r, drill_vs_shipped("attack_drill_ssl", 153000)),
     "mappo_attack_drill_ssl": lambda r: t.mappo_runs(r, [("mappo_attack_drill_ssl_s0", "attack_drill_ssl_learned_ssl_153000")],
                                                      "attack_drill_ssl_handcoded_153000", "goal"),
