@@ -377,6 +377,12 @@ DECISION_MIX_107800 = [f"match_attack_drill_mix_bc_decision_vs_attack_learned_60
 DECISION_MIX_107800_POOLED = m.both_colours_rounds(
     "decision cloned from two teachers in the mixed drill (`attack_drill_mix_bc.pt`) vs attack-learned, SSL format",
     [DECISION_MIX_107800[k] for i in range(3) for k in (i, i + 3)], 107800)
+#: the clone shipped (commit 5847c51) under the realistic preset against the cost decision, 10 matches on each colour
+DECISION_MIX_REALISTIC_107900 = ["match_attack_learned_decision_vs_attack_learned_600_ssl_realistic_107900",
+                                 "match_attack_learned_vs_attack_learned_decision_600_ssl_realistic_107910"]
+DECISION_MIX_REALISTIC_107900_POOLED = [m.both_colours(
+    "attack-learned-decision (the clone, commit 5847c51) vs attack-learned, SSL format, `--realism realistic`",
+    *DECISION_MIX_REALISTIC_107900)]
 #: the same decision under the realistic preset, 10 matches on each colour (commit bdf646b)
 DECISION_DEFENDED_REALISTIC_107000 = ["match_attack_drill_defended_decision_vs_attack_learned_600_ssl_realistic_107000",
                                       "match_attack_learned_vs_attack_drill_defended_decision_600_ssl_realistic_107010"]
@@ -536,7 +542,8 @@ ATTACK_DRILL_44000 = [("hand-coded", "attack_drill_handcoded_44000"),
 
 #: the README's first command over seeds 0-19: its match length and the lengths around it
 README_GOAL_RATE = ["readme_match_selfplay_300", "readme_match_selfplay_450", "readme_match_selfplay_600",
-                    "readme_match_selfplay_450_fed7dee", "readme_match_learned_decision_360"]
+                    "readme_match_selfplay_450_fed7dee", "readme_match_learned_decision_360",
+                    "readme_match_learned_decision_360_5847c51"]
 
 TABLES: dict[str, Callable[[Path], list[str]]] = {
     "skills_paper": lambda r: t.skills(r, SKILLS_PAPER),
@@ -596,6 +603,9 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_shipped_div_a_107300": lambda r: m.series_600(r, DECISION_SHIPPED_DIV_A_107300),
     "decision_shipped_div_a_107300_pooled": lambda r: m.pooled_sides(r, DECISION_SHIPPED_DIV_A_107300_POOLED),
     "league_ssl_107200": lambda r: m.league(r, "league_ssl_107200"),
+    "league_ssl_108000": lambda r: m.league(r, "league_ssl_108000"),
+    "decision_mix_realistic_107900": lambda r: m.series_600(r, DECISION_MIX_REALISTIC_107900),
+    "decision_mix_realistic_107900_pooled": lambda r: m.pooled_sides(r, DECISION_MIX_REALISTIC_107900_POOLED),
     "decision_shipped_baseline_targets_107500": lambda r: m.series_600(r, DECISION_SHIPPED_TARGETS_107500),
     "decision_shipped_passing_107400": lambda r: m.series_600(r, DECISION_SHIPPED_PASSING_107400),
     "decision_series_ssl_105400": lambda r: m.series_600(r, DECISION_SSL_DRILL_105400),
