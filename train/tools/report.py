@@ -372,11 +372,12 @@ DECISION_DEFENDED_106900_POOLED = m.both_colours_rounds(
     "decision fine-tuned against the match's defence (`attack_drill_defended.pt`) vs attack-learned, SSL format",
     DECISION_DEFENDED_106900, 106900)
 #: the decision cloned from two teachers in the mixed drill against the cost decision, both colours (commit 229f9cc)
-DECISION_MIX_107800 = [f"match_attack_drill_mix_bc_decision_vs_attack_learned_600_ssl_{lo}" for lo in (107800, 107820, 107840)] + \
-    [f"match_attack_learned_vs_attack_drill_mix_bc_decision_600_ssl_{lo}" for lo in (107810, 107830, 107850)]
+DECISION_MIX_107800 = [name for lo in (107800, 107820, 107840) for name in (
+    f"match_attack_drill_mix_bc_decision_vs_attack_learned_600_ssl_{lo}",
+    f"match_attack_learned_vs_attack_drill_mix_bc_decision_600_ssl_{lo + 10}")]
 DECISION_MIX_107800_POOLED = m.both_colours_rounds(
     "decision cloned from two teachers in the mixed drill (`attack_drill_mix_bc.pt`) vs attack-learned, SSL format",
-    [DECISION_MIX_107800[k] for i in range(3) for k in (i, i + 3)], 107800)
+    DECISION_MIX_107800, 107800)
 #: the clone shipped (commit 5847c51) under the realistic preset against the cost decision, 10 matches on each colour
 DECISION_MIX_REALISTIC_107900 = ["match_attack_learned_decision_vs_attack_learned_600_ssl_realistic_107900",
                                  "match_attack_learned_vs_attack_learned_decision_600_ssl_realistic_107910"]
@@ -515,9 +516,8 @@ MIX_CLONE = "cloned from two teachers in attack-drill-mix (`attack_drill_mix_bc.
 def drill_vs_mix(drill: str, seed: int, shipped: str) -> list[tuple[str, str]]:
     """A drill's hand-coded decision, the shipped learned decision (its run ``shipped``) and the
     decision cloned in the mix (``<drill>_learned_mix_bc_<seed>``) on one held-out run family."""
-    return [("hand-coded (the attacking plays' cost decision)", f"{drill}_handcoded_{seed}"),
-            ("learned, the shipped decision (`attack_drill.pt`, fine-tuned against the match's defence)", shipped),
-            (f"learned, {MIX_CLONE}", f"{drill}_learned_mix_bc_{seed}")]
+    handcoded, (shipped_label, _) = drill_vs_shipped(drill, seed)
+    return [handcoded, (shipped_label, shipped), (f"learned, {MIX_CLONE}", f"{drill}_learned_mix_bc_{seed}")]
 
 
 def mix_selection(drill: str) -> list[tuple[str, str]]:
