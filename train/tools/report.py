@@ -543,7 +543,7 @@ ATTACK_DRILL_44000 = [("hand-coded", "attack_drill_handcoded_44000"),
 #: the README's first command over seeds 0-19: its match length and the lengths around it
 README_GOAL_RATE = ["readme_match_selfplay_300", "readme_match_selfplay_450", "readme_match_selfplay_600",
                     "readme_match_selfplay_450_fed7dee", "readme_match_learned_decision_360",
-                    "readme_match_learned_decision_360_5847c51"]
+                    "readme_match_learned_decision_360_5847c51", "readme_match_learned_decision_450_5847c51"]
 
 TABLES: dict[str, Callable[[Path], list[str]]] = {
     "skills_paper": lambda r: t.skills(r, SKILLS_PAPER),
