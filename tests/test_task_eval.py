@@ -71,3 +71,13 @@ def test_evaluate_task_rejects_bad_inputs():
         evaluate_task("keepaway", "random", episodes=0, progress=False)
     with pytest.raises(ValueError, match="unknown decision task"):
         evaluate_task("chess", "random", episodes=1, progress=False)
+
+
+def test_every_decision_task_is_scored_and_seeded():
+    """eval-task offers exactly the registered decision tasks, each with a score kind and a default seed."""
+    from ssl_marl.decisions import DECISION_TASKS
+    from ssl_marl.runners.task_eval import DEFAULT_SEEDS, TASK_SCORES
+
+    assert set(TASK_SCORES) == set(DEFAULT_SEEDS) == set(DECISION_TASKS)
+    with pytest.raises(SystemExit):
+        main(["eval-task", "no-such-task", "--episodes", "1"])

@@ -9,14 +9,15 @@ from .options import FIELDS, add_backend, add_tracker_option, positive_int, work
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     """Add the ``eval-task`` subparser."""
+    from ..runners.task_eval import DEFAULT_SEEDS, TASK_SCORES
+
     k = subparsers.add_parser("eval-task", help="evaluate a decision policy on keepaway, attack-3v2 or an attack drill",
                               description="Episodes of a decision-level multi-agent task (ssl_marl/decisions) with "
                                           "one policy for all learning agents; episode i uses seed SEED+i, so "
                                           "results do not depend on --workers. Writes OUT/results.json (keepaway: "
                                           "mean_duration_s, attack-3v2 / attack drills: goal_rate, with 95% intervals, outcomes, "
                                           "every episode) and OUT/duration_hist.png.")
-    k.add_argument("task", choices=("keepaway", "attack-3v2", "attack-drill", "attack-drill-ssl", "attack-drill-defended",
-                                     "attack-drill-mix"),
+    k.add_argument("task", choices=tuple(TASK_SCORES),
                    help="the decision task (attack-drill: the attacking plays' options; attack-drill-ssl: the "
                         "same under SSL rules, the attackers' fouls ending the attack; attack-drill-defended: "
                         "under SSL rules against the match's defence, a goalie, two defenders, a presser and two marks; "
@@ -37,8 +38,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         "ssl_marl/decisions/pretrained/TASK_value.pt)")
     k.add_argument("--episodes", type=positive_int("--episodes"), default=1000, help="episodes (default 1000)")
     k.add_argument("--seed", type=int, default=None,
-                   help="evaluation seed: episode i uses SEED+i (default 40000 keepaway, 41000 attack-3v2, 43000 "
-                        "attack-drill, 153000 attack-drill-ssl, 154000 attack-drill-defended, 156000 attack-drill-mix)")
+                   help="evaluation seed: episode i uses SEED+i (default "
+                        + ", ".join(f"{seed} {task}" for task, seed in DEFAULT_SEEDS.items()) + ")")
     k.add_argument("--workers", type=positive_int("--workers"), default=None,
                    help="worker processes (default 1; with --backend ray: tasks in flight, default the cluster's CPUs)")
     k.add_argument("--realism", choices=("none", "realistic"), default="none", help="noise / latency preset")
