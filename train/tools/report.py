@@ -401,6 +401,16 @@ DECISION_SHIPPED_PASSING_107400 = ["match_attack_learned_decision_vs_passing_lea
 DECISION_SHIPPED_TARGETS_107500 = ["match_attack_learned_decision_vs_baseline_600_ssl_realistic_107500",
                                      "match_attack_learned_decision_vs_baseline_600_ssl_div_a_11v11_107600",
                                      "match_attack_learned_decision_selfplay_600_ssl_107700"]
+#: the clone shipped as the learned decision: against the passing team (the clone as ``--blue-decision``, commit
+#: fc0a0d9), the baseline team (20 matches), the attacking-game issue's other targets (commit c7b4a91)
+DECISION_CLONE_PASSING_108100 = ["match_attack_drill_mix_bc_decision_vs_passing_learned_600_ssl_108100"]
+DECISION_CLONE_BASELINE_108120 = ["match_attack_learned_decision_vs_baseline_600_ssl_108120",
+                                  "match_attack_learned_decision_vs_baseline_600_ssl_108130"]
+DECISION_CLONE_BASELINE_108120_POOLED = [("attack-learned-decision (the clone) vs baseline",
+                                          tuple((n, "blue") for n in DECISION_CLONE_BASELINE_108120))]
+DECISION_CLONE_TARGETS_108140 = ["match_attack_learned_decision_vs_baseline_600_ssl_realistic_108160",
+                                 "match_attack_learned_decision_vs_baseline_600_ssl_div_a_11v11_108170",
+                                 "match_attack_learned_decision_selfplay_600_ssl_108140"]
 #: the shipped learned decision against the cost decision in 11v11 Division A, SSL format, both colours (commit c041229)
 DECISION_SHIPPED_DIV_A_107300 = ["match_attack_learned_decision_vs_attack_learned_600_ssl_div_a_11v11_107300",
                                  "match_attack_learned_vs_attack_learned_decision_600_ssl_div_a_11v11_107310"]
@@ -608,6 +618,10 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_mix_realistic_107900_pooled": lambda r: m.pooled_sides(r, DECISION_MIX_REALISTIC_107900_POOLED),
     "decision_shipped_baseline_targets_107500": lambda r: m.series_600(r, DECISION_SHIPPED_TARGETS_107500),
     "decision_shipped_passing_107400": lambda r: m.series_600(r, DECISION_SHIPPED_PASSING_107400),
+    "decision_clone_passing_108100": lambda r: m.series_600(r, DECISION_CLONE_PASSING_108100),
+    "decision_clone_baseline_108120": lambda r: m.series_600(r, DECISION_CLONE_BASELINE_108120),
+    "decision_clone_baseline_108120_pooled": lambda r: m.pooled_attack(r, DECISION_CLONE_BASELINE_108120_POOLED),
+    "decision_clone_targets_108140": lambda r: m.series_600(r, DECISION_CLONE_TARGETS_108140),
     "decision_series_ssl_105400": lambda r: m.series_600(r, DECISION_SSL_DRILL_105400),
     "decision_ssl_105400_pooled": lambda r: m.pooled_sides(r, DECISION_SSL_DRILL_105400_POOLED),
     "decision_series_ssl_105300": lambda r: m.series_600(r, DECISION_SSL_105300),
