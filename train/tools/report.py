@@ -408,6 +408,10 @@ DECISION_CLONE_BASELINE_108120 = ["match_attack_learned_decision_vs_baseline_600
                                   "match_attack_learned_decision_vs_baseline_600_ssl_108130"]
 DECISION_CLONE_BASELINE_108120_POOLED = [("attack-learned-decision (the clone) vs baseline",
                                           tuple((n, "blue") for n in DECISION_CLONE_BASELINE_108120))]
+DECISION_CLONE_DIV_A_108180 = ["match_attack_learned_decision_vs_attack_learned_600_ssl_div_a_11v11_108180",
+                               "match_attack_learned_vs_attack_learned_decision_600_ssl_div_a_11v11_108183"]
+DECISION_CLONE_DIV_A_108180_POOLED = [m.both_colours(
+    "attack-learned-decision (the clone) vs attack-learned, 11v11 Division A, SSL format", *DECISION_CLONE_DIV_A_108180)]
 DECISION_CLONE_TARGETS_108140 = ["match_attack_learned_decision_vs_baseline_600_ssl_realistic_108160",
                                  "match_attack_learned_decision_vs_baseline_600_ssl_div_a_11v11_108170",
                                  "match_attack_learned_decision_selfplay_600_ssl_108140"]
@@ -622,6 +626,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_clone_baseline_108120": lambda r: m.series_600(r, DECISION_CLONE_BASELINE_108120),
     "decision_clone_baseline_108120_pooled": lambda r: m.pooled_attack(r, DECISION_CLONE_BASELINE_108120_POOLED),
     "decision_clone_targets_108140": lambda r: m.series_600(r, DECISION_CLONE_TARGETS_108140),
+    "decision_clone_div_a_108180": lambda r: m.series_600(r, DECISION_CLONE_DIV_A_108180),
+    "decision_clone_div_a_108180_pooled": lambda r: m.pooled_sides(r, DECISION_CLONE_DIV_A_108180_POOLED),
     "decision_series_ssl_105400": lambda r: m.series_600(r, DECISION_SSL_DRILL_105400),
     "decision_ssl_105400_pooled": lambda r: m.pooled_sides(r, DECISION_SSL_DRILL_105400_POOLED),
     "decision_series_ssl_105300": lambda r: m.series_600(r, DECISION_SSL_105300),
