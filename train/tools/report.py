@@ -516,10 +516,11 @@ def drill_vs_d0(tag: str) -> list[tuple[str, str]]:
 
 
 def drill_vs_shipped(drill: str, seed: int) -> list[tuple[str, str]]:
-    """A drill's hand-coded decision and the shipped learned decision on one held-out run family
-    (``<drill>_handcoded_<seed>``, ``<drill>_learned_shipped_<seed>``)."""
+    """A drill's hand-coded decision and the learned decision shipped before the clone on one held-out
+    run family (``<drill>_handcoded_<seed>``, ``<drill>_learned_shipped_<seed>``)."""
     return [("hand-coded (the attacking plays' cost decision)", f"{drill}_handcoded_{seed}"),
-            ("learned, the shipped decision (`attack_drill.pt`, fine-tuned against the match's defence)",
+            ("learned, fine-tuned against the match's defence (`attack_drill_defended.pt`, shipped as `attack_drill.pt` "
+             "before the clone)",
              f"{drill}_learned_shipped_{seed}")]
 
 
