@@ -18,3 +18,19 @@ def loopback_server(world: WorldConfig, lockstep: bool = False, **kw) -> tuple[B
                           yellow_port=0, grsim_port=0, grsim_status_ports=kw.pop("grsim_status_ports", (9, 9)),
                           sync_blue_port=0, sync_yellow_port=0, lockstep=lockstep, time_origin=0.0, **kw)
     return BridgeServer(world, config), vision, referee
+
+
+def receive_at_least(receiver: UdpReceiver, n: int, timeout_s: float = 10.0) -> list[tuple[bytes, tuple[str, int]]]:
+    """Every datagram ``receiver`` gets until it has ``n`` or ``timeout_s`` wall seconds pass.
+
+    Loopback datagrams are delivered by the kernel's soft interrupts, which a loaded
+    machine may run tens of milliseconds late: a test waits for its packets, never a
+    fixed sleep."""
+    import time
+
+    out = receiver.receive()
+    deadline = time.monotonic() + timeout_s
+    while len(out) < n and time.monotonic() < deadline:
+        time.sleep(0.01)
+        out += receiver.receive()
+    return out

@@ -7,7 +7,7 @@ import pytest
 
 pytest.importorskip("google.protobuf")
 
-from bridge_helpers import LOOP  # noqa: E402
+from bridge_helpers import LOOP, receive_at_least  # noqa: E402
 
 from ssl_marl.bridge.proto import ssl_referee_pb2 as ref_pb  # noqa: E402
 from ssl_marl.bridge.proto import ssl_vision_wrapper_pb2 as wrap_pb  # noqa: E402
@@ -45,10 +45,7 @@ def test_serve_writes_an_ssl_log_that_replays_and_renders(tmp_path):
     sender = UdpSender([f"{LOOP}:{sink.port}"])
     assert replay(log, sender, sender, speed=0) == len(messages)
     sender.close()
-    import time
-
-    time.sleep(0.2)
-    assert len(sink.receive()) > 0
+    assert len(receive_at_least(sink, 1)) > 0
     sink.close()
 
     gif = tmp_path / "replay.gif"

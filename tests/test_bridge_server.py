@@ -10,7 +10,7 @@ import pytest
 
 pytest.importorskip("google.protobuf")
 
-from bridge_helpers import LOOP, loopback_server  # noqa: E402
+from bridge_helpers import LOOP, loopback_server, receive_at_least  # noqa: E402
 
 from ssl_marl.bridge.client import PlayBrain, run_lockstep_match  # noqa: E402
 from ssl_marl.bridge.lockstep import LockstepClient, whole_periods  # noqa: E402
@@ -204,8 +204,6 @@ def test_serve_and_play_parsers():
 
 
 def test_tracker_stream_and_several_vision_addresses():
-    import time
-
     from ssl_marl.bridge.proto import ssl_vision_tracked_pb2 as trk_pb
     from ssl_marl.bridge.transport import UdpReceiver
 
@@ -216,11 +214,10 @@ def test_tracker_stream_and_several_vision_addresses():
     try:
         for _ in range(5):
             server.advance()
-        time.sleep(0.1)
-        packets = [trk_pb.TrackerWrapperPacket.FromString(d) for d, _ in tracker.receive()]
+        packets = [trk_pb.TrackerWrapperPacket.FromString(d) for d, _ in receive_at_least(tracker, 5)]
         assert len(packets) >= 5 and len(packets[-1].tracked_frame.robots) == 4
-        first, other = vision.receive(), second.receive()
-        assert len(first) >= len(other) >= 5 * 4  # four cameras per period, both addresses
+        first, other = receive_at_least(vision, 5 * 4), receive_at_least(second, 5 * 4)
+        assert min(len(first), len(other)) >= 5 * 4  # four cameras per period, both addresses
     finally:
         server.close()
         for s in (vision, referee, tracker, second):
