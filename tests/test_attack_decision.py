@@ -1,5 +1,6 @@
 """The attacking carrier's choice on constructed scenes (team frame, Division B)."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -140,3 +141,22 @@ def test_params_are_checked():
         AttackParams(chip_samples=1)
     with pytest.raises(ValueError):
         AttackParams(redirect_full=1.3)
+
+
+def test_set_piece_passes_go_inside_the_side_line():
+    """A free kick 0.2 m inside the side line: with the attacking plays' restart parameters
+    the kicker passes to the support 1.5 m inside, not to the one 0.3 m inside the line
+    ahead of it (the pass along the line that runs out), which open play would still offer."""
+    from ssl_marl.plays.attack_play import ATTACK_RESTART_DECISION
+
+    hw = F.half_width
+    ball = np.array([0.0, -(hw - 0.2)])
+    mates = np.array([[-4.2, 0.0], [-0.3, -(hw - 0.2)], [2.5, -(hw - 0.3)], [1.0, -(hw - 1.5)], [-2.0, 0.0],
+                      [-3.0, 1.0]])
+    opponents = np.array([[4.3, 0.0], [3.0, 0.0], [2.0, 1.0], [-1.0, 1.5]])
+    restart = AttackParams(decision=ATTACK_RESTART_DECISION)
+    d = decide_attack(ball, 1, mates, opponents, F, RP, BP, restart)
+    assert d.choice in (AttackChoice.PASS, AttackChoice.CHIP, AttackChoice.REDIRECT) and d.best.teammate == 3
+    assert 2 not in {o.teammate for o in d.options}
+    wide_open = AttackParams(decision=dataclasses.replace(ATTACK_RESTART_DECISION, receive_margin_m=0.15))
+    assert 2 in {o.teammate for o in decide_attack(ball, 1, mates, opponents, F, RP, BP, wide_open).options}

@@ -127,6 +127,19 @@ def test_pass_candidates_respect_length_and_field_limits():
         decide(p, 7, np.zeros((3, 2)), np.zeros((0, 2)), F)
 
 
+def test_receive_margin_keeps_passes_off_the_side_line():
+    """A receiver 0.25 m inside the side line is a pass target with the default margin
+    (0.15 m) and not with a 0.6 m one; one 1 m inside is a target with both."""
+    p = np.array([0.0, F.half_width - 0.2])  # a free kick on the side line
+    pts = {2: np.array([2.0, F.half_width - 0.25]), 3: np.array([2.0, F.half_width - 1.0])}
+    mates = np.zeros((6, 2))
+    assert [o.teammate for o in evaluate_passes(p, pts, mates, np.zeros((0, 2)), F, RP, BP, DP)] == [2, 3]
+    wide = dataclasses.replace(DP, receive_margin_m=0.6)
+    assert [o.teammate for o in evaluate_passes(p, pts, mates, np.zeros((0, 2)), F, RP, BP, wide)] == [3]
+    with pytest.raises(ValueError, match="receive_margin_m"):
+        DecisionParams(receive_margin_m=float("nan"))
+
+
 def test_decision_params_validation_names_the_field():
     with pytest.raises(ValueError, match="min_pass_m"):
         DecisionParams(min_pass_m=7.0)

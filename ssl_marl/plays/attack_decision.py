@@ -192,7 +192,7 @@ def evaluate_chips(p: np.ndarray, receive_points: dict[int, np.ndarray], teammat
     opp = np.asarray(opponents, float).reshape(-1, 2)
     mates = np.asarray(teammates, float).reshape(-1, 2)
     out = []
-    for k, q, _ in pass_candidates(p, receive_points, 0.0, dp.max_pass_m, field_geom):
+    for k, q, _ in pass_candidates(p, receive_points, 0.0, dp.max_pass_m, field_geom, dp.receive_margin_m):
         kick = lane_chip(p, q, opp, rp, bp)
         if kick is None:
             continue

@@ -29,7 +29,8 @@ pass/receive handshake; restart, offense and defense plays) with three changes:
   the pass line (``approach_behind``) and kicks it from there without the dribbler
   (``strike``: the set piece's kicker may not stay in contact with the ball); a set
   piece with no pass opened the attacker takes with one kick
-  (:class:`~ssl_marl.plays.set_piece_kick.SetPieceKick`).
+  (:class:`~ssl_marl.plays.set_piece_kick.SetPieceKick`); a set piece's pass goes to a
+  receive point at least 0.6 m inside the field lines (:data:`ATTACK_RESTART_DECISION`).
 
 The coordinator's setup check of the flat lane is off (``abort_margin_s = -inf``): a
 chip is chosen exactly when the flat lane is blocked.
@@ -51,7 +52,7 @@ from ..physics.params import BallParams
 from .assignment import Assignment
 from .attack_decision import AttackChoice, AttackDecision, AttackOption, AttackParams, decide_attack
 from .chip_pass_tactic import ChipPass
-from .pass_coordinator import CarrierDecider, CarrierRequest, PassCoordinator, PassingParams, PassPlan
+from .pass_coordinator import RESTART_DECISION, CarrierDecider, CarrierRequest, PassCoordinator, PassingParams, PassPlan
 from .pass_decision import Choice, Decision, PassOption
 from .passing_play import restart_applicable
 from .passing_roles import passer_role, passing_attacker_role, receiver_role
@@ -76,8 +77,15 @@ from .tactic_base import Tactic
 #: (``keep_out_of_opp_area``: touching it there is a foul; 12 SSL-format tuning matches against the
 #: no-pass baseline, seeds 61790-61801: 2.1 such fouls per match against 5.7, the same 17-5 goals;
 #: docs/RESULTS.md, section 13, "Fouls in the opponent's defense area").
+#: A set piece's pass goes to a receive point at least 0.6 m inside the field lines
+#: (``receive_margin_m``; open play keeps 0.15 m): a free kick lies 0.2 m inside the side line after
+#: the ball left the field, and a pass along that line to a support 0.3 m inside it ran out or into
+#: the opponent keeping 0.5 m from the ball (self-play tuning matches, seeds 60900-60905;
+#: docs/RESULTS.md, section 15, "Set-piece passes off the side line").
+ATTACK_RESTART_DECISION = dataclasses.replace(RESTART_DECISION, receive_margin_m=0.6)
 ATTACK_PASSING = PassingParams(abort_margin_s=-math.inf, decide_at_restart=True, set_piece_shot=True, dead_ball_s=0.6,
-                               contested_kick=True, press_urgent_m=0.6, dribble_cut_m=0.8, keep_out_of_opp_area=True)
+                               contested_kick=True, press_urgent_m=0.6, dribble_cut_m=0.8, keep_out_of_opp_area=True,
+                               restart_decision=ATTACK_RESTART_DECISION)
 #: the attacking team's decision parameters (chip, redirect; an :class:`AttackDecider` built
 #: without parameters reads them when it is built)
 ATTACK_PARAMS = AttackParams()
@@ -283,6 +291,6 @@ def attack_decider_of(plays) -> AttackDecider | None:
     return None
 
 
-__all__ = ["ATTACK_PASSING", "ATTACK_PARAMS", "ATTACK_SPOTS", "ATTACK_MARK_BIAS", "AttackCounters", "AttackDecider", "SpotPlanner",
+__all__ = ["ATTACK_PASSING", "ATTACK_RESTART_DECISION", "ATTACK_PARAMS", "ATTACK_SPOTS", "ATTACK_MARK_BIAS", "AttackCounters", "AttackDecider", "SpotPlanner",
            "AttackPrepare", "chip_passer_role",
            "redirect_receiver_role", "spot_support_role", "attack_roles", "attack_plays", "attack_decider_of"]

@@ -114,6 +114,8 @@ class DecisionParams:
         near_shot_m, far_shot_m, far_shot_floor: distance term of the shot value.
         pass_margin_lo, pass_margin_hi: pass path margin (s) at which P is 0 / 1.
         min_pass_m, max_pass_m: pass length range (m).
+        receive_margin_m: a pass's receive point lies at least this far inside the field
+            lines (m; :func:`valid_receive_point`).
         w_receiver_shot, w_progress, w_possession: pass value weights.
         progress_scale_m: forward gain (m) that counts as full progress.
         w_keep, press_lo, press_hi: keep value (see the module docstring).
@@ -149,6 +151,7 @@ class DecisionParams:
     pass_margin_hi: float = 0.4
     min_pass_m: float = 1.0
     max_pass_m: float = 6.0
+    receive_margin_m: float = 0.15
     w_receiver_shot: float = 0.6
     w_progress: float = 0.2
     w_possession: float = 0.25
@@ -175,9 +178,10 @@ class DecisionParams:
         for lo, hi in pairs:
             if not getattr(self, lo) < getattr(self, hi):
                 raise ValueError(f"DecisionParams.{lo} must be smaller than DecisionParams.{hi}")
-        if not (isinstance(self.receiver_guard_m, (int, float)) and math.isfinite(self.receiver_guard_m)
-                and self.receiver_guard_m >= 0):
-            raise ValueError(f"DecisionParams.receiver_guard_m must be a finite number >= 0, got {self.receiver_guard_m!r}")
+        for name in ("receiver_guard_m", "receive_margin_m"):
+            v = getattr(self, name)
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and v >= 0):
+                raise ValueError(f"DecisionParams.{name} must be a finite number >= 0, got {v!r}")
         if not (isinstance(self.path_samples, int) and self.path_samples >= 2):
             raise ValueError(f"DecisionParams.path_samples must be an integer >= 2, got {self.path_samples!r}")
 
@@ -403,14 +407,15 @@ def valid_receive_point(q: np.ndarray, field: FieldGeometry, margin: float = 0.1
 
 
 def pass_candidates(p: np.ndarray, receive_points: dict[int, np.ndarray], min_m: float, max_m: float,
-                    field: FieldGeometry) -> list[tuple[int, np.ndarray, float]]:
+                    field: FieldGeometry, margin: float = 0.15) -> list[tuple[int, np.ndarray, float]]:
     """``(teammate, receive point, length)`` of each ``{teammate: point}`` a pass from ``p``
-    may go to: ``min_m`` to ``max_m`` metres long, at a :func:`valid_receive_point`."""
+    may go to: ``min_m`` to ``max_m`` metres long, at a :func:`valid_receive_point` (at least
+    ``margin`` m inside the field lines)."""
     out = []
     for k, q in receive_points.items():
         q = np.asarray(q, float)
         length = float(np.hypot(*(q - p)))
-        if min_m <= length <= max_m and valid_receive_point(q, field):
+        if min_m <= length <= max_m and valid_receive_point(q, field, margin):
             out.append((k, q, length))
     return out
 
@@ -443,7 +448,8 @@ def evaluate_passes(p: np.ndarray, receive_points: dict[int, np.ndarray], teamma
     opp = np.asarray(opponents, float).reshape(-1, 2)
     mates = np.asarray(teammates, float).reshape(-1, 2)
     out = []
-    for k, q, length in pass_candidates(p, receive_points, params.min_pass_m, params.max_pass_m, field):
+    for k, q, length in pass_candidates(p, receive_points, params.min_pass_m, params.max_pass_m, field,
+                                        params.receive_margin_m):
         v0 = pass_kick_speed(length, bp, rp, params)
         margin = path_margin(p, q, v0, opp, rp, bp, params, receiver=mates[k])
         if heading is not None:
