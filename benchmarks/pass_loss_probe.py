@@ -26,6 +26,10 @@ control, whose free kicks make most of the passes).
         --out results/tuning/pass_loss_probe_ssl_selfplay.json
     # the same with every flat kick past a teammate counted as a pass:
     python benchmarks/pass_loss_probe.py ... --pass-max-arrive-speed inf --out results/tuning/pass_loss_probe_any_speed.json
+    # the attacking plays' set-piece passes to receive points at least M m inside the field lines
+    # (ATTACK_RESTART_DECISION.receive_margin_m; the attacking teams of this process only):
+    python benchmarks/pass_loss_probe.py --format ssl --blue attack-learned-decision --yellow attack-learned-decision \
+        --restart-receive-margin 0.15 --seeds 60900-60902 --out results/tuning/set_piece_margin_0.15.json
 """
 
 from __future__ import annotations
@@ -176,8 +180,16 @@ def main(argv: list[str] | None = None) -> int:
                              "a teammate in its lane counts as a pass; default: the statistics' own)")
         ap.add_argument("--format", choices=("plain", "ssl"), default="plain",
                         help="match format (ssl_marl.runners.match.format_options; default plain)")
+        ap.add_argument("--restart-receive-margin", type=float, default=None, metavar="M",
+                        help="the attacking plays' set-piece passes go to receive points at least M m inside "
+                             "the field lines (ATTACK_RESTART_DECISION.receive_margin_m; default: the plays' own)")
 
     args = probe_args(__doc__.splitlines()[0], "61600-61601", "JSON output (summary and every pass)", argv, extra)
+    from ssl_marl.plays import attack_play
+
+    if args.restart_receive_margin is not None:  # read when the attacking plays are built
+        attack_play.ATTACK_PASSING = dataclasses.replace(attack_play.ATTACK_PASSING, restart_decision=dataclasses.replace(
+            attack_play.ATTACK_PASSING.restart_decision, receive_margin_m=args.restart_receive_margin))
     passes = [p for s in args.seeds
               for p in probe_match(args.blue, args.yellow, args.seconds, s, args.pass_max_arrive_speed, args.format)]
     for p in passes:
@@ -185,7 +197,9 @@ def main(argv: list[str] | None = None) -> int:
     from ssl_marl.plays.stats import StatsParams
 
     rule = StatsParams().pass_max_arrive_speed if args.pass_max_arrive_speed is None else args.pass_max_arrive_speed
-    write_probe(args, {"summary": {**summarize(passes), "pass_max_arrive_speed": str(rule)}, "passes": passes})
+    margin = attack_play.ATTACK_PASSING.restart_decision.receive_margin_m
+    write_probe(args, {"summary": {**summarize(passes), "pass_max_arrive_speed": str(rule),
+                                   "restart_receive_margin_m": margin}, "passes": passes})
     return 0
 
 

@@ -366,13 +366,15 @@ def pass_losses_by_play(paths: Iterable[Path]) -> Lines:
         d = json.loads(path.read_text())
         seeds, rules = d["manifest"]["seeds"]["seeds"], d["manifest"]["rules"]
         commit = commit_label(d["manifest"]["git"])
+        margin = d["summary"].get("restart_receive_margin_m")  # the probe's --restart-receive-margin
+        margin = f", set-piece passes {margin:g} m inside the lines" if margin is not None else ""
         for team in ("blue", "yellow"):
             for label, sp in (("set pieces", True), ("open play", False)):
                 ps = [q for q in d["passes"] if q["team"] == team and bool(q.get("set_piece")) == sp]
                 if not ps:
                     continue
                 outcomes, completion, lost_cells = _pass_outcome_cells(ps)
-                rows.append(f"| {min(seeds)}-{max(seeds)} | {commit} | {team} ({rules[team]}) | {label} | {len(ps)} | "
+                rows.append(f"| {min(seeds)}-{max(seeds)} | {commit} | {team} ({rules[team]}{margin}) | {label} | {len(ps)} | "
                             f"{outcomes} | {completion} | {lost_cells} |")
     return rows
 
