@@ -412,6 +412,11 @@ DECISION_CLONE_DIV_A_108180 = ["match_attack_learned_decision_vs_attack_learned_
                                "match_attack_learned_vs_attack_learned_decision_600_ssl_div_a_11v11_108183"]
 DECISION_CLONE_DIV_A_108180_POOLED = [m.both_colours(
     "attack-learned-decision (the clone) vs attack-learned, 11v11 Division A, SSL format", *DECISION_CLONE_DIV_A_108180)]
+#: the attacking plays' set-piece passes 0.6 m inside the field lines, with the clone (commit 26fde69)
+RESTART_MARGIN_SELFPLAY_108200 = ["match_attack_learned_decision_selfplay_600_ssl_108200"]
+RESTART_MARGIN_BASELINE_108220 = ["match_attack_learned_decision_vs_baseline_600_ssl_108220"]
+RESTART_MARGIN_BASELINE_108220_POOLED = [("attack-learned-decision (the clone), set-piece passes 0.6 m inside the lines, "
+                                          "vs baseline", tuple((n, "blue") for n in RESTART_MARGIN_BASELINE_108220))]
 DECISION_CLONE_TARGETS_108140 = ["match_attack_learned_decision_vs_baseline_600_ssl_realistic_108160",
                                  "match_attack_learned_decision_vs_baseline_600_ssl_div_a_11v11_108170",
                                  "match_attack_learned_decision_selfplay_600_ssl_108140"]
@@ -627,6 +632,11 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "decision_clone_baseline_108120": lambda r: m.series_600(r, DECISION_CLONE_BASELINE_108120),
     "decision_clone_baseline_108120_pooled": lambda r: m.pooled_attack(r, DECISION_CLONE_BASELINE_108120_POOLED),
     "decision_clone_targets_108140": lambda r: m.series_600(r, DECISION_CLONE_TARGETS_108140),
+    "set_piece_margin_probe": lambda r: m.pass_losses_by_play([r / "tuning" / "set_piece_margin_0.15.json",
+                                                               r / "tuning" / "set_piece_margin_0.6.json"]),
+    "restart_margin_selfplay_108200": lambda r: m.series_600(r, RESTART_MARGIN_SELFPLAY_108200),
+    "restart_margin_baseline_108220": lambda r: m.series_600(r, RESTART_MARGIN_BASELINE_108220),
+    "restart_margin_baseline_108220_pooled": lambda r: m.pooled_attack(r, RESTART_MARGIN_BASELINE_108220_POOLED),
     "decision_clone_div_a_108180": lambda r: m.series_600(r, DECISION_CLONE_DIV_A_108180),
     "decision_clone_div_a_108180_pooled": lambda r: m.pooled_sides(r, DECISION_CLONE_DIV_A_108180_POOLED),
     "decision_series_ssl_105400": lambda r: m.series_600(r, DECISION_SSL_DRILL_105400),
