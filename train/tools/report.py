@@ -563,7 +563,8 @@ ATTACK_DRILL_44000 = [("hand-coded", "attack_drill_handcoded_44000"),
 #: the README's first command over seeds 0-19: its match length and the lengths around it
 README_GOAL_RATE = ["readme_match_selfplay_300", "readme_match_selfplay_450", "readme_match_selfplay_600",
                     "readme_match_selfplay_450_fed7dee", "readme_match_learned_decision_360",
-                    "readme_match_learned_decision_360_5847c51", "readme_match_learned_decision_450_5847c51"]
+                    "readme_match_learned_decision_360_5847c51", "readme_match_learned_decision_450_5847c51",
+                    "readme_match_learned_decision_450_26fde69"]
 
 TABLES: dict[str, Callable[[Path], list[str]]] = {
     "skills_paper": lambda r: t.skills(r, SKILLS_PAPER),
@@ -782,7 +783,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "attack_drill_aim": lambda r: t.probe_rows(r / "tuning" / "attack_drill_aim.json", "rule"),
     "attack_drill_rollout_values": lambda r: t.rollout_values([r / f for f in ROLLOUT_VALUES], "decision"),
     "attack_drill_rollout_choices": lambda r: t.rollout_values([r / f for f in ROLLOUT_VALUES], "choice"),
-    "mappo_attack_match": lambda r: t.mappo_runs(r, [("mappo_attack_match_s0", "")], None, "goal"),
+    "mappo_attack_match": lambda r: t.mappo_runs(r, [("mappo_attack_match_s0", ""), ("mappo_attack_match_clone_s1", "")],
+                                                None, "goal"),
     "mappo_attack_drill": lambda r: t.mappo_runs(r, [("mappo_attack_drill_bc_s0", "attack_drill_learned")],
                                                  "attack_drill_handcoded", "goal"),
     "mappo_attack_drill_v2": lambda r: t.mappo_runs(r, [("mappo_attack_drill_v2_s0", "attack_drill_learned_v2_42000")],
