@@ -89,6 +89,11 @@ from ..physics.field import FieldGeometry
 from ..physics.params import BallParams, RobotParams
 
 
+#: m: a pass's receive point lies at least this far inside the field lines in open play
+#: (:attr:`DecisionParams.receive_margin_m`'s default)
+RECEIVE_MARGIN_M = 0.15
+
+
 @dataclass(frozen=True)
 class DecisionParams:
     """Parameters of the value functions (see the module docstring).
@@ -151,7 +156,7 @@ class DecisionParams:
     pass_margin_hi: float = 0.4
     min_pass_m: float = 1.0
     max_pass_m: float = 6.0
-    receive_margin_m: float = 0.15
+    receive_margin_m: float = RECEIVE_MARGIN_M
     w_receiver_shot: float = 0.6
     w_progress: float = 0.2
     w_possession: float = 0.25
@@ -399,7 +404,7 @@ def keep_value(p: np.ndarray, opponents: np.ndarray, rp: RobotParams, bp: BallPa
     return params.w_keep * pressure
 
 
-def valid_receive_point(q: np.ndarray, field: FieldGeometry, margin: float = 0.15) -> bool:
+def valid_receive_point(q: np.ndarray, field: FieldGeometry, margin: float = RECEIVE_MARGIN_M) -> bool:
     """A pass may go to ``q``: inside the field (by ``margin``) and outside both defense areas."""
     q = np.asarray(q, float)
     return bool(field.in_field(q, margin) and not field.in_defense_area(q, -1, 0.1)
@@ -407,7 +412,7 @@ def valid_receive_point(q: np.ndarray, field: FieldGeometry, margin: float = 0.1
 
 
 def pass_candidates(p: np.ndarray, receive_points: dict[int, np.ndarray], min_m: float, max_m: float,
-                    field: FieldGeometry, margin: float = 0.15) -> list[tuple[int, np.ndarray, float]]:
+                    field: FieldGeometry, margin: float) -> list[tuple[int, np.ndarray, float]]:
     """``(teammate, receive point, length)`` of each ``{teammate: point}`` a pass from ``p``
     may go to: ``min_m`` to ``max_m`` metres long, at a :func:`valid_receive_point` (at least
     ``margin`` m inside the field lines)."""
@@ -509,7 +514,7 @@ def choose(shot: float, keep: float, options: tuple, params: DecisionParams) -> 
     return Choice.KEEP, best
 
 
-__all__ = ["DecisionParams", "Choice", "PassOption", "Decision", "motion_time", "body_reach_time", "opponent_reach_time",
+__all__ = ["RECEIVE_MARGIN_M", "DecisionParams", "Choice", "PassOption", "Decision", "motion_time", "body_reach_time", "opponent_reach_time",
            "path_margins", "path_margin", "pass_success", "pass_kick_speeds", "open_goal_interval", "shot_value",
            "pass_kick_speed", "keep_value", "valid_receive_point", "pass_candidates", "margin_success",
            "receive_value", "teammates_except", "evaluate_passes", "choose", "decide"]
