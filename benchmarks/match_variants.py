@@ -58,6 +58,9 @@ match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
   rebounds the supports may take;
 * ``ssl-spots-goal-0.5``: the SSL format with the supports' spots valuing nearness to the goal more
   (``SpotParams.w_goal`` 0.5, default 0.2; ``ATTACK_SPOTS``): supports closer to the goal mouth;
+* ``ssl-restart-redirect-1.5`` / ``-2`` / ``-3``: the SSL format with the attacking team's set pieces
+  weighting a pass into a redirect (one-touch shot) 1.5 / 2 / 3 times the receiver's shot value
+  (``AttackParams.restart_w_redirect``; open play keeps ``w_redirect`` 1; ``ATTACK_PARAMS``);
 * ``opp-one-defender`` / ``opp-no-defender``: the plain format against a weakened defence: the
   standard plays (the ``baseline`` / ``learned`` teams' plays) keep only their first defender /
   none of their defenders on the ball-goal line (the robots freed take the plays' next roles:
@@ -95,7 +98,8 @@ RULES = {"plain": {}, "free-kick": {"ssl_restarts": True, "stop_s": 0.0},
 #: the match format of each variant (:func:`ssl_marl.runners.match.format_options`; default plain)
 FORMAT = {"ssl": "ssl", "ssl-receiver-guard": "ssl", "ssl-tap-0.7": "ssl", "ssl-mark-0.25": "ssl", "ssl-opp-area": "ssl",
           "ssl-in-opp-area": "ssl", "ssl-arrive-2.5": "ssl", "ssl-arrive-3": "ssl",
-          "ssl-shoot-0.15": "ssl", "ssl-spots-goal-0.5": "ssl"}
+          "ssl-shoot-0.15": "ssl", "ssl-spots-goal-0.5": "ssl",
+          **{f"ssl-restart-redirect-{w}": "ssl" for w in ("1.5", "2", "3")}}
 #: the attacking plays' mark bias of each variant (``ATTACK_MARK_BIAS``)
 MARK_BIAS = {"ssl-mark-0.25": 0.25}
 #: ``ATTACK_PASSING`` fields of each variant
@@ -114,7 +118,8 @@ DECISION = {"receiver-guard": {"receiver_guard_m": 1.0}, "ssl-receiver-guard": {
 #: ``ATTACK_PASSING.decision`` fields of each variant (open play only; the set pieces' decision unchanged)
 OPEN_PLAY_DECISION = {"ssl-shoot-0.15": {"shoot_threshold": 0.15}}
 #: ``ATTACK_PARAMS`` fields of each variant
-ATTACK = {"redirect-4.5": {"redirect_arrive_speed": 4.5}, "reach-shot": {"reach_shot_s": 0.05}}
+ATTACK = {"redirect-4.5": {"redirect_arrive_speed": 4.5}, "reach-shot": {"reach_shot_s": 0.05},
+          **{f"ssl-restart-redirect-{w}": {"restart_w_redirect": float(w)} for w in ("1.5", "2", "3")}}
 #: ``ATTACK_SPOTS`` fields of each variant
 SPOTS = {"edge-spots": {"edge_spots": 5}, "ssl-spots-goal-0.5": {"w_goal": 0.5}}
 #: defenders the standard plays keep in each variant (the rest of their roles unchanged)

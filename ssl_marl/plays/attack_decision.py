@@ -87,6 +87,9 @@ class AttackParams:
         redirect_full, redirect_zero: deflection (rad) up to which a redirect is fully
             useful / beyond which it is useless (TIGERs: 0.9 / 1.2).
         w_redirect: weight of the receiver's shot value in a pass into a redirect.
+        restart_w_redirect: ``w_redirect`` of set pieces (kickoff and free kicks, where the
+            defence stands 0.5 m off the ball until the kick); None: ``w_redirect``. Read by
+            :class:`~ssl_marl.plays.attack_play.AttackDecider` for restart requests.
         min_redirect_shot: a redirect needs at least this receiver shot value.
         redirect_arrive_speed: a pass into a redirect is kicked, and its success rated, to
             arrive this fast (m/s; a firm ball for the kicker to meet).
@@ -103,6 +106,7 @@ class AttackParams:
     redirect_full: float = 0.9
     redirect_zero: float = 1.2
     w_redirect: float = 1.0
+    restart_w_redirect: float | None = None
     min_redirect_shot: float = 0.2
     redirect_arrive_speed: float = 2.5
     reach_shot_s: float | None = None
@@ -113,6 +117,11 @@ class AttackParams:
             raise ValueError("AttackParams.redirect_full must be >= 0 and smaller than redirect_zero")
         if not (isinstance(self.chip_samples, int) and self.chip_samples >= 2):
             raise ValueError(f"AttackParams.chip_samples must be an integer >= 2, got {self.chip_samples!r}")
+        for name in ("w_redirect", "restart_w_redirect"):
+            w = getattr(self, name)
+            if not (w is None and name == "restart_w_redirect") and not (
+                    isinstance(w, (int, float)) and math.isfinite(w) and w >= 0):
+                raise ValueError(f"AttackParams.{name} must be a finite weight >= 0, got {w!r}")
         r = self.reach_shot_s
         if r is not None and not (isinstance(r, (int, float)) and math.isfinite(r)):
             raise ValueError(f"AttackParams.reach_shot_s must be None or a finite margin (s), got {r!r}")

@@ -132,8 +132,12 @@ class AttackDecider:
 
     def request_params(self, request: CarrierRequest) -> AttackParams:
         """The attack decision's parameters for ``request``: ``params`` with the request's
-        decision parameters (open play or restart)."""
-        return dataclasses.replace(self.params, decision=request.params)
+        decision parameters (open play or restart) and, at a restart, the set pieces'
+        redirect weight (``AttackParams.restart_w_redirect``, where set)."""
+        p = self.params
+        if request.restart and p.restart_w_redirect is not None:
+            return dataclasses.replace(p, decision=request.params, w_redirect=p.restart_w_redirect)
+        return dataclasses.replace(p, decision=request.params)
 
     def decide(self, request: CarrierRequest) -> Decision:
         ctx = request.ctx
