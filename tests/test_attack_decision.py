@@ -160,3 +160,34 @@ def test_set_piece_passes_go_inside_the_side_line():
     assert 2 not in {o.teammate for o in d.options}
     wide_open = AttackParams(decision=dataclasses.replace(ATTACK_RESTART_DECISION, receive_margin_m=0.15))
     assert 2 in {o.teammate for o in decide_attack(ball, 1, mates, opponents, F, RP, BP, wide_open).options}
+
+
+def test_set_pieces_weight_redirects_with_their_own_weight():
+    """``restart_w_redirect`` sets the redirect weight of restart requests only; open play
+    keeps ``w_redirect``; None keeps ``w_redirect`` everywhere; a bad weight is refused."""
+    from ssl_marl.plays.attack_play import ATTACK_RESTART_DECISION, AttackDecider
+    from ssl_marl.plays.pass_coordinator import CarrierRequest
+
+    def request(restart: bool) -> CarrierRequest:
+        params = ATTACK_RESTART_DECISION if restart else DecisionParams()
+        return CarrierRequest(None, 1, (2,), params, restart, BP, 0.0)
+
+    dec = AttackDecider(AttackParams(restart_w_redirect=2.5))
+    assert dec.request_params(request(True)).w_redirect == 2.5
+    assert dec.request_params(request(True)).decision == ATTACK_RESTART_DECISION
+    assert dec.request_params(request(False)).w_redirect == 1.0
+    assert AttackDecider(AttackParams()).request_params(request(True)).w_redirect == 1.0
+    # a corner kick: the pass into a redirect is worth w times the receiver's shot value
+    hw = F.half_width
+    ball = np.array([3.8, -(hw - 0.2)])
+    mates = np.array([[-4.2, 0.0], [3.5, -(hw - 0.2)], [2.8, 0.0], [1.0, -1.5], [-2.0, 0.0], [-3.0, 1.0]])
+    opp = np.array([[4.4, 0.0], [3.6, -1.0], [3.4, 0.9], [1.5, 1.5], [-1.0, -1.5]])
+    red = {}
+    for w in (1.0, 3.0):
+        d = decide_attack(ball, 1, mates, opp, F, RP, BP,
+                          dataclasses.replace(dec.request_params(request(True)), w_redirect=w))
+        red[w] = next(o for o in d.options if o.kind is AttackChoice.REDIRECT and o.teammate == 2)
+    assert red[3.0].value == pytest.approx(3.0 * red[1.0].value) and red[1.0].value > 0
+    for bad in (-1.0, math.nan, math.inf):
+        with pytest.raises(ValueError, match="restart_w_redirect"):
+            AttackParams(restart_w_redirect=bad)

@@ -806,6 +806,11 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "attack_drill_defended_mix_154000": lambda r: t.attack(r, drill_vs_mix(
         "attack_drill_defended", 154000, "attack_drill_defended_learned_defended_154000")),
     "attack_drill_ssl_shipped_153000": lambda r: t.attack(r, drill_vs_shipped("attack_drill_ssl", 153000)),
+    "attack_drill_ssl_157000": lambda r: t.attack(r, [
+        ("hand-coded (the attacking plays' cost decision)", "attack_drill_ssl_handcoded_157000"),
+        (f"learned, {MIX_CLONE}", "attack_drill_ssl_learned_mix_bc_157000"),
+        ("learned, MAPPO from the clone in attack-drill-mix (`mappo_attack_drill_mix_bc_s1`, final snapshot "
+         "`actor-12042.pt`)", "attack_drill_ssl_learned_mix_ft_157000")]),
     "mappo_attack_drill_ssl": lambda r: t.mappo_runs(r, [("mappo_attack_drill_ssl_s0", "attack_drill_ssl_learned_ssl_153000")],
                                                      "attack_drill_ssl_handcoded_153000", "goal"),
     "attack_drill_defended_154000": lambda r: t.attack(r, [
