@@ -61,12 +61,15 @@ match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
 * ``ssl-restart-redirect-1.5`` / ``-2`` / ``-3``: the SSL format with the attacking team's set pieces
   weighting a pass into a redirect (one-touch shot) 1.5 / 2 / 3 times the receiver's shot value
   (``AttackParams.restart_w_redirect``; open play keeps ``w_redirect`` 1; ``ATTACK_PARAMS``);
+* ``ssl-restart-pass-0.6`` / ``-0.7``: the SSL format with the attacking team's set pieces passing only where
+  the pass is rated at least 0.6 / 0.7 likely to arrive (``min_pass_success`` of ``ATTACK_PASSING.restart_decision``,
+  default 0.5; open play keeps 0.35); without such a pass the set piece is one kick;
 * ``opp-one-defender`` / ``opp-no-defender``: the plain format against a weakened defence: the
   standard plays (the ``baseline`` / ``learned`` teams' plays) keep only their first defender /
   none of their defenders on the ball-goal line (the robots freed take the plays' next roles:
   marks and supports); the goalie is unchanged. A probe of what limits scoring, not a team.
 
-Writes per match the score, the blue team's statistics, the referee's counts and the fouls by team, and a
+Writes per match the score, both teams' statistics, the referee's counts and the fouls by team, and a
 summary: :func:`ssl_marl.runners.statistics.series_statistics` (win-draw-loss, goals, the goal
 difference per 600 s with its 95 % interval), ball-outs and blue shots per match.
 
@@ -99,7 +102,8 @@ RULES = {"plain": {}, "free-kick": {"ssl_restarts": True, "stop_s": 0.0},
 FORMAT = {"ssl": "ssl", "ssl-receiver-guard": "ssl", "ssl-tap-0.7": "ssl", "ssl-mark-0.25": "ssl", "ssl-opp-area": "ssl",
           "ssl-in-opp-area": "ssl", "ssl-arrive-2.5": "ssl", "ssl-arrive-3": "ssl",
           "ssl-shoot-0.15": "ssl", "ssl-spots-goal-0.5": "ssl",
-          **{f"ssl-restart-redirect-{w}": "ssl" for w in ("1.5", "2", "3")}}
+          **{f"ssl-restart-redirect-{w}": "ssl" for w in ("1.5", "2", "3")},
+          **{f"ssl-restart-pass-{v}": "ssl" for v in ("0.6", "0.7")}}
 #: the attacking plays' mark bias of each variant (``ATTACK_MARK_BIAS``)
 MARK_BIAS = {"ssl-mark-0.25": 0.25}
 #: ``ATTACK_PASSING`` fields of each variant
@@ -117,6 +121,8 @@ DECISION = {"receiver-guard": {"receiver_guard_m": 1.0}, "ssl-receiver-guard": {
             "ssl-arrive-3": {"pass_arrive_speed": 3.0}}
 #: ``ATTACK_PASSING.decision`` fields of each variant (open play only; the set pieces' decision unchanged)
 OPEN_PLAY_DECISION = {"ssl-shoot-0.15": {"shoot_threshold": 0.15}}
+#: ``ATTACK_PASSING.restart_decision`` fields of each variant (set pieces only; open play unchanged)
+RESTART_DECISION = {f"ssl-restart-pass-{v}": {"min_pass_success": float(v)} for v in ("0.6", "0.7")}
 #: ``ATTACK_PARAMS`` fields of each variant
 ATTACK = {"redirect-4.5": {"redirect_arrive_speed": 4.5}, "reach-shot": {"reach_shot_s": 0.05},
           **{f"ssl-restart-redirect-{w}": {"restart_w_redirect": float(w)} for w in ("1.5", "2", "3")}}
@@ -158,10 +164,11 @@ def set_standard_defenders(n: int | None) -> None:
 
 
 def set_attack_passing(passing: dict | None = None, decision: dict | None = None,
-                       open_decision: dict | None = None) -> None:
+                       open_decision: dict | None = None, restart_decision: dict | None = None) -> None:
     """Replace the attacking plays' ``ATTACK_PASSING`` (read when a team is built) by a copy
     with the ``passing`` fields, in both its open-play and restart decision parameters the
-    ``decision`` fields, and in the open-play ones also the ``open_decision`` fields."""
+    ``decision`` fields, in the open-play ones also the ``open_decision`` fields and in the
+    restart ones the ``restart_decision`` fields."""
     from ssl_marl.plays import attack_play
 
     ap = dataclasses.replace(attack_play.ATTACK_PASSING, **(passing or {}))
@@ -170,6 +177,8 @@ def set_attack_passing(passing: dict | None = None, decision: dict | None = None
                                  restart_decision=dataclasses.replace(ap.restart_decision, **decision))
     if open_decision:
         ap = dataclasses.replace(ap, decision=dataclasses.replace(ap.decision, **open_decision))
+    if restart_decision:
+        ap = dataclasses.replace(ap, restart_decision=dataclasses.replace(ap.restart_decision, **restart_decision))
     attack_play.ATTACK_PASSING = ap
 
 
@@ -191,7 +200,8 @@ def summarize(rows: list[dict], seconds: float) -> dict:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("variant", choices=sorted({*RULES, *FORMAT, *DECISION, *OPEN_PLAY_DECISION, *ATTACK, *SPOTS, *OPP_DEFENDERS, *MARK_BIAS}),
+    ap.add_argument("variant", choices=sorted({*RULES, *FORMAT, *DECISION, *OPEN_PLAY_DECISION, *RESTART_DECISION, *ATTACK,
+                                               *SPOTS, *OPP_DEFENDERS, *MARK_BIAS}),
                     help="the variant (module docstring)")
     ap.add_argument("--blue", default="attack-learned", help="blue team kind (default attack-learned)")
     ap.add_argument("--yellow", default="baseline", help="yellow team kind (default baseline)")
@@ -207,7 +217,8 @@ def main(argv: list[str] | None = None) -> int:
     from ssl_marl.runners.provenance import build_manifest
 
     env = {**format_options(FORMAT.get(args.variant, "plain"), args.seconds), **RULES.get(args.variant, {})}
-    set_attack_passing(PASSING.get(args.variant), DECISION.get(args.variant), OPEN_PLAY_DECISION.get(args.variant))
+    set_attack_passing(PASSING.get(args.variant), DECISION.get(args.variant), OPEN_PLAY_DECISION.get(args.variant),
+                       RESTART_DECISION.get(args.variant))
     set_attack_params(ATTACK.get(args.variant))
     set_attack_spots(SPOTS.get(args.variant))
     set_standard_defenders(OPP_DEFENDERS.get(args.variant))
@@ -216,6 +227,7 @@ def main(argv: list[str] | None = None) -> int:
                                      "attack_passing": {k: str(v) for k, v in PASSING.get(args.variant, {}).items()},
                                      "decision": DECISION.get(args.variant, {}),
                                      "open_play_decision": OPEN_PLAY_DECISION.get(args.variant, {}),
+                                     "restart_decision": RESTART_DECISION.get(args.variant, {}),
                                      "attack": ATTACK.get(args.variant, {}),
                                      "spots": SPOTS.get(args.variant, {}),
                                      "standard_plays_defenders": OPP_DEFENDERS.get(args.variant),
@@ -229,6 +241,7 @@ def main(argv: list[str] | None = None) -> int:
         r = play_match(args.blue, args.yellow, robots=args.robots, field=args.field, seconds=args.seconds,
                        seed=args.seed + i, render=None, progress=False, env_kwargs=dict(env))
         rows.append({"seed": args.seed + i, "score": r.score, "blue": dict(r.stats["blue"]),
+                     "yellow": dict(r.stats["yellow"]),
                      "referee": r.stats.get("referee", {}), "fouls": r.stats.get("fouls", {}),
                      "wall_s": round(time.time() - t0, 1)})
         print(args.variant, args.seed + i, r.score, flush=True)
