@@ -415,6 +415,7 @@ DECISION_CLONE_DIV_A_108180_POOLED = [m.both_colours(
 #: the attacking plays' set-piece passes 0.6 m inside the field lines, with the clone (commit 26fde69)
 RESTART_MARGIN_SELFPLAY_108200 = ["match_attack_learned_decision_selfplay_600_ssl_108200"]
 RESTART_MARGIN_BASELINE_108220 = ["match_attack_learned_decision_vs_baseline_600_ssl_108220"]
+RESTART_MARGIN_PASSING_108240 = ["match_attack_learned_decision_vs_passing_learned_600_ssl_108240"]
 RESTART_MARGIN_BASELINE_108220_POOLED = [("attack-learned-decision (the clone), set-piece passes 0.6 m inside the lines, "
                                           "vs baseline", tuple((n, "blue") for n in RESTART_MARGIN_BASELINE_108220))]
 DECISION_CLONE_TARGETS_108140 = ["match_attack_learned_decision_vs_baseline_600_ssl_realistic_108160",
@@ -637,6 +638,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
                                                                r / "tuning" / "set_piece_margin_0.6.json"]),
     "restart_margin_selfplay_108200": lambda r: m.series_600(r, RESTART_MARGIN_SELFPLAY_108200),
     "restart_margin_baseline_108220": lambda r: m.series_600(r, RESTART_MARGIN_BASELINE_108220),
+    "restart_margin_passing_108240": lambda r: m.series_600(r, RESTART_MARGIN_PASSING_108240),
     "restart_margin_baseline_108220_pooled": lambda r: m.pooled_attack(r, RESTART_MARGIN_BASELINE_108220_POOLED),
     "decision_clone_div_a_108180": lambda r: m.series_600(r, DECISION_CLONE_DIV_A_108180),
     "decision_clone_div_a_108180_pooled": lambda r: m.pooled_sides(r, DECISION_CLONE_DIV_A_108180_POOLED),
