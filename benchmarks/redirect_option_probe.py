@@ -2,8 +2,8 @@
 
 For each SSL-format match (the runner of ``ssl-marl match --format ssl``,
 :func:`ssl_marl.runners.match.play_match`) this wraps the attacking plays' carrier decider
-(:meth:`ssl_marl.plays.attack_play.AttackDecider.decide`, and so the learned decider's restarts
-and open play alike) and, at every request, evaluates the cost decision's options on the request's
+(:meth:`ssl_marl.plays.attack_play.AttackDecider.decide` and the learned deciders' of
+:mod:`ssl_marl.decisions.match_decider`, restarts and open play alike) and, at every request, evaluates the cost decision's options on the request's
 scene and parameters (:func:`ssl_marl.plays.attack_decision.decide_attack`; a learned decider's
 open-play choice is its policy's, the options are what the cost decision would see). Per request
 it records whether it was a restart (kickoff, free kick), the ball's x (team frame, m), the chosen
@@ -34,6 +34,7 @@ BANDS = ((-np.inf, 0.0), (0.0, 2.0), (2.0, 3.5), (3.5, np.inf))
 
 def probe_match(blue: str, yellow: str, seconds: float, seed: int) -> list[dict]:
     """One row per carrier request of either attacking team in one SSL-format match."""
+    from ssl_marl.decisions import match_decider
     from ssl_marl.physics.params import BallParams
     from ssl_marl.plays import attack_play
     from ssl_marl.plays.attack_decision import AttackChoice, decide_attack, redirect_geometry
@@ -41,14 +42,27 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int) -> list[dict]
     from ssl_marl.runners import match as match_runner
 
     rows: list[dict] = []
-    original = attack_play.AttackDecider.decide
+    classes = (attack_play.AttackDecider, match_decider.PolicyAttackDecider, match_decider.ImprovedAttackDecider)
+    originals = {cls: cls.__dict__["decide"] for cls in classes}
+    inside: set[int] = set()  # deciders inside a wrapped decide (a subclass calls its parent's: one row)
 
-    def decide(self, request):
+    def wrap(original):
+        def decide(self, request):
+            if id(self) in inside:
+                return original(self, request)
+            inside.add(id(self))
+            try:
+                return record(self, request, original)
+            finally:
+                inside.discard(id(self))
+        return decide
+
+    def record(self, request, original):
         ctx = request.ctx
         ours = ctx.world.team(ctx.team)
         params = self.request_params(request)
         d = decide_attack(ctx.ball, request.carrier, ours.pos, ctx.opp_pos, ctx.field, ctx.robot, request.ball,
-                          params, candidates=request.candidates)
+                          params, candidates=request.candidates, heading=request.heading)
         out = original(self, request)
         mates = np.asarray(ours.pos, float)
         opp = np.asarray(ctx.opp_pos, float).reshape(-1, 2)
@@ -74,12 +88,14 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int) -> list[dict]
                      "deflections": [round(x, 3) for x in deflections]})
         return out
 
-    attack_play.AttackDecider.decide = decide
+    for cls, original in originals.items():
+        cls.decide = wrap(original)
     try:
         match_runner.play_match(blue=blue, yellow=yellow, seconds=seconds, seed=seed, progress=False,
                                 env_kwargs=match_runner.format_options("ssl", seconds))
     finally:
-        attack_play.AttackDecider.decide = original
+        for cls, original in originals.items():
+            cls.decide = original
     return [{**r, "seed": seed} for r in rows]
 
 
