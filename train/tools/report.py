@@ -676,6 +676,11 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "colour_mirror": lambda r: m.colour_mirror(r, ["colour_mirror_attack_baseline.json",
                                                    "colour_mirror_attack_learned.json"]),
     "match_variants": lambda r: m.match_variants(r, MATCH_VARIANTS),
+    "set_piece_variants_selfplay": lambda r: m.selfplay_variants(r, [
+        ("control (`ssl`)", "selfplay_ssl_61850_both.json"), ("control (`ssl`)", "selfplay_ssl_61854_both.json"),
+        ("set pieces pass only from success 0.6 (`ssl-restart-pass-0.6`)", "selfplay_ssl-restart-pass-0.6_61850.json"),
+        ("set pieces pass only from success 0.7 (`ssl-restart-pass-0.7`)", "selfplay_ssl-restart-pass-0.7_61850.json"),
+        ("set pieces pass only from success 0.7 (`ssl-restart-pass-0.7`)", "selfplay_ssl-restart-pass-0.7_61854.json")]),
     "match_variants_defence": lambda r: m.match_variants(r, MATCH_VARIANTS_DEFENCE),
     "match_variants_ssl_marks": lambda r: m.match_variants(r, MATCH_VARIANTS_SSL_MARKS),
     "match_variants_ssl_opp_area": lambda r: m.match_variants(r, MATCH_VARIANTS_SSL_OPP_AREA, fouls=True),

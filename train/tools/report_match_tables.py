@@ -176,6 +176,30 @@ def match_variants(results: Path, entries: Iterable[tuple[str, str | tuple[str, 
     return rows
 
 
+def selfplay_variants(results: Path, entries: Iterable[tuple[str, str | tuple[str, ...]]]) -> Lines:
+    """Self-play tuning matches under variants (``benchmarks/match_variants.py`` records that keep
+    both teams' statistics; ``results/tuning/match_variants/<file>``): (label, file or files
+    pooled); goals, shots (redirects) and passes completed are both teams' together."""
+    rows = _head("variant (both teams)", "commit", "seeds", "matches", "goals", "shots (redirect)",
+                 "passes completed (both teams, the referee's count)")
+    for label, files in entries:
+        recs = [json.loads((results / "tuning" / "match_variants" / f).read_text())
+                for f in ((files,) if isinstance(files, str) else files)]
+        ms = [m for d in recs for m in d["matches"]]
+        if not all("yellow" in m for m in ms):
+            raise ValueError(f"selfplay_variants: {label}: a record without yellow's statistics")
+        commits = sorted({commit_label(d["manifest"]["git"]) for d in recs})
+
+        def tot(key: str) -> int:
+            return sum(m[side][key] for m in ms for side in ("blue", "yellow"))
+
+        done, tried = tot("passes_completed"), tot("passes_attempted")
+        seeds = [m["seed"] for m in ms]
+        rows.append(f"| {label} | {', '.join(commits)} | {min(seeds)}-{max(seeds)} | {len(ms)} | {tot('goals')} | "
+                    f"{tot('shots')} ({tot('shots_redirect')}) | {done} of {tried} ({100 * done / max(tried, 1):.1f} %) |")
+    return rows
+
+
 def _played_commits(manifest: dict) -> list[str]:
     """The commits a series was played with: its parts' (a merged series,
     ``benchmarks/merge_match_series.py``) or its own (7 characters)."""
