@@ -416,6 +416,7 @@ DECISION_CLONE_DIV_A_108180_POOLED = [m.both_colours(
 RESTART_MARGIN_SELFPLAY_108200 = ["match_attack_learned_decision_selfplay_600_ssl_108200"]
 RESTART_MARGIN_BASELINE_108220 = ["match_attack_learned_decision_vs_baseline_600_ssl_108220"]
 RESTART_MARGIN_PASSING_108240 = ["match_attack_learned_decision_vs_passing_learned_600_ssl_108240"]
+RESTART_MARGIN_DIV_A_108260 = ["match_attack_learned_decision_vs_baseline_600_ssl_div_a_11v11_108260"]
 RESTART_MARGIN_BASELINE_108220_POOLED = [("attack-learned-decision (the clone), set-piece passes 0.6 m inside the lines, "
                                           "vs baseline", tuple((n, "blue") for n in RESTART_MARGIN_BASELINE_108220))]
 DECISION_CLONE_TARGETS_108140 = ["match_attack_learned_decision_vs_baseline_600_ssl_realistic_108160",
@@ -639,6 +640,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "restart_margin_selfplay_108200": lambda r: m.series_600(r, RESTART_MARGIN_SELFPLAY_108200),
     "restart_margin_baseline_108220": lambda r: m.series_600(r, RESTART_MARGIN_BASELINE_108220),
     "restart_margin_passing_108240": lambda r: m.series_600(r, RESTART_MARGIN_PASSING_108240),
+    "restart_margin_div_a_108260": lambda r: m.series_600(r, RESTART_MARGIN_DIV_A_108260),
     "restart_margin_baseline_108220_pooled": lambda r: m.pooled_attack(r, RESTART_MARGIN_BASELINE_108220_POOLED),
     "decision_clone_div_a_108180": lambda r: m.series_600(r, DECISION_CLONE_DIV_A_108180),
     "decision_clone_div_a_108180_pooled": lambda r: m.pooled_sides(r, DECISION_CLONE_DIV_A_108180_POOLED),
@@ -790,8 +792,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "attack_drill_aim": lambda r: t.probe_rows(r / "tuning" / "attack_drill_aim.json", "rule"),
     "attack_drill_rollout_values": lambda r: t.rollout_values([r / f for f in ROLLOUT_VALUES], "decision"),
     "attack_drill_rollout_choices": lambda r: t.rollout_values([r / f for f in ROLLOUT_VALUES], "choice"),
-    "mappo_attack_match": lambda r: t.mappo_runs(r, [("mappo_attack_match_s0", ""), ("mappo_attack_match_clone_s1", "")],
-                                                None, "goal"),
+    "mappo_attack_match": lambda r: t.mappo_runs(r, [("mappo_attack_match_s0", ""), ("mappo_attack_match_clone_s1", ""),
+                                                     ("mappo_attack_match_clone_ent_s2", "")], None, "goal"),
     "mappo_attack_drill": lambda r: t.mappo_runs(r, [("mappo_attack_drill_bc_s0", "attack_drill_learned")],
                                                  "attack_drill_handcoded", "goal"),
     "mappo_attack_drill_v2": lambda r: t.mappo_runs(r, [("mappo_attack_drill_v2_s0", "attack_drill_learned_v2_42000")],
