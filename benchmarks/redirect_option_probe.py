@@ -35,7 +35,6 @@ BANDS = ((-np.inf, 0.0), (0.0, 2.0), (2.0, 3.5), (3.5, np.inf))
 def probe_match(blue: str, yellow: str, seconds: float, seed: int) -> list[dict]:
     """One row per carrier request of either attacking team in one SSL-format match."""
     from ssl_marl.decisions import match_decider
-    from ssl_marl.physics.params import BallParams
     from ssl_marl.plays import attack_play
     from ssl_marl.plays.attack_decision import AttackChoice, decide_attack, redirect_geometry
     from ssl_marl.plays.pass_decision import teammates_except
@@ -72,7 +71,7 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int) -> list[dict]
                 continue
             obstacles = np.concatenate([opp, teammates_except(mates, k)])
             deflections.append(float(redirect_geometry(mates[k], ctx.ball, obstacles, ctx.field, ctx.robot,
-                                                       request.ball or BallParams())[1]))
+                                                       request.ball)[1]))
         red = [o for o in d.options if o.kind is AttackChoice.REDIRECT and o.value > 0]
         opt = getattr(self, "option", None)
         chosen = opt.kind.value if out.choice.value == "pass" and opt is not None else out.choice.value

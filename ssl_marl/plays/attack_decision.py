@@ -117,10 +117,11 @@ class AttackParams:
             raise ValueError("AttackParams.redirect_full must be >= 0 and smaller than redirect_zero")
         if not (isinstance(self.chip_samples, int) and self.chip_samples >= 2):
             raise ValueError(f"AttackParams.chip_samples must be an integer >= 2, got {self.chip_samples!r}")
-        for name in ("w_redirect", "restart_w_redirect"):
-            w = getattr(self, name)
-            if not (w is None and name == "restart_w_redirect") and not (
-                    isinstance(w, (int, float)) and math.isfinite(w) and w >= 0):
+        weights = {"w_redirect": self.w_redirect}
+        if self.restart_w_redirect is not None:
+            weights["restart_w_redirect"] = self.restart_w_redirect
+        for name, w in weights.items():
+            if not (isinstance(w, (int, float)) and math.isfinite(w) and w >= 0):
                 raise ValueError(f"AttackParams.{name} must be a finite weight >= 0, got {w!r}")
         r = self.reach_shot_s
         if r is not None and not (isinstance(r, (int, float)) and math.isfinite(r)):

@@ -135,9 +135,9 @@ class AttackDecider:
         decision parameters (open play or restart) and, at a restart, the set pieces'
         redirect weight (``AttackParams.restart_w_redirect``, where set)."""
         p = self.params
-        if request.restart and p.restart_w_redirect is not None:
-            return dataclasses.replace(p, decision=request.params, w_redirect=p.restart_w_redirect)
-        return dataclasses.replace(p, decision=request.params)
+        restart_w = p.restart_w_redirect if request.restart else None
+        return dataclasses.replace(p, decision=request.params,
+                                   w_redirect=p.w_redirect if restart_w is None else restart_w)
 
     def decide(self, request: CarrierRequest) -> Decision:
         ctx = request.ctx

@@ -152,6 +152,12 @@ ATTACK_SKILL_SWAPS = ["match_attack_learned_vs_attack_baseline_600", "tuning/swa
 ATTACK_SKILL_SWAPS_98 = ["tuning/swap98_none_all_learned", "tuning/swap98_go_to_ball_baseline",
                          "tuning/swap98_pass_receive_baseline", "tuning/swap98_pass_baseline",
                          "tuning/swap98_receive_baseline"]
+#: self-play ``benchmarks/match_variants.py`` runs of the set pieces' pass threshold (both teams' statistics)
+SET_PIECE_VARIANTS_SELFPLAY = [
+    ("control (`ssl`)", "selfplay_ssl_61850_both.json"), ("control (`ssl`)", "selfplay_ssl_61854_both.json"),
+    ("set pieces pass only from success 0.6 (`ssl-restart-pass-0.6`)", "selfplay_ssl-restart-pass-0.6_61850.json"),
+    ("set pieces pass only from success 0.7 (`ssl-restart-pass-0.7`)", "selfplay_ssl-restart-pass-0.7_61850.json"),
+    ("set pieces pass only from success 0.7 (`ssl-restart-pass-0.7`)", "selfplay_ssl-restart-pass-0.7_61854.json")]
 #: ``benchmarks/match_variants.py`` runs (label, file under results/tuning/match_variants/)
 MATCH_VARIANTS = [("plain format (play restarts at once)", "plain.json"),
                   ("free kicks, no STOP", "free-kick.json"),
@@ -678,11 +684,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "colour_mirror": lambda r: m.colour_mirror(r, ["colour_mirror_attack_baseline.json",
                                                    "colour_mirror_attack_learned.json"]),
     "match_variants": lambda r: m.match_variants(r, MATCH_VARIANTS),
-    "set_piece_variants_selfplay": lambda r: m.selfplay_variants(r, [
-        ("control (`ssl`)", "selfplay_ssl_61850_both.json"), ("control (`ssl`)", "selfplay_ssl_61854_both.json"),
-        ("set pieces pass only from success 0.6 (`ssl-restart-pass-0.6`)", "selfplay_ssl-restart-pass-0.6_61850.json"),
-        ("set pieces pass only from success 0.7 (`ssl-restart-pass-0.7`)", "selfplay_ssl-restart-pass-0.7_61850.json"),
-        ("set pieces pass only from success 0.7 (`ssl-restart-pass-0.7`)", "selfplay_ssl-restart-pass-0.7_61854.json")]),
+    "set_piece_variants_selfplay": lambda r: m.selfplay_variants(r, SET_PIECE_VARIANTS_SELFPLAY),
     "match_variants_defence": lambda r: m.match_variants(r, MATCH_VARIANTS_DEFENCE),
     "match_variants_ssl_marks": lambda r: m.match_variants(r, MATCH_VARIANTS_SSL_MARKS),
     "match_variants_ssl_opp_area": lambda r: m.match_variants(r, MATCH_VARIANTS_SSL_OPP_AREA, fouls=True),

@@ -136,6 +136,14 @@ def tuning(results: Path, entries: Iterable[tuple[str, str, str | None]]) -> Lin
     return rows
 
 
+def _variant_records(results: Path, files: str | tuple[str, ...]) -> tuple[list[dict], list[dict], list[str]]:
+    """The ``benchmarks/match_variants.py`` records ``files`` (under ``results/tuning/match_variants/``):
+    (records, their matches pooled, their commits' labels)."""
+    recs = [json.loads((results / "tuning" / "match_variants" / f).read_text())
+            for f in ((files,) if isinstance(files, str) else files)]
+    return recs, [m for d in recs for m in d["matches"]], sorted({commit_label(d["manifest"]["git"]) for d in recs})
+
+
 def match_variants(results: Path, entries: Iterable[tuple[str, str | tuple[str, ...]]], fouls: bool = False) -> Lines:
     """Tuning matches under variants of the restarts and the carrier's keep rule
     (``benchmarks/match_variants.py``; ``results/tuning/match_variants/<file>``): (label, file
@@ -148,11 +156,8 @@ def match_variants(results: Path, entries: Iterable[tuple[str, str | tuple[str, 
                  "blue passes completed (the referee's count)",
                  *(("blue fouls per match: in the defense area / all",) if fouls else ()))
     for label, files in entries:
-        recs = [json.loads((results / "tuning" / "match_variants" / f).read_text())
-                for f in ((files,) if isinstance(files, str) else files)]
-        ms = [m for d in recs for m in d["matches"]]
+        recs, ms, commits = _variant_records(results, files)
         rules = recs[0]["manifest"]["rules"]
-        commits = sorted({commit_label(d["manifest"]["git"]) for d in recs})
         st = series_statistics([m["score"]["blue"] for m in ms], [m["score"]["yellow"] for m in ms],
                                float(rules["seconds"]))
         lo, hi = st["goal_diff_per_600s_ci95"]
@@ -183,12 +188,9 @@ def selfplay_variants(results: Path, entries: Iterable[tuple[str, str | tuple[st
     rows = _head("variant (both teams)", "commit", "seeds", "matches", "goals", "shots (redirect)",
                  "passes completed (both teams, the referee's count)")
     for label, files in entries:
-        recs = [json.loads((results / "tuning" / "match_variants" / f).read_text())
-                for f in ((files,) if isinstance(files, str) else files)]
-        ms = [m for d in recs for m in d["matches"]]
+        _, ms, commits = _variant_records(results, files)
         if not all("yellow" in m for m in ms):
             raise ValueError(f"selfplay_variants: {label}: a record without yellow's statistics")
-        commits = sorted({commit_label(d["manifest"]["git"]) for d in recs})
 
         def tot(key: str) -> int:
             return sum(m[side][key] for m in ms for side in ("blue", "yellow"))
