@@ -64,6 +64,9 @@ match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
 * ``ssl-restart-pass-0.6`` / ``-0.7``: the SSL format with the attacking team's set pieces passing only where
   the pass is rated at least 0.6 / 0.7 likely to arrive (``min_pass_success`` of ``ATTACK_PASSING.restart_decision``,
   default 0.5; open play keeps 0.35); without such a pass the set piece is one kick;
+* ``ssl-restart-chip-2.5`` / ``-3``: the SSL format with the attacking team's set-piece chips ones the receiver
+  can take on its dribbler, arriving at most 2.5 / 3 m/s fast (``AttackParams.restart_chip_arrive_speed``;
+  default None: the shortest-flight chip, whose ball may still hop above the dribbler bar at the receiver);
 * ``opp-one-defender`` / ``opp-no-defender``: the plain format against a weakened defence: the
   standard plays (the ``baseline`` / ``learned`` teams' plays) keep only their first defender /
   none of their defenders on the ball-goal line (the robots freed take the plays' next roles:
@@ -103,7 +106,8 @@ FORMAT = {"ssl": "ssl", "ssl-receiver-guard": "ssl", "ssl-tap-0.7": "ssl", "ssl-
           "ssl-in-opp-area": "ssl", "ssl-arrive-2.5": "ssl", "ssl-arrive-3": "ssl",
           "ssl-shoot-0.15": "ssl", "ssl-spots-goal-0.5": "ssl",
           **{f"ssl-restart-redirect-{w}": "ssl" for w in ("1.5", "2", "3")},
-          **{f"ssl-restart-pass-{v}": "ssl" for v in ("0.6", "0.7")}}
+          **{f"ssl-restart-pass-{v}": "ssl" for v in ("0.6", "0.7")},
+          **{f"ssl-restart-chip-{v}": "ssl" for v in ("2.5", "3")}}
 #: the attacking plays' mark bias of each variant (``ATTACK_MARK_BIAS``)
 MARK_BIAS = {"ssl-mark-0.25": 0.25}
 #: ``ATTACK_PASSING`` fields of each variant
@@ -125,7 +129,8 @@ OPEN_PLAY_DECISION = {"ssl-shoot-0.15": {"shoot_threshold": 0.15}}
 RESTART_DECISION = {f"ssl-restart-pass-{v}": {"min_pass_success": float(v)} for v in ("0.6", "0.7")}
 #: ``ATTACK_PARAMS`` fields of each variant
 ATTACK = {"redirect-4.5": {"redirect_arrive_speed": 4.5}, "reach-shot": {"reach_shot_s": 0.05},
-          **{f"ssl-restart-redirect-{w}": {"restart_w_redirect": float(w)} for w in ("1.5", "2", "3")}}
+          **{f"ssl-restart-redirect-{w}": {"restart_w_redirect": float(w)} for w in ("1.5", "2", "3")},
+          **{f"ssl-restart-chip-{v}": {"restart_chip_arrive_speed": float(v)} for v in ("2.5", "3")}}
 #: ``ATTACK_SPOTS`` fields of each variant
 SPOTS = {"edge-spots": {"edge_spots": 5}, "ssl-spots-goal-0.5": {"w_goal": 0.5}}
 #: defenders the standard plays keep in each variant (the rest of their roles unchanged)

@@ -242,3 +242,55 @@ def test_batched_kick_on_contact_is_bit_equal_to_single_worlds():
                 np.testing.assert_array_equal(getattr(s, name), getattr(batch, name)[k], err_msg=f"{name} step {step}")
             assert (s.kicks_this_step[0] if s.kicks_this_step else (-1, 0.0)) == (batch.kicker[k], batch.kick_speed[k])
     assert fired >= 3
+
+
+def _fly(speed: float, angle: float, until_m: float) -> list[tuple[float, float, float]]:
+    """(distance from the launch (m), height (m), horizontal speed (m/s)) of a chip kicked
+    in the world at ``speed`` (m/s, 3-D) and ``angle`` (rad), every step until ``until_m``."""
+    w = _world()
+    _step(w, speed / RP.kick_speed_max, angle)
+    path = []
+    while float(w.ball_pos[0] - BALL0[0]) < until_m and len(path) < 600:
+        path.append((float(w.ball_pos[0] - BALL0[0]), float(w.ball_z), float(np.hypot(*w.ball_vel))))
+        _step(w)
+    return path
+
+
+def test_chip_hops_predicts_where_the_world_s_ball_hops_below_the_dribbler_bar():
+    from ssl_marl.skills.chip_pass import chip_hops
+
+    for speed, deg in ((5.0, 40.0), (6.5, 25.0), (4.0, 55.0)):
+        x_low, _, v_low = chip_hops(speed, math.radians(deg), BP)
+        path = _fly(speed, math.radians(deg), float(x_low) + 1.0)
+        assert all(z <= BP.radius + 1e-9 for x, z, _ in path if x >= float(x_low))  # below the bar from there on
+        assert any(z > BP.radius for x, z, _ in path if float(x_low) - 0.6 < x < float(x_low))  # the hop before: above
+        after = [v for x, _, v in path if float(x_low) + 0.05 < x < float(x_low) + 0.5]
+        assert after and max(after) == pytest.approx(float(v_low), abs=0.05)
+
+
+@pytest.mark.parametrize("receiver", [3.5, 4.0, 4.5])
+def test_a_receivable_chip_reaches_the_receiver_low_and_slow_the_fastest_chip_does_not(receiver):
+    from ssl_marl.skills.chip_pass import CHIP_GROUND_RUN, chip_kick
+
+    blocker, cap = 1.5, 3.0
+    run = []
+    for arrive in (cap, None):
+        k = chip_kick(blocker, receiver, RP, BP, arrive_speed_max=arrive)
+        path = _fly(k.speed, k.angle, receiver)
+        run.append([(z, v) for x, z, v in path if receiver - CHIP_GROUND_RUN <= x <= receiver])
+        assert run[-1]
+    assert max(z for z, _ in run[0]) <= BP.radius + 1e-9  # below the dribbler bar over the last run
+    assert max(v for _, v in run[0]) <= cap + 0.05
+    # the shortest flight still hops above the bar there, or comes faster
+    assert max(z for z, _ in run[1]) > BP.radius or max(v for _, v in run[1]) > cap + 0.3
+
+
+def test_receivable_chip_arguments_are_checked():
+    from ssl_marl.plays.attack_decision import AttackParams
+    from ssl_marl.skills.chip_pass import chip_kick
+
+    with pytest.raises(ValueError, match="m/s fast"):
+        chip_kick(1.0, 2.5, RP, BP, arrive_speed_max=3.0)  # too short for the hops to die down
+    for bad in (0.0, -1.0, math.nan, math.inf):
+        with pytest.raises(ValueError, match="chip_arrive_speed"):
+            AttackParams(restart_chip_arrive_speed=bad)

@@ -84,6 +84,13 @@ class AttackParams:
         decision: the shared shot / pass / keep parameters (thresholds, weights).
         chip_samples: samples along a chip path for its margin.
         chip_receive_factor: value factor of a hopping ball's reception.
+        chip_arrive_speed: the chip rated (and kicked by a set piece's passer) is one the
+            receiver can take on its dribbler, no faster than this (m/s) at its face
+            (:func:`~ssl_marl.skills.chip_pass.chip_kick`'s ``arrive_speed_max``); None: the
+            shortest-flight chip, which may still hop above the dribbler bar there.
+        restart_chip_arrive_speed: ``chip_arrive_speed`` of set pieces; None:
+            ``chip_arrive_speed``. Read by :class:`~ssl_marl.plays.attack_play.AttackDecider`
+            for restart requests.
         redirect_full, redirect_zero: deflection (rad) up to which a redirect is fully
             useful / beyond which it is useless (TIGERs: 0.9 / 1.2).
         w_redirect: weight of the receiver's shot value in a pass into a redirect.
@@ -103,6 +110,8 @@ class AttackParams:
     decision: DecisionParams = field(default_factory=DecisionParams)
     chip_samples: int = 24
     chip_receive_factor: float = 0.8
+    chip_arrive_speed: float | None = None
+    restart_chip_arrive_speed: float | None = None
     redirect_full: float = 0.9
     redirect_zero: float = 1.2
     w_redirect: float = 1.0
@@ -123,6 +132,10 @@ class AttackParams:
         for name, w in weights.items():
             if not (isinstance(w, (int, float)) and math.isfinite(w) and w >= 0):
                 raise ValueError(f"AttackParams.{name} must be a finite weight >= 0, got {w!r}")
+        for name in ("chip_arrive_speed", "restart_chip_arrive_speed"):
+            v = getattr(self, name)
+            if v is not None and not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+                raise ValueError(f"AttackParams.{name} must be None or a finite speed > 0 (m/s), got {v!r}")
         r = self.reach_shot_s
         if r is not None and not (isinstance(r, (int, float)) and math.isfinite(r)):
             raise ValueError(f"AttackParams.reach_shot_s must be None or a finite margin (s), got {r!r}")
@@ -203,7 +216,7 @@ def evaluate_chips(p: np.ndarray, receive_points: dict[int, np.ndarray], teammat
     mates = np.asarray(teammates, float).reshape(-1, 2)
     out = []
     for k, q, _ in pass_candidates(p, receive_points, 0.0, dp.max_pass_m, field_geom, dp.receive_margin_m):
-        kick = lane_chip(p, q, opp, rp, bp)
+        kick = lane_chip(p, q, opp, rp, bp, arrive_speed_max=params.chip_arrive_speed)
         if kick is None:
             continue
         margin = chip_margin(p, q, kick.speed, kick.angle, opp, rp, bp, dp, params.chip_samples)

@@ -97,6 +97,14 @@ ATTACK_SPOTS = SpotParams()
 ATTACK_MARK_BIAS = 0.0
 
 
+def chip_arrive_speed(params: AttackParams, restart: bool) -> float | None:
+    """The chip's ``arrive_speed_max`` (m/s; None: the shortest-flight chip) in open play or,
+    with ``restart``, at a set piece (``AttackParams.restart_chip_arrive_speed``, where set)."""
+    if restart and params.restart_chip_arrive_speed is not None:
+        return params.restart_chip_arrive_speed
+    return params.chip_arrive_speed
+
+
 @dataclass
 class AttackCounters:
     """Decisions taken (for tests, reports and debugging): shots, flat passes, chips,
@@ -133,11 +141,13 @@ class AttackDecider:
     def request_params(self, request: CarrierRequest) -> AttackParams:
         """The attack decision's parameters for ``request``: ``params`` with the request's
         decision parameters (open play or restart) and, at a restart, the set pieces'
-        redirect weight (``AttackParams.restart_w_redirect``, where set)."""
+        redirect weight and chip (``AttackParams.restart_w_redirect``,
+        ``restart_chip_arrive_speed``, where set)."""
         p = self.params
         restart_w = p.restart_w_redirect if request.restart else None
         return dataclasses.replace(p, decision=request.params,
-                                   w_redirect=p.w_redirect if restart_w is None else restart_w)
+                                   w_redirect=p.w_redirect if restart_w is None else restart_w,
+                                   chip_arrive_speed=chip_arrive_speed(p, request.restart))
 
     def decide(self, request: CarrierRequest) -> Decision:
         ctx = request.ctx
@@ -222,7 +232,8 @@ def chip_passer_role(coord: PassCoordinator, decider: AttackDecider, priority: i
         decision = coord.params.restart_decision if plan.restart else coord.params.decision
         arrival = decider.params.redirect_arrive_speed if redirect else decision.pass_arrive_speed
         return dict(chip=o is not None and o.kind is AttackChoice.CHIP, approach_behind=plan.restart,
-                    strike=plan.restart, arrival_speed=arrival)
+                    strike=plan.restart, arrival_speed=arrival,
+                    chip_arrive_speed=chip_arrive_speed(decider.params, plan.restart))
 
     return passer_role(coord, priority, ChipPass, extra)
 

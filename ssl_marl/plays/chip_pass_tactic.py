@@ -32,9 +32,13 @@ class ChipPassParams(PassParams):
 
     Attributes:
         chip: KICK runs the chip-pass skill (False: a flat pass by the pass skill).
+        chip_arrive_speed: the STRIKE's chip is one the receiver can take on its dribbler,
+            no faster than this (m/s) at its face (:func:`~ssl_marl.skills.chip_pass.lane_chip`'s
+            ``arrive_speed_max``); None: the shortest-flight chip.
     """
 
     chip: bool = False
+    chip_arrive_speed: float | None = None
 
 
 class ChipPass(Pass):
@@ -56,10 +60,11 @@ class ChipPass(Pass):
     def strike_kick(self, world: WorldState) -> tuple[float, float]:
         """The set piece's STRIKE (:meth:`Pass.strike_kick`): with ``chip`` set, the
         hand-coded chip over the lane's blocker (:func:`~ssl_marl.skills.chip_pass.lane_chip`:
-        speed and elevation), flat where no chip fits."""
+        speed and elevation; ``chip_arrive_speed``), flat where no chip fits."""
         if self.params.chip:
             c = lane_chip(world.ball_pos, np.asarray(self.params.target_point, float),
-                          world.opponents(world.frame).pos, self.rp, self.bp)
+                          world.opponents(world.frame).pos, self.rp, self.bp,
+                          arrive_speed_max=self.params.chip_arrive_speed)
             if c is not None:
                 return min(c.speed / self.rp.kick_speed_max, 1.0), c.angle / self.rp.chip_angle_max
         return super().strike_kick(world)

@@ -8,10 +8,13 @@ A chip's ball flies (:mod:`ssl_marl.physics.ball_flight`, no drag): from the gro
 Robots fit under 0.15 m (``RobotParams.height``): a ball whose lowest point is above
 that passes over them (SSL rules; docs/references.md, "Robot and ball figures"). A
 chip is for passing, not scoring: a goal does not count if the ball was higher than
-0.15 m after the last touch (SSL rules). :func:`chip_kick` picks the flattest-landing
+0.15 m after the last touch (SSL rules). :func:`chip_kick` picks the shortest-flight
 chip that clears a blocker by ``clearance`` over its whole body and touches down
-``land_short`` short of the receiver, so the receiver meets a ball that has stopped
-hopping high.
+``land_short`` short of the receiver; its ball may still hop above the dribbler bar (the
+ball's radius) when it reaches the receiver, and a hop that high bounces off the robot's
+body. With ``arrive_speed_max`` it picks, of the chips whose hops are below the bar over
+the last ``ground_run`` before the receiver and no faster than that there
+(:func:`chip_hops`), the one that reaches the receiver first.
 
 The skill acts in the env's chip layout (``chip_kicks=True``, 6-entry actions: index
 5 the chip, the kick's elevation as a fraction of ``RobotParams.chip_angle_max``).
@@ -58,6 +61,9 @@ LANE_END_MARGIN = 0.2
 CHIP_LAND_SHORT = 0.6
 #: the hand-coded chip's ball passes this far (m) above the blocker's height
 CHIP_CLEARANCE = 0.05
+#: a receivable chip's ball hops no higher than the dribbler bar over at least this run (m)
+#: before the receiver's face (:func:`chip_kick`'s ``arrive_speed_max``)
+CHIP_GROUND_RUN = 0.3
 
 
 @dataclass(frozen=True)
@@ -71,16 +77,49 @@ class ChipKick:
     blocker_clearance: float
 
 
+def chip_hops(speed: np.ndarray, angle: np.ndarray, bp: BallParams, max_hops: int = 16
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Where chips (3-D speed m/s, elevation rad; arrays that broadcast) first hop no
+    higher than the ball's radius, the dribbler bar (a higher ball bounces off a robot's
+    body; :mod:`ssl_marl.physics.world`): (horizontal distance from the launch (m), time
+    (s), horizontal speed (m/s)) at that bounce, by :mod:`~ssl_marl.physics.ball_flight`'s
+    drag-free flight and damped bounces (vertical speed x ``bounce_damping_z``, horizontal
+    x ``bounce_damping_xy_first`` at the first bounce, ``bounce_damping_xy_later`` after).
+    A chip launched no faster upwards than such a hop gives (0, 0, its horizontal speed)."""
+    g = bp.gravity
+    vh, vz = (np.array(a, float) for a in np.broadcast_arrays(*launch(speed, angle)))
+    vz_low = math.sqrt(2.0 * g * bp.radius)  # the vertical speed of a hop as high as the bar
+    x, t = np.zeros_like(vh), np.zeros_like(vh)
+    low = vz <= vz_low
+    for k in range(max_hops):
+        if low.all():
+            break
+        hop = 2.0 * vz / g
+        x = np.where(low, x, x + vh * hop)
+        t = np.where(low, t, t + hop)
+        vh = np.where(low, vh, vh * (bp.bounce_damping_xy_first if k == 0 else bp.bounce_damping_xy_later))
+        vz = np.where(low, vz, vz * bp.bounce_damping_z)
+        low = vz <= vz_low
+    return x, t, vh
+
+
 def chip_kick(blocker_distance: float, receiver_distance: float, rp: RobotParams, bp: BallParams,
               clearance: float = CHIP_CLEARANCE, land_short: float = CHIP_LAND_SHORT,
-              body: float | None = None) -> ChipKick:
+              body: float | None = None, arrive_speed_max: float | None = None,
+              ground_run: float = CHIP_GROUND_RUN) -> ChipKick:
     """The chip (speed <= ``rp.kick_speed_max``, elevation <= ``rp.chip_angle_max``)
     whose ball's lowest point stays ``clearance`` (m) above ``rp.height`` over the
     blocker's body (``blocker_distance`` +- ``body``, default robot radius + ball radius,
     m from the kicker's face) and whose first touchdown is at most ``receiver_distance
     - land_short`` (m); of those, the one with the shortest flight (the fastest ball to
     the receiver). Candidates: a 46 x 56 grid of elevations (15 deg to the limit) and
-    speeds (1 m/s to the cap). ValueError when no chip does both."""
+    speeds (1 m/s to the cap). ValueError when no chip does both.
+
+    With ``arrive_speed_max`` (m/s) the chip is one the receiver can take on its dribbler:
+    its hops are no higher than the ball's radius (:func:`chip_hops`) from at least
+    ``ground_run`` (m) before ``receiver_distance`` on, at a horizontal speed of at most
+    ``arrive_speed_max`` there; of those, the one that reaches ``receiver_distance``
+    first (no roll deceleration counted: 0.35 m/s^2 over the last metres)."""
     g = bp.gravity
     body = rp.radius + bp.radius if body is None else body
     xs = np.array([blocker_distance - body, blocker_distance, blocker_distance + body])
@@ -91,11 +130,17 @@ def chip_kick(blocker_distance: float, receiver_distance: float, rp: RobotParams
     t = xs[:, None, None] / vh[None]
     low = np.min(vv[None] * t - 0.5 * g * t * t, axis=0)  # the ball's lowest point over the body
     ok = (landing <= receiver_distance - land_short) & (landing > xs[-1] + land_short) & (low >= rp.height + clearance)
+    if arrive_speed_max is None:
+        cost = 2.0 * vv / g  # the flight
+    else:
+        x_low, t_low, v_low = chip_hops(speeds, angles, bp)
+        ok &= (x_low <= receiver_distance - ground_run) & (v_low <= arrive_speed_max)
+        cost = t_low + (receiver_distance - x_low) / np.maximum(v_low, 1e-6)
     if not ok.any():
         raise ValueError(f"no chip clears a blocker {blocker_distance:.2f} m away and lands "
-                         f"{land_short:.2f} m short of a receiver {receiver_distance:.2f} m away")
-    flight = np.where(ok, 2.0 * vv / g, np.inf)
-    i, j = np.unravel_index(int(np.argmin(flight)), flight.shape)
+                         f"{land_short:.2f} m short of a receiver {receiver_distance:.2f} m away"
+                         + ("" if arrive_speed_max is None else f" at most {arrive_speed_max:.2f} m/s fast"))
+    i, j = np.unravel_index(int(np.argmin(np.where(ok, cost, np.inf))), ok.shape)
     speed, angle = float(speeds[0, j]), float(angles[i, 0])
     return ChipKick(speed, angle, float(landing[i, j]), float(low[i, j]))
 
@@ -127,20 +172,23 @@ def lane_blocker(world: WorldState, target: np.ndarray, half_width: float = LANE
 
 
 def lane_chip(ball: np.ndarray, target: np.ndarray, opponents: np.ndarray, rp: RobotParams, bp: BallParams,
-              clearance: float = CHIP_CLEARANCE, land_short: float = CHIP_LAND_SHORT) -> ChipKick | None:
+              clearance: float = CHIP_CLEARANCE, land_short: float = CHIP_LAND_SHORT,
+              arrive_speed_max: float | None = None) -> ChipKick | None:
     """The hand-coded chip from ``ball`` to a receiver at ``target`` (m, the frame of the
     inputs): :func:`chip_kick` over the lane's blocker
     (:func:`lane_blocker_at` of ``opponents`` (k, 2), its distance along the lane from
     the ball) landing ``land_short`` (m) short of the receiver's face (``rp.front_distance
-    + bp.radius`` before ``target``); None where no chip fits (a short pass, a blocker
-    too near either end)."""
+    + bp.radius`` before ``target``), with ``arrive_speed_max`` (m/s) one the receiver
+    can take on its dribbler; None where no chip fits (a short pass, a blocker too near
+    either end)."""
     reach = rp.front_distance + bp.radius
     frame = line_frame(ball, target, lane_blocker_at(ball, target, opponents))
     if frame is None:
         return None
     _, length, blocker, _ = frame
     try:
-        return chip_kick(float(blocker), length - reach, rp, bp, clearance, land_short)
+        return chip_kick(float(blocker), length - reach, rp, bp, clearance, land_short,
+                         arrive_speed_max=arrive_speed_max)
     except ValueError:
         return None
 
@@ -287,7 +335,7 @@ class LearnedChipPass(ChipPassSkill):
         return a, bool(a[4] > 0)
 
 
-__all__ = ["CHIP_CLEARANCE", "CHIP_LAND_SHORT", "CHIP_PASS_ACTIONS", "CHIP_PASS_NAMES", "CHIP_PASS_SPEC", "ChipKick",
-           "ChipPassBaseline", "ChipPassSkill", "LearnedChipPass", "chip_elevation", "chip_kick", "chip_pass_features",
+__all__ = ["CHIP_CLEARANCE", "CHIP_GROUND_RUN", "CHIP_LAND_SHORT", "CHIP_PASS_ACTIONS", "CHIP_PASS_NAMES", "CHIP_PASS_SPEC", "ChipKick",
+           "ChipPassBaseline", "ChipPassSkill", "LearnedChipPass", "chip_elevation", "chip_hops", "chip_kick", "chip_pass_features",
            "chip_pass_task_action", "chip_pass_task_values", "expand_chip_pass_action", "lane_blocker",
            "lane_blocker_at", "lane_chip"]

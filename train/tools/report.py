@@ -158,6 +158,11 @@ SET_PIECE_VARIANTS_SELFPLAY = [
     ("set pieces pass only from success 0.6 (`ssl-restart-pass-0.6`)", "selfplay_ssl-restart-pass-0.6_61850.json"),
     ("set pieces pass only from success 0.7 (`ssl-restart-pass-0.7`)", "selfplay_ssl-restart-pass-0.7_61850.json"),
     ("set pieces pass only from success 0.7 (`ssl-restart-pass-0.7`)", "selfplay_ssl-restart-pass-0.7_61854.json")]
+#: self-play tuning of the set pieces' receivable chip (``ssl-restart-chip-3``) beside the control, seeds 61880-61883
+SET_PIECE_CHIP_SELFPLAY = [
+    ("control (`ssl`)", tuple(f"selfplay_ssl_{s}_both.json" for s in range(61880, 61884))),
+    ("set-piece chips the receiver can take, arriving at most 3 m/s (`ssl-restart-chip-3`)",
+     tuple(f"selfplay_ssl-restart-chip-3_{s}.json" for s in range(61880, 61884)))]
 #: ``benchmarks/match_variants.py`` runs (label, file under results/tuning/match_variants/)
 MATCH_VARIANTS = [("plain format (play restarts at once)", "plain.json"),
                   ("free kicks, no STOP", "free-kick.json"),
@@ -685,6 +690,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
                                                    "colour_mirror_attack_learned.json"]),
     "match_variants": lambda r: m.match_variants(r, MATCH_VARIANTS),
     "set_piece_variants_selfplay": lambda r: m.selfplay_variants(r, SET_PIECE_VARIANTS_SELFPLAY),
+    "set_piece_chip_selfplay": lambda r: m.selfplay_variants(r, SET_PIECE_CHIP_SELFPLAY),
     "match_variants_defence": lambda r: m.match_variants(r, MATCH_VARIANTS_DEFENCE),
     "match_variants_ssl_marks": lambda r: m.match_variants(r, MATCH_VARIANTS_SSL_MARKS),
     "match_variants_ssl_opp_area": lambda r: m.match_variants(r, MATCH_VARIANTS_SSL_OPP_AREA, fouls=True),
