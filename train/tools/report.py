@@ -162,7 +162,9 @@ SET_PIECE_VARIANTS_SELFPLAY = [
 SET_PIECE_CHIP_SELFPLAY = [
     ("control (`ssl`)", tuple(f"selfplay_ssl_{s}_both.json" for s in range(61880, 61884))),
     ("set-piece chips the receiver can take, arriving at most 3 m/s (`ssl-restart-chip-3`)",
-     tuple(f"selfplay_ssl-restart-chip-3_{s}.json" for s in range(61880, 61884)))]
+     tuple(f"selfplay_ssl-restart-chip-3_{s}.json" for s in range(61880, 61884))),
+    ("set pieces pass only from success 0.7 (`ssl-restart-pass-0.7`)",
+     tuple(f"selfplay_ssl-restart-pass-0.7_{s}.json" for s in range(61880, 61884)))]
 #: ``benchmarks/match_variants.py`` runs (label, file under results/tuning/match_variants/)
 MATCH_VARIANTS = [("plain format (play restarts at once)", "plain.json"),
                   ("free kicks, no STOP", "free-kick.json"),
