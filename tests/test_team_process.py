@@ -84,3 +84,31 @@ def test_env_without_observations_returns_an_empty_dict():
     assert obs == {}
     with pytest.raises(ValueError, match="observations must be True or False"):
         parallel_env(observations="no")
+
+
+def test_frames_and_actions_cross_the_pipe_unchanged():
+    import pickle
+
+    from ssl_marl.runners.team_process import pack_actions, unpack_actions
+
+    env = parallel_env(n_blue=3, n_yellow=2, field="div_b", chip_kicks=True)
+    env.reset(seed=5)
+    for _ in range(30):
+        env.step({a: env.action_space(a).sample() for a in env.agents})
+    view = team_view(env, "yellow")
+    back = pickle.loads(pickle.dumps(view))
+    for name in ("t", "ball_visible", "frame", "ball_height", "ball_vz", "ball_max_height"):
+        assert getattr(back.world, name) == getattr(view.world, name)
+    for name in ("ball_pos", "ball_vel"):
+        a, b = getattr(back.world, name), getattr(view.world, name)
+        assert a.dtype == b.dtype and a.shape == b.shape and a.tobytes() == b.tobytes()
+    for team in ("blue", "yellow"):
+        for name in ("pos", "heading", "vel", "omega", "ball_on_dribbler", "kick_ready"):
+            a, b = getattr(back.world.team(team), name), getattr(view.world.team(team), name)
+            assert a.dtype == b.dtype and a.shape == b.shape and a.tobytes() == b.tobytes()
+    actions = {"yellow_0": np.arange(6, dtype=np.float32), "yellow_1": np.ones(5, np.float32)}
+    out = unpack_actions(pickle.loads(pickle.dumps(pack_actions(actions))))
+    assert out.keys() == actions.keys() and all(np.array_equal(out[k], actions[k]) and out[k].dtype == np.float32
+                                                for k in actions)
+    out["yellow_0"][0] = 9.0  # writable
+    assert unpack_actions({"x": 1}) == {"x": 1} and pack_actions({"x": [1.0]}) == {"x": [1.0]}  # others as they are

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -88,11 +89,11 @@ class FieldGeometry:
         return presets[name]()
 
     # ------------------------------------------------------------ named queries
-    @property
+    @cached_property
     def half_length(self) -> float:
         return self.length / 2.0
 
-    @property
+    @cached_property
     def half_width(self) -> float:
         return self.width / 2.0
 

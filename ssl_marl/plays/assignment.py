@@ -88,8 +88,8 @@ CostSpec = Union[np.ndarray, Sequence[Sequence[float]], Callable[[str, int], flo
 def _slots(roles: Sequence[RoleSlot | str]) -> list[RoleSlot]:
     out = [r if isinstance(r, RoleSlot) else RoleSlot(str(r)) for r in roles]
     names = [r.name for r in out]
-    dup = sorted({n for n in names if names.count(n) > 1})
-    if dup:
+    if len(set(names)) != len(names):
+        dup = sorted({n for n in names if names.count(n) > 1})
         raise ValueError(f"assign: duplicate role name(s) {dup}")
     for r in out:
         if not (isinstance(r.unfilled_cost, (int, float)) and math.isfinite(r.unfilled_cost)):

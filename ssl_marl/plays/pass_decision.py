@@ -324,14 +324,16 @@ def open_goal_interval(p: np.ndarray, obstacles: np.ndarray, field: FieldGeometr
     not shadowed by any robot in ``obstacles`` (k, 2); (0, angle to the goal centre) if
     none is open."""
     p = np.asarray(p, float)
-    left, right = field.goal_posts(+1)
-    a_hi = math.atan2(left[1] - p[1], left[0] - p[0])
-    a_lo = math.atan2(right[1] - p[1], right[0] - p[0])
-    centre = math.atan2(-p[1], field.half_length - p[0])
-    if p[0] >= field.half_length or a_hi <= a_lo:
+    px, py = p.tolist()
+    (lx, ly), (rx, ry) = (q.tolist() for q in field.goal_posts(+1))
+    a_hi = math.atan2(ly - py, lx - px)
+    a_lo = math.atan2(ry - py, rx - px)
+    half_length = field.half_length
+    centre = math.atan2(-py, half_length - px)
+    if px >= half_length or a_hi <= a_lo:
         return 0.0, centre
     intervals = [(a_lo, a_hi)]
-    goal_dist = field.half_length - p[0]
+    goal_dist = half_length - px
     R = rp.radius + bp.radius
     d_all = np.asarray(obstacles, float).reshape(-1, 2) - p
     for (dx, dy), dist in zip(d_all.tolist(), np.hypot(d_all[:, 0], d_all[:, 1]).tolist()):

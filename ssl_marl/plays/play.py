@@ -117,8 +117,10 @@ def time_to_reach(pos: np.ndarray, target: np.ndarray, max_speed: float) -> np.n
     return np.hypot(d[..., 0], d[..., 1]) / max(max_speed, 1e-9)
 
 
-def make_context(world: WorldState, team: str, field: FieldGeometry, robot: RobotParams) -> PlayContext:
-    """Build the :class:`PlayContext` from a team-frame snapshot."""
+def make_context(world: WorldState, team: str, field: FieldGeometry, robot: RobotParams, **extra: Any
+                 ) -> PlayContext:
+    """Build the :class:`PlayContext` from a team-frame snapshot; ``extra``: the fields the
+    team controller fills (``role_status``, ``role_holders``, ``set_piece``, ...)."""
     if world.frame != team:
         raise ValueError(f"make_context: expected a snapshot in {team!r}'s frame, got frame={world.frame!r}")
     ours, theirs = world.team(team), world.opponents(team)
@@ -136,7 +138,7 @@ def make_context(world: WorldState, team: str, field: FieldGeometry, robot: Robo
     return PlayContext(team=team, world=world, field=field, robot=robot, n=ours.n, n_opp=theirs.n,
                        we_have_ball=bool(ours.ball_on_dribbler.any()),
                        they_have_ball=bool(theirs.ball_on_dribbler.any()),
-                       our_time=our_t, their_time=their_t, threats=threats)
+                       our_time=our_t, their_time=their_t, threats=threats, **extra)
 
 
 # -------------------------------------------------------------------- roles

@@ -108,7 +108,7 @@ class Tactic:
     def set_params(self, **changes: Any) -> None:
         """Set parameters (names of ``Params`` fields); plays call this every tick."""
         names = _field_names(self.Params)
-        unknown = sorted(set(changes) - names)
+        unknown = [] if names.issuperset(changes) else sorted(set(changes) - names)
         if unknown:
             raise ValueError(f"{type(self).__name__}.set_params: unknown parameter(s) {unknown}; "
                              f"known: {sorted(names)}")

@@ -34,7 +34,7 @@ from there).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Any, Collection, Protocol, Sequence
 
 import numpy as np
@@ -47,7 +47,7 @@ from ..skills.base import make_action
 from .assignment import Assignment, RoleSlot, assign
 from .dribble_watch import DribbleWatch
 from .pass_coordinator import CarrierDecider
-from .play import Play, PlayContext, PlaySelector, RoleDef, make_context, standard_plays
+from .play import Play, PlayContext, PlaySelector, RoleDef, make_context, standard_plays, time_to_reach
 from .skillset import CORE_SKILLS, SkillsSpec, check_skills, validate_skills
 from .tactic_base import Tactic
 
@@ -120,6 +120,7 @@ class TeamController:
         self.context: PlayContext | None = None
         self._forget_set_piece()
         self.dribble_watch = DribbleWatch(self.team, self.rp, self.bp)
+        self._slots: dict[int, tuple[RoleDef, RoleSlot]] = {}
 
     def _forget_set_piece(self) -> None:
         #: our robot that took our last set piece and may not touch the ball before another
@@ -220,6 +221,13 @@ class TeamController:
                 out.append((r, np.asarray(target, float)))
         return out
 
+    def _slot(self, role: RoleDef) -> RoleSlot:
+        """The assignment slot of ``role`` (a frozen record: built once per role)."""
+        hit = self._slots.get(id(role))
+        if hit is None or hit[0] is not role:
+            hit = self._slots[id(role)] = (role, RoleSlot(role.name, role.priority, role.unfilled_cost))
+        return hit[1]
+
     def act(self, env_or_world: Any, referee: Any = None) -> dict[str, np.ndarray]:
         """Actions ``{f"{team}_{i}": (5,) float32}`` for all robots of the team.
         ``referee``: the referee's command (a :class:`~ssl_marl.envs.game_control.RefereeState`)
@@ -237,17 +245,17 @@ class TeamController:
         set_piece = referee is not None and referee.is_set_piece_for(self.team)
         self._watch_set_piece_kicker(world, referee, set_piece)
         dribbled = self.dribble_watch.update(world)
-        ctx = make_context(world, self.team, self.field, self.rp)
-        ctx = replace(ctx, role_status={role: tactic.status for role, _, tactic in self._tactics.values()},
-                      role_holders={role: i for i, (role, _, _) in self._tactics.items()}, set_piece=set_piece,
-                      their_set_piece=referee is not None and referee.is_set_piece_for(other(self.team)),
-                      dribbled_m=dribbled)
+        ctx = make_context(world, self.team, self.field, self.rp,
+                           role_status={role: tactic.status for role, _, tactic in self._tactics.values()},
+                           role_holders={role: i for i, (role, _, _) in self._tactics.items()}, set_piece=set_piece,
+                           their_set_piece=referee is not None and referee.is_set_piece_for(other(self.team)),
+                           dribbled_m=dribbled)
         play = self.selector.select(ctx, world.t)
         if play.prepare is not None:
             play.prepare(ctx)
         active = self._active_roles(play, ctx)
-        slots = [RoleSlot(r.name, r.priority, r.unfilled_cost) for r, _ in active]
-        cost = np.vstack([r.costs(ctx, tgt) for r, tgt in active]) if active else np.zeros((0, self.n))
+        slots = [self._slot(r) for r, _ in active]
+        cost = role_costs(active, ctx) if active else np.zeros((0, self.n))
         fixed = {r.name: r.fixed_robot for r, _ in active if r.fixed_robot is not None}
         guard = self.set_piece_guard
         held = self._tactics.get(guard) if guard is not None else None
@@ -281,6 +289,17 @@ class TeamController:
             kickers = [i for i, (_, _, tactic) in self._tactics.items() if tactic.takes_ball]
             keep_clear(actions, self.agents, world, self.team, self.rp.max_speed, exempt=kickers)
         return actions
+
+
+def role_costs(active: Sequence[tuple[RoleDef, np.ndarray]], ctx: PlayContext) -> np.ndarray:
+    """(roles, robots) cost matrix of the active roles (``RoleDef.costs`` row by row): the
+    default costs (:func:`~ssl_marl.plays.play.time_to_reach` to each role's target) in one
+    array operation, element for element the same numbers."""
+    targets = [tgt for r, tgt in active if r.cost is None]
+    if not targets or any(t.shape != (2,) for t in targets):
+        return np.vstack([r.costs(ctx, tgt) for r, tgt in active])
+    default = iter(time_to_reach(ctx.our_pos[None, :, :], np.array(targets)[:, None, :], ctx.robot.max_speed))
+    return np.vstack([next(default) if r.cost is None else r.costs(ctx, tgt) for r, tgt in active])
 
 
 #: m: robots keep this far from the ball when the referee says so (0.5 m, SSL rules,

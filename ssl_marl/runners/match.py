@@ -260,12 +260,12 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
         bar = tqdm(total=total_steps, desc=f"match (seed {seed})", unit="step", leave=False)
     ok = False
     try:
+        for team in remote if env.agents else ():  # these decide in their own processes while this one
+            ctrls[team].submit(team_view(env, team))  # draws, keeps statistics and decides for the others
         if sink is not None:
             sink.add(env.render())
         while env.agents:
             actions: dict[str, np.ndarray] = {}
-            for team in remote:  # these decide in their own processes while the others decide here
-                ctrls[team].submit(team_view(env, team))
             for team, ctrl in ctrls.items():
                 if team in remote:
                     a, elapsed = ctrl.result()
@@ -279,6 +279,8 @@ def play_match(blue: Any = "baseline", yellow: Any = "baseline", robots: int = 6
                 prev[team] = a
                 actions.update(a if chip_dim == 5 else {k: fit_action(v, chip_dim) for k, v in a.items()})
             _, _, _, _, infos = env.step(actions)
+            for team in remote if env.agents else ():  # the next frame, sent before the bookkeeping below
+                ctrls[team].submit(team_view(env, team))
             events = next(iter(infos.values()))["events"] if infos else []
             truth = env.world_state()
             stats.record(events, truth)

@@ -46,10 +46,11 @@ class NumpyActor:
         x = np.asarray(obs, dtype=np.float64)
         for w, b, g, beta in self.layers:
             x = x @ w + b
-            if g is not None:
-                mu = x.mean(-1, keepdims=True)
-                var = x.var(-1, keepdims=True)
-                x = (x - mu) / np.sqrt(var + self.eps) * g + beta
+            if g is not None:  # LayerNorm: the sums and quotients of x.mean(-1) and x.var(-1), done once
+                n = x.shape[-1]
+                d = x - np.add.reduce(x, axis=-1, keepdims=True) / n
+                var = np.add.reduce(np.square(d), axis=-1, keepdims=True) / n
+                x = d / np.sqrt(var + self.eps) * g + beta
             np.maximum(x, 0.0, out=x)
         return np.tanh(x @ self.head_w + self.head_b).astype(np.float32)
 

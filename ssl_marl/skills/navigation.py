@@ -70,10 +70,27 @@ class NavParams:
     run_off: float = 0.0
 
 
+#: defense_rect's results: (id(field), side, margin) -> (field, rect); the field is kept
+#: so that its id cannot be reused by another object while the entry exists
+_RECTS: dict[tuple[int, int, float], tuple[FieldGeometry, tuple[float, float, float, float]]] = {}
+
+
 def defense_rect(field: FieldGeometry, side: int, margin: float) -> tuple[float, float, float, float]:
     """(x_min, x_max, y_min, y_max) of the defense area at x = side * L/2, grown by
     ``margin`` towards the field (and sideways); it extends behind the goal line so
     that nothing is routed around its back."""
+    key = (id(field), side, margin)
+    hit = _RECTS.get(key)
+    if hit is not None and hit[0] is field:
+        return hit[1]
+    rect = _defense_rect(field, side, margin)
+    if len(_RECTS) > 256:
+        _RECTS.clear()
+    _RECTS[key] = (field, rect)
+    return rect
+
+
+def _defense_rect(field: FieldGeometry, side: int, margin: float) -> tuple[float, float, float, float]:
     L2 = field.half_length
     hw = field.defense_width / 2.0 + margin
     inner = L2 - field.defense_depth - margin
@@ -84,7 +101,8 @@ def defense_rect(field: FieldGeometry, side: int, margin: float) -> tuple[float,
 
 
 def _in_rect(p: np.ndarray, rect: tuple[float, float, float, float]) -> bool:
-    return rect[0] < p[0] < rect[1] and rect[2] < p[1] < rect[3]
+    x, y = p.tolist() if isinstance(p, np.ndarray) else p
+    return rect[0] < x < rect[1] and rect[2] < y < rect[3]
 
 
 def _push_out_xy(x: float, y: float, rect: tuple[float, float, float, float]) -> tuple[float, float]:
@@ -121,9 +139,11 @@ def sanitize_target(target: np.ndarray, field: FieldGeometry, params: NavParams)
 
 def _segment_hits_rect(a: np.ndarray, b: np.ndarray, rect: tuple[float, float, float, float]) -> bool:
     """True if segment a-b passes through the interior of rect (Liang-Barsky clip)."""
-    d = b - a
+    ax, ay = a.tolist() if isinstance(a, np.ndarray) else a
+    bx, by = b.tolist() if isinstance(b, np.ndarray) else b
+    dx, dy = bx - ax, by - ay
     t0, t1 = 0.0, 1.0
-    for p, q in ((-d[0], a[0] - rect[0]), (d[0], rect[1] - a[0]), (-d[1], a[1] - rect[2]), (d[1], rect[3] - a[1])):
+    for p, q in ((-dx, ax - rect[0]), (dx, rect[1] - ax), (-dy, ay - rect[2]), (dy, rect[3] - ay)):
         if abs(p) < 1e-12:
             if q < 0:
                 return False
