@@ -67,6 +67,9 @@ match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
 * ``ssl-restart-chip-2.5`` / ``-3``: the SSL format with the attacking team's set-piece chips ones the receiver
   can take on its dribbler, arriving at most 2.5 / 3 m/s fast (``AttackParams.restart_chip_arrive_speed``;
   default None: the shortest-flight chip, whose ball may still hop above the dribbler bar at the receiver);
+* ``ssl-defender-1-opp-2`` / ``ssl-defender-1-always``: the SSL format with the attacking plays' second defender
+  playing only while two or more opponents stand in our half or the ball lies there (``ATTACK_DEFENDER_1_OPPONENTS``
+  2, the default), its robot a support otherwise / always (0);
 * ``opp-one-defender`` / ``opp-no-defender``: the plain format against a weakened defence: the
   standard plays (the ``baseline`` / ``learned`` teams' plays) keep only their first defender /
   none of their defenders on the ball-goal line (the robots freed take the plays' next roles:
@@ -107,9 +110,11 @@ FORMAT = {"ssl": "ssl", "ssl-receiver-guard": "ssl", "ssl-tap-0.7": "ssl", "ssl-
           "ssl-shoot-0.15": "ssl", "ssl-spots-goal-0.5": "ssl",
           **{f"ssl-restart-redirect-{w}": "ssl" for w in ("1.5", "2", "3")},
           **{f"ssl-restart-pass-{v}": "ssl" for v in ("0.6", "0.7")},
-          **{f"ssl-restart-chip-{v}": "ssl" for v in ("2.5", "3")}}
+          **{f"ssl-restart-chip-{v}": "ssl" for v in ("2.5", "3")}, "ssl-defender-1-opp-2": "ssl", "ssl-defender-1-always": "ssl"}
 #: the attacking plays' mark bias of each variant (``ATTACK_MARK_BIAS``)
 MARK_BIAS = {"ssl-mark-0.25": 0.25}
+#: the attacking plays' ``ATTACK_DEFENDER_1_OPPONENTS`` of each variant
+DEFENDER_1_OPPONENTS = {"ssl-defender-1-opp-2": 2, "ssl-defender-1-always": 0}
 #: ``ATTACK_PASSING`` fields of each variant
 PASSING = {"keep-2s": {"max_keep_s": 2.0}, "keep-inf": {"max_keep_s": math.inf}, "keep-pass": {"keep_expiry": "pass"},
            "keep-near-4": {"keep_shot_max_m": 4.0}, "keep-near-6": {"keep_shot_max_m": 6.0},
@@ -151,6 +156,14 @@ def set_attack_mark_bias(bias: float | None) -> None:
         from ssl_marl.plays import attack_play
 
         attack_play.ATTACK_MARK_BIAS = float(bias)
+
+
+def set_attack_defender_1(min_opponents: int | None) -> None:
+    """Replace the attacking plays' ``ATTACK_DEFENDER_1_OPPONENTS`` (read when a team is built); None: unchanged."""
+    if min_opponents is not None:
+        from ssl_marl.plays import attack_play
+
+        attack_play.ATTACK_DEFENDER_1_OPPONENTS = int(min_opponents)
 
 
 def set_standard_defenders(n: int | None) -> None:
@@ -206,7 +219,8 @@ def summarize(rows: list[dict], seconds: float) -> dict:
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("variant", choices=sorted({*RULES, *FORMAT, *DECISION, *OPEN_PLAY_DECISION, *RESTART_DECISION, *ATTACK,
-                                               *SPOTS, *OPP_DEFENDERS, *MARK_BIAS}),
+                                               *SPOTS, *OPP_DEFENDERS, *MARK_BIAS,
+                                               *DEFENDER_1_OPPONENTS}),
                     help="the variant (module docstring)")
     ap.add_argument("--blue", default="attack-learned", help="blue team kind (default attack-learned)")
     ap.add_argument("--yellow", default="baseline", help="yellow team kind (default baseline)")
@@ -228,6 +242,7 @@ def main(argv: list[str] | None = None) -> int:
     set_attack_spots(SPOTS.get(args.variant))
     set_standard_defenders(OPP_DEFENDERS.get(args.variant))
     set_attack_mark_bias(MARK_BIAS.get(args.variant))
+    set_attack_defender_1(DEFENDER_1_OPPONENTS.get(args.variant))
     manifest = build_manifest(rules={"variant": args.variant, "env": env,
                                      "attack_passing": {k: str(v) for k, v in PASSING.get(args.variant, {}).items()},
                                      "decision": DECISION.get(args.variant, {}),
@@ -237,6 +252,7 @@ def main(argv: list[str] | None = None) -> int:
                                      "spots": SPOTS.get(args.variant, {}),
                                      "standard_plays_defenders": OPP_DEFENDERS.get(args.variant),
                                      "attack_mark_bias": MARK_BIAS.get(args.variant),
+                                     "attack_defender_1_opponents": DEFENDER_1_OPPONENTS.get(args.variant),
                                      "blue": args.blue, "yellow": args.yellow, "seconds": args.seconds,
                                      "robots": args.robots, "field": args.field},
                               seeds={"seed": args.seed, "matches": args.matches})

@@ -299,3 +299,31 @@ def test_learned_redirect_copies_do_not_share_their_contact_planner():
     a._base._contact = np.array([1.0, 0.0])
     b.reset()
     assert a._base._contact is not None
+
+
+def test_threat_defender_plays_only_against_opponents_in_our_half():
+    import math
+
+    from ssl_marl.physics.field import FieldGeometry
+    from ssl_marl.physics.params import RobotParams
+    from ssl_marl.plays.attack_play import threat_defender_role
+    from ssl_marl.plays.play import OPTIONAL_ROLE_UNFILLED_COST, defender_role, make_context
+    from ssl_marl.plays.scene import make_world
+
+    f, rp = FieldGeometry.div_b(), RobotParams()
+    blue = [(-4.0, 0.0, 0.0), (1.0, 0.0, 0.0), (2.0, 1.0, 0.0)]
+
+    def ctx(yellow, ball):
+        return make_context(make_world(blue=blue, yellow=[(x, y, math.pi) for x, y in yellow], ball=ball, frame="blue"),
+                            "blue", f, rp)
+
+    role = threat_defender_role(1, 70, 2)
+    assert role.name == "defender_1" and role.unfilled_cost == OPTIONAL_ROLE_UNFILLED_COST
+    far = ctx([(4.0, 0.0), (2.5, 0.5), (-1.0, 1.0)], (1.5, 0.0))  # one opponent in our half, the ball in theirs
+    assert role.target(far) is None
+    near = ctx([(4.0, 0.0), (-0.5, 0.5), (-1.0, 1.0)], (1.5, 0.0))  # two in our half
+    ball_ours = ctx([(4.0, 0.0), (2.5, 0.5), (3.0, 1.0)], (-0.5, 0.0))  # the ball in our half
+    for c in (near, ball_ours):
+        assert np.allclose(role.target(c), defender_role(1, 70).target(c))
+    for always in (None, 0):
+        assert threat_defender_role(1, 70, always).target(far) is not None
