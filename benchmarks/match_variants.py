@@ -69,7 +69,7 @@ match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
   default None: the shortest-flight chip, whose ball may still hop above the dribbler bar at the receiver);
 * ``ssl-defender-1-opp-2`` / ``ssl-defender-1-always``: the SSL format with the attacking plays' second defender
   playing only while two or more opponents stand in our half or the ball lies there (``ATTACK_DEFENDER_1_OPPONENTS``
-  2, the default), its robot a support otherwise / always (0);
+  2), its robot a support otherwise / always (0, as the default None);
 * ``opp-one-defender`` / ``opp-no-defender``: the plain format against a weakened defence: the
   standard plays (the ``baseline`` / ``learned`` teams' plays) keep only their first defender /
   none of their defenders on the ball-goal line (the robots freed take the plays' next roles:

@@ -89,10 +89,12 @@ ATTACK_PASSING = PassingParams(abort_margin_s=-math.inf, decide_at_restart=True,
                                restart_decision=ATTACK_RESTART_DECISION)
 #: the attacking plays' second defender plays only while at least this many opponents stand in our
 #: half (team frame x < 0) or the ball lies there, else its robot takes the next role (a support);
-#: None or 0: always (read when the plays are built). Six SSL-format tuning matches against the no-pass
-#: baseline (seeds 61884-61889, paired with the second defender always on): 18-2 goals against 14-1
-#: (docs/RESULTS.md, section 15, "A second defender only against a threat").
-ATTACK_DEFENDER_1_OPPONENTS: int | None = 2
+#: None or 0: always (read when the plays are built). With 2: six SSL-format tuning matches against the
+#: no-pass baseline (seeds 61884-61889) 18-2 goals against 14-1 with the second defender always on, then
+#: 20 held-out matches (108270-108289) 65-7, where the team as it plays scored 67-5 on seeds
+#: 108220-108239: no gain shown, so it stays off (docs/RESULTS.md, section 15, "A second defender
+#: only against a threat").
+ATTACK_DEFENDER_1_OPPONENTS: int | None = None
 #: the attacking team's decision parameters (chip, redirect; an :class:`AttackDecider` built
 #: without parameters reads them when it is built)
 ATTACK_PARAMS = AttackParams()
