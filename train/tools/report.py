@@ -165,6 +165,13 @@ SET_PIECE_CHIP_SELFPLAY = [
      tuple(f"selfplay_ssl-restart-chip-3_{s}.json" for s in range(61880, 61884))),
     ("set pieces pass only from success 0.7 (`ssl-restart-pass-0.7`)",
      tuple(f"selfplay_ssl-restart-pass-0.7_{s}.json" for s in range(61880, 61884)))]
+#: the second defender only against a threat (``ssl-defender-1-opp-2``) beside the control, against the no-pass
+#: baseline, seeds 61884-61889
+MATCH_VARIANTS_DEFENDER_1 = [
+    ("SSL format, the second defender always on (`ssl`, the code before)",
+     tuple(f"baseline_ssl_{s}.json" for s in range(61884, 61890))),
+    ("the second defender only with two opponents in our half or the ball there (`ssl-defender-1-opp-2`)",
+     tuple(f"baseline_ssl-defender-1-opp-2_{s}.json" for s in range(61884, 61890)))]
 #: ``benchmarks/match_variants.py`` runs (label, file under results/tuning/match_variants/)
 MATCH_VARIANTS = [("plain format (play restarts at once)", "plain.json"),
                   ("free kicks, no STOP", "free-kick.json"),
@@ -430,6 +437,8 @@ RESTART_MARGIN_SELFPLAY_108200 = ["match_attack_learned_decision_selfplay_600_ss
 RESTART_MARGIN_BASELINE_108220 = ["match_attack_learned_decision_vs_baseline_600_ssl_108220"]
 RESTART_MARGIN_PASSING_108240 = ["match_attack_learned_decision_vs_passing_learned_600_ssl_108240"]
 RESTART_MARGIN_DIV_A_108260 = ["match_attack_learned_decision_vs_baseline_600_ssl_div_a_11v11_108260"]
+#: the second defender only against a threat (ATTACK_DEFENDER_1_OPPONENTS 2, commit 18608a1) against the baseline
+DEFENDER_1_BASELINE_108270 = ["match_attack_learned_decision_vs_baseline_600_ssl_108270"]
 RESTART_MARGIN_BASELINE_108220_POOLED = [("attack-learned-decision (the clone), set-piece passes 0.6 m inside the lines, "
                                           "vs baseline", tuple((n, "blue") for n in RESTART_MARGIN_BASELINE_108220))]
 DECISION_CLONE_TARGETS_108140 = ["match_attack_learned_decision_vs_baseline_600_ssl_realistic_108160",
@@ -654,6 +663,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "restart_margin_baseline_108220": lambda r: m.series_600(r, RESTART_MARGIN_BASELINE_108220),
     "restart_margin_passing_108240": lambda r: m.series_600(r, RESTART_MARGIN_PASSING_108240),
     "restart_margin_div_a_108260": lambda r: m.series_600(r, RESTART_MARGIN_DIV_A_108260),
+    "defender_1_baseline_108270": lambda r: m.series_600(r, DEFENDER_1_BASELINE_108270),
     "restart_margin_baseline_108220_pooled": lambda r: m.pooled_attack(r, RESTART_MARGIN_BASELINE_108220_POOLED),
     "decision_clone_div_a_108180": lambda r: m.series_600(r, DECISION_CLONE_DIV_A_108180),
     "decision_clone_div_a_108180_pooled": lambda r: m.pooled_sides(r, DECISION_CLONE_DIV_A_108180_POOLED),
@@ -693,6 +703,7 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "match_variants": lambda r: m.match_variants(r, MATCH_VARIANTS),
     "set_piece_variants_selfplay": lambda r: m.selfplay_variants(r, SET_PIECE_VARIANTS_SELFPLAY),
     "set_piece_chip_selfplay": lambda r: m.selfplay_variants(r, SET_PIECE_CHIP_SELFPLAY),
+    "match_variants_defender_1": lambda r: m.match_variants(r, MATCH_VARIANTS_DEFENDER_1),
     "match_variants_defence": lambda r: m.match_variants(r, MATCH_VARIANTS_DEFENCE),
     "match_variants_ssl_marks": lambda r: m.match_variants(r, MATCH_VARIANTS_SSL_MARKS),
     "match_variants_ssl_opp_area": lambda r: m.match_variants(r, MATCH_VARIANTS_SSL_OPP_AREA, fouls=True),
