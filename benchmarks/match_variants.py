@@ -150,20 +150,13 @@ def set_attack_spots(fields: dict | None = None) -> None:
     attack_play.ATTACK_SPOTS = dataclasses.replace(attack_play.ATTACK_SPOTS, **(fields or {}))
 
 
-def set_attack_mark_bias(bias: float | None) -> None:
-    """Replace the attacking plays' ``ATTACK_MARK_BIAS`` (read when a team is built); None: unchanged."""
-    if bias is not None:
+def set_attack_constant(name: str, value: float | int | None) -> None:
+    """Replace the attacking plays' module constant ``name`` (``ATTACK_MARK_BIAS``,
+    ``ATTACK_DEFENDER_1_OPPONENTS``; read when a team is built); None: unchanged."""
+    if value is not None:
         from ssl_marl.plays import attack_play
 
-        attack_play.ATTACK_MARK_BIAS = float(bias)
-
-
-def set_attack_defender_1(min_opponents: int | None) -> None:
-    """Replace the attacking plays' ``ATTACK_DEFENDER_1_OPPONENTS`` (read when a team is built); None: unchanged."""
-    if min_opponents is not None:
-        from ssl_marl.plays import attack_play
-
-        attack_play.ATTACK_DEFENDER_1_OPPONENTS = int(min_opponents)
+        setattr(attack_play, name, value)
 
 
 def set_standard_defenders(n: int | None) -> None:
@@ -241,8 +234,8 @@ def main(argv: list[str] | None = None) -> int:
     set_attack_params(ATTACK.get(args.variant))
     set_attack_spots(SPOTS.get(args.variant))
     set_standard_defenders(OPP_DEFENDERS.get(args.variant))
-    set_attack_mark_bias(MARK_BIAS.get(args.variant))
-    set_attack_defender_1(DEFENDER_1_OPPONENTS.get(args.variant))
+    set_attack_constant("ATTACK_MARK_BIAS", MARK_BIAS.get(args.variant))
+    set_attack_constant("ATTACK_DEFENDER_1_OPPONENTS", DEFENDER_1_OPPONENTS.get(args.variant))
     manifest = build_manifest(rules={"variant": args.variant, "env": env,
                                      "attack_passing": {k: str(v) for k, v in PASSING.get(args.variant, {}).items()},
                                      "decision": DECISION.get(args.variant, {}),

@@ -105,12 +105,10 @@ ATTACK_SPOTS = SpotParams()
 ATTACK_MARK_BIAS = 0.0
 
 
-def chip_arrive_speed(params: AttackParams, restart: bool) -> float | None:
-    """The chip's ``arrive_speed_max`` (m/s; None: the shortest-flight chip) in open play or,
-    with ``restart``, at a set piece (``AttackParams.restart_chip_arrive_speed``, where set)."""
-    if restart and params.restart_chip_arrive_speed is not None:
-        return params.restart_chip_arrive_speed
-    return params.chip_arrive_speed
+def set_piece_value(open_play: float | None, set_piece: float | None, restart: bool) -> float | None:
+    """An :class:`AttackParams` value and its set-piece override (``restart_*``, None: unset):
+    the override at a restart where set, else the open-play value."""
+    return set_piece if restart and set_piece is not None else open_play
 
 
 @dataclass
@@ -151,11 +149,11 @@ class AttackDecider:
         decision parameters (open play or restart) and, at a restart, the set pieces'
         redirect weight and chip (``AttackParams.restart_w_redirect``,
         ``restart_chip_arrive_speed``, where set)."""
-        p = self.params
-        restart_w = p.restart_w_redirect if request.restart else None
+        p, restart = self.params, request.restart
         return dataclasses.replace(p, decision=request.params,
-                                   w_redirect=p.w_redirect if restart_w is None else restart_w,
-                                   chip_arrive_speed=chip_arrive_speed(p, request.restart))
+                                   w_redirect=set_piece_value(p.w_redirect, p.restart_w_redirect, restart),
+                                   chip_arrive_speed=set_piece_value(p.chip_arrive_speed, p.restart_chip_arrive_speed,
+                                                                     restart))
 
     def decide(self, request: CarrierRequest) -> Decision:
         ctx = request.ctx
@@ -241,7 +239,8 @@ def chip_passer_role(coord: PassCoordinator, decider: AttackDecider, priority: i
         arrival = decider.params.redirect_arrive_speed if redirect else decision.pass_arrive_speed
         return dict(chip=o is not None and o.kind is AttackChoice.CHIP, approach_behind=plan.restart,
                     strike=plan.restart, arrival_speed=arrival,
-                    chip_arrive_speed=chip_arrive_speed(decider.params, plan.restart))
+                    chip_arrive_speed=set_piece_value(decider.params.chip_arrive_speed,
+                                                      decider.params.restart_chip_arrive_speed, plan.restart))
 
     return passer_role(coord, priority, ChipPass, extra)
 

@@ -70,27 +70,10 @@ class NavParams:
     run_off: float = 0.0
 
 
-#: defense_rect's results: (id(field), side, margin) -> (field, rect); the field is kept
-#: so that its id cannot be reused by another object while the entry exists
-_RECTS: dict[tuple[int, int, float], tuple[FieldGeometry, tuple[float, float, float, float]]] = {}
-
-
 def defense_rect(field: FieldGeometry, side: int, margin: float) -> tuple[float, float, float, float]:
     """(x_min, x_max, y_min, y_max) of the defense area at x = side * L/2, grown by
     ``margin`` towards the field (and sideways); it extends behind the goal line so
     that nothing is routed around its back."""
-    key = (id(field), side, margin)
-    hit = _RECTS.get(key)
-    if hit is not None and hit[0] is field:
-        return hit[1]
-    rect = _defense_rect(field, side, margin)
-    if len(_RECTS) > 256:
-        _RECTS.clear()
-    _RECTS[key] = (field, rect)
-    return rect
-
-
-def _defense_rect(field: FieldGeometry, side: int, margin: float) -> tuple[float, float, float, float]:
     L2 = field.half_length
     hw = field.defense_width / 2.0 + margin
     inner = L2 - field.defense_depth - margin
