@@ -56,6 +56,9 @@ match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
 * ``ssl-shoot-0.15``: the SSL format with the attacking team's decisions shooting at once from a shot value of
   0.15 in open play (``shoot_threshold``, default 0.25; set pieces unchanged): more shots near the goal, whose
   rebounds the supports may take;
+* ``ssl-long-shot-5`` / ``ssl-long-shot-6``: the SSL format with a learned carrier decision's shot offered,
+  with the ball farther than 5 / 6 m from the opponent goal centre, only when no other option is legal
+  (``ssl_marl.decisions.match_decider.LONG_SHOT_MASK_M``; the attack drill's carrier never stands that far out);
 * ``ssl-spots-goal-0.5``: the SSL format with the supports' spots valuing nearness to the goal more
   (``SpotParams.w_goal`` 0.5, default 0.2; ``ATTACK_SPOTS``): supports closer to the goal mouth;
 * ``ssl-restart-redirect-1.5`` / ``-2`` / ``-3``: the SSL format with the attacking team's set pieces
@@ -110,11 +113,14 @@ FORMAT = {"ssl": "ssl", "ssl-receiver-guard": "ssl", "ssl-tap-0.7": "ssl", "ssl-
           "ssl-shoot-0.15": "ssl", "ssl-spots-goal-0.5": "ssl",
           **{f"ssl-restart-redirect-{w}": "ssl" for w in ("1.5", "2", "3")},
           **{f"ssl-restart-pass-{v}": "ssl" for v in ("0.6", "0.7")},
-          **{f"ssl-restart-chip-{v}": "ssl" for v in ("2.5", "3")}, "ssl-defender-1-opp-2": "ssl", "ssl-defender-1-always": "ssl"}
+          **{f"ssl-restart-chip-{v}": "ssl" for v in ("2.5", "3")}, "ssl-defender-1-opp-2": "ssl", "ssl-defender-1-always": "ssl",
+          "ssl-long-shot-5": "ssl", "ssl-long-shot-6": "ssl"}
 #: the attacking plays' mark bias of each variant (``ATTACK_MARK_BIAS``)
 MARK_BIAS = {"ssl-mark-0.25": 0.25}
 #: the attacking plays' ``ATTACK_DEFENDER_1_OPPONENTS`` of each variant
 DEFENDER_1_OPPONENTS = {"ssl-defender-1-opp-2": 2, "ssl-defender-1-always": 0}
+#: ``LONG_SHOT_MASK_M`` of the learned attacking deciders in each variant
+LONG_SHOT = {"ssl-long-shot-5": 5.0, "ssl-long-shot-6": 6.0}
 #: ``ATTACK_PASSING`` fields of each variant
 PASSING = {"keep-2s": {"max_keep_s": 2.0}, "keep-inf": {"max_keep_s": math.inf}, "keep-pass": {"keep_expiry": "pass"},
            "keep-near-4": {"keep_shot_max_m": 4.0}, "keep-near-6": {"keep_shot_max_m": 6.0},
@@ -213,7 +219,7 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("variant", choices=sorted({*RULES, *FORMAT, *DECISION, *OPEN_PLAY_DECISION, *RESTART_DECISION, *ATTACK,
                                                *SPOTS, *OPP_DEFENDERS, *MARK_BIAS,
-                                               *DEFENDER_1_OPPONENTS}),
+                                               *DEFENDER_1_OPPONENTS, *LONG_SHOT}),
                     help="the variant (module docstring)")
     ap.add_argument("--blue", default="attack-learned", help="blue team kind (default attack-learned)")
     ap.add_argument("--yellow", default="baseline", help="yellow team kind (default baseline)")
@@ -236,6 +242,10 @@ def main(argv: list[str] | None = None) -> int:
     set_standard_defenders(OPP_DEFENDERS.get(args.variant))
     set_attack_constant("ATTACK_MARK_BIAS", MARK_BIAS.get(args.variant))
     set_attack_constant("ATTACK_DEFENDER_1_OPPONENTS", DEFENDER_1_OPPONENTS.get(args.variant))
+    if args.variant in LONG_SHOT:
+        from ssl_marl.decisions import match_decider
+
+        match_decider.LONG_SHOT_MASK_M = LONG_SHOT[args.variant]
     manifest = build_manifest(rules={"variant": args.variant, "env": env,
                                      "attack_passing": {k: str(v) for k, v in PASSING.get(args.variant, {}).items()},
                                      "decision": DECISION.get(args.variant, {}),
@@ -246,6 +256,7 @@ def main(argv: list[str] | None = None) -> int:
                                      "standard_plays_defenders": OPP_DEFENDERS.get(args.variant),
                                      "attack_mark_bias": MARK_BIAS.get(args.variant),
                                      "attack_defender_1_opponents": DEFENDER_1_OPPONENTS.get(args.variant),
+                                     "long_shot_mask_m": LONG_SHOT.get(args.variant),
                                      "blue": args.blue, "yellow": args.yellow, "seconds": args.seconds,
                                      "robots": args.robots, "field": args.field},
                               seeds={"seed": args.seed, "matches": args.matches})

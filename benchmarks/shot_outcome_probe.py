@@ -1,6 +1,6 @@
 """Where the attacking team's shots end: every shot of a few matches, followed to its end.
 
-6v6 Division B, plain format (``--format ssl``: SSL's). A **shot** is a kick of the ``--blue`` team that the match
+6v6 Division B by default (``--robots``, ``--field``), plain format (``--format ssl``: SSL's). A **shot** is a kick of the ``--blue`` team that the match
 statistics count as one (:meth:`ssl_marl.plays.stats.MatchStatsTracker.classify_kick`:
 its straight path crosses the opponent goal line, +x in the field frame, within 0.25 m of
 the posts, and no teammate stands in its lane). From the world one step after the kick
@@ -21,6 +21,8 @@ blue's last kick before them.
         --seeds 61600-61603 --out results/tuning/shot_outcome_probe.json
     python benchmarks/shot_outcome_probe.py --format ssl --yellow passing-learned --seeds 61760-61761 \\
         --out results/tuning/shot_outcome_probe_ssl_passing.json
+    python benchmarks/shot_outcome_probe.py --format ssl --robots 11 --field div_a --blue attack-learned-decision \\
+        --seeds 62020-62021 --out results/tuning/shot_outcome_probe_ssl_div_a.json
 """
 
 from __future__ import annotations
@@ -35,7 +37,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from ball_out_probe import probe_args, write_probe  # noqa: E402  (the probes' shared command line)
 
 
-def probe_match(blue: str, yellow: str, seconds: float, seed: int, fmt: str = "plain") -> tuple[list[dict], list[dict]]:
+def probe_match(blue: str, yellow: str, seconds: float, seed: int, fmt: str = "plain", robots: int = 6,
+                field_name: str = "div_b") -> tuple[list[dict], list[dict]]:
     """The blue shots of one match, and its blue goals that followed no shot (module docstring)."""
     from ssl_marl.envs.game_control import TouchWatch
     from ssl_marl.physics.field import FieldGeometry
@@ -47,9 +50,9 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int, fmt: str = "p
     from ssl_marl.plays.stats import MatchStatsTracker
     from ssl_marl.runners import match as match_runner
 
-    field, rp, bp = FieldGeometry.div_b(), RobotParams(), BallParams()
+    field, rp, bp = FieldGeometry.from_name(field_name), RobotParams(), BallParams()
     rules = MatchStatsTracker(field, bp)  # the match statistics' shot rule (classify_kick)
-    touch = TouchWatch(6, 6, rp.radius, bp.radius)  # the referee's touch rule
+    touch = TouchWatch(robots, robots, rp.radius, bp.radius)  # the referee's touch rule
     shots: list[dict] = []
     goals_other: list[dict] = []  #: blue goals that no shot above led to (deflections, pushes)
     state: dict = {"open": None, "pending": None, "decision": None, "last_kick": None, "t": 0.0}
@@ -107,7 +110,7 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int, fmt: str = "p
         if state["open"] is not None:
             types = {e.get("type") for e in events}
             rows = np.flatnonzero(touch.touching(truth, []))
-            blue, yellow = rows[rows < 6], rows[rows >= 6] - 6
+            blue, yellow = rows[rows < robots], rows[rows >= robots] - robots
             if "goal" in types:
                 close("goal")
             elif "ball_out" in types or "no_progress" in types:
@@ -124,7 +127,7 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int, fmt: str = "p
     attack_play.AttackDecider.decide = decide
     match_decider.PolicyAttackDecider.decide = policy_decide
     try:
-        res = match_runner.play_match(blue=blue, yellow=yellow, robots=6, field="div_b", seconds=seconds, seed=seed,
+        res = match_runner.play_match(blue=blue, yellow=yellow, robots=robots, field=field_name, seconds=seconds, seed=seed,
                                       progress=False, render=None,
                                       env_kwargs=match_runner.format_options(fmt, seconds))
     finally:
@@ -135,7 +138,9 @@ def probe_match(blue: str, yellow: str, seconds: float, seed: int, fmt: str = "p
             [{**g, "seed": seed} for g in goals_other])
 
 
-def summarize(shots: list[dict]) -> dict:
+def summarize(shots: list[dict], half_length: float = 4.5) -> dict:
+    """Counts over ``shots``; the scoring zone is 1 m from the half-way line to 0.7 m before the goal line
+    (``half_length``, m), within 1.5 m of the long axis."""
     out = Counter(s["outcome"] for s in shots)
     dist = np.array([s["dist_m"] for s in shots]) if shots else np.zeros(0)
     op = np.array([s["open_rad"] for s in shots]) if shots else np.zeros(0)
@@ -144,7 +149,8 @@ def summarize(shots: list[dict]) -> dict:
             "median_dist_m": float(np.median(dist)) if dist.size else None,
             "open_below_0_05rad": int((op < 0.05).sum()),
             "from_own_half": int(sum(s["ball"][0] < 0 for s in shots)),
-            "from_scoring_zone": int(sum(1.0 <= s["ball"][0] <= 3.8 and abs(s["ball"][1]) <= 1.5 for s in shots)),
+            "from_scoring_zone": int(sum(1.0 <= s["ball"][0] <= half_length - 0.7 and abs(s["ball"][1]) <= 1.5
+                                         for s in shots)),
             "after_decision": dict(Counter((s["decision"] or {}).get("choice", "none") for s in shots)),
             "by_open": {k: dict(Counter(s["outcome"] for s in shots if (s["open_rad"] >= 0.05) == (k == "open")))
                         for k in ("open", "closed")}}
@@ -154,13 +160,17 @@ def main(argv: list[str] | None = None) -> int:
     def fmt(ap):
         ap.add_argument("--format", choices=("plain", "ssl"), default="plain",
                         help="match format (ssl_marl.runners.match.format_options; default plain)")
+        ap.add_argument("--robots", type=int, default=6, help="robots per team (default 6)")
+        ap.add_argument("--field", choices=("div_a", "div_b"), default="div_b", help="field (default div_b)")
     args = probe_args(__doc__.splitlines()[0], "61600-61601", "JSON output (summary and every shot)", argv, extra=fmt)
     shots, goals_other = [], []
     for seed in args.seeds:
-        s, g = probe_match(args.blue, args.yellow, args.seconds, seed, args.format)
+        s, g = probe_match(args.blue, args.yellow, args.seconds, seed, args.format, args.robots, args.field)
         shots += s
         goals_other += g
-    summary = {**summarize(shots), "blue_goals_without_a_shot": len(goals_other)}
+    from ssl_marl.physics.field import FieldGeometry
+    summary = {**summarize(shots, FieldGeometry.from_name(args.field).half_length),
+               "blue_goals_without_a_shot": len(goals_other)}
     write_probe(args, {"summary": summary, "shots": shots, "goals_without_a_shot": goals_other})
     return 0
 
