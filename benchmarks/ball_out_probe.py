@@ -105,7 +105,9 @@ def write_probe(args: argparse.Namespace, record: dict) -> None:
     print(json.dumps(record["summary"], indent=1))
     if args.out:
         atomic_write_json(args.out, {**record, "manifest": build_manifest(
-            rules={"blue": args.blue, "yellow": args.yellow, "seconds": args.seconds}, seeds={"seeds": args.seeds})})
+            rules={"blue": args.blue, "yellow": args.yellow, "seconds": args.seconds,
+                   **{k: getattr(args, k) for k in ("format", "robots", "field") if hasattr(args, k)}},
+            seeds={"seeds": args.seeds})})
 
 
 def main(argv: list[str] | None = None) -> int:

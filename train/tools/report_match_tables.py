@@ -291,20 +291,21 @@ def colour_balance(results: Path, groups: Iterable[tuple[str, tuple[str, ...]]])
     return rows
 
 
-def shot_outcomes(path: Path) -> Lines:
-    """``benchmarks/shot_outcome_probe.py``'s summary: where the blue shots came from and how they ended."""
-    d = json.loads(path.read_text())
-    s, seeds = d["summary"], d["manifest"]["seeds"]["seeds"]
-    o = s["outcomes"]
+def shot_outcomes(paths: Path | Iterable[Path]) -> Lines:
+    """``benchmarks/shot_outcome_probe.py``'s summaries (one row per record): where the blue shots came from
+    and how they ended."""
     rows = _head("seeds", "shots", "on target", "open < 0.05 rad", "from own half", "from the scoring zone",
                  "after the carrier's decision: shoot / dribble / pass / none",
                  "ended: goal / keeper / defender / teammate / out / stopped", "blue goals from no shot")
-    dec = s["after_decision"]
-    rows.append(f"| {min(seeds)}-{max(seeds)} | {s['shots']} | {s['on_target']} | {s['open_below_0_05rad']} | "
-                f"{s['from_own_half']} | {s['from_scoring_zone']} | "
-                f"{' / '.join(str(dec.get(k, 0)) for k in ('shoot', 'dribble', 'pass', 'none'))} | "
-                f"{' / '.join(str(o.get(k, 0)) for k in ('goal', 'keeper', 'defender', 'teammate', 'out', 'stopped'))} | "
-                f"{s['blue_goals_without_a_shot']} |")
+    for path in [paths] if isinstance(paths, Path) else paths:
+        d = json.loads(path.read_text())
+        s, seeds = d["summary"], d["manifest"]["seeds"]["seeds"]
+        o, dec = s["outcomes"], s["after_decision"]
+        rows.append(f"| {min(seeds)}-{max(seeds)} | {s['shots']} | {s['on_target']} | {s['open_below_0_05rad']} | "
+                    f"{s['from_own_half']} | {s['from_scoring_zone']} | "
+                    f"{' / '.join(str(dec.get(k, 0)) for k in ('shoot', 'dribble', 'pass', 'none'))} | "
+                    f"{' / '.join(str(o.get(k, 0)) for k in ('goal', 'keeper', 'defender', 'teammate', 'out', 'stopped'))} | "
+                    f"{s['blue_goals_without_a_shot']} |")
     return rows
 
 
