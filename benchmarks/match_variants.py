@@ -58,7 +58,8 @@ match`` does (:func:`ssl_marl.runners.match.play_match`), under one variant:
   rebounds the supports may take;
 * ``ssl-long-shot-5`` / ``ssl-long-shot-6``: the SSL format with a learned carrier decision's shot offered,
   with the ball farther than 5 / 6 m from the opponent goal centre, only when no other option is legal
-  (``ssl_marl.decisions.match_decider.LONG_SHOT_MASK_M``; the attack drill's carrier never stands that far out);
+  (``ssl_marl.decisions.long_shot.LONG_SHOT_MASK_M``; the attack drill's carrier never stands that far out);
+  ``ssl-long-shot-off``: the same without the rule (the shot always offered);
 * ``ssl-spots-goal-0.5``: the SSL format with the supports' spots valuing nearness to the goal more
   (``SpotParams.w_goal`` 0.5, default 0.2; ``ATTACK_SPOTS``): supports closer to the goal mouth;
 * ``ssl-restart-redirect-1.5`` / ``-2`` / ``-3``: the SSL format with the attacking team's set pieces
@@ -114,13 +115,13 @@ FORMAT = {"ssl": "ssl", "ssl-receiver-guard": "ssl", "ssl-tap-0.7": "ssl", "ssl-
           **{f"ssl-restart-redirect-{w}": "ssl" for w in ("1.5", "2", "3")},
           **{f"ssl-restart-pass-{v}": "ssl" for v in ("0.6", "0.7")},
           **{f"ssl-restart-chip-{v}": "ssl" for v in ("2.5", "3")}, "ssl-defender-1-opp-2": "ssl", "ssl-defender-1-always": "ssl",
-          "ssl-long-shot-5": "ssl", "ssl-long-shot-6": "ssl"}
+          "ssl-long-shot-5": "ssl", "ssl-long-shot-6": "ssl", "ssl-long-shot-off": "ssl"}
 #: the attacking plays' mark bias of each variant (``ATTACK_MARK_BIAS``)
 MARK_BIAS = {"ssl-mark-0.25": 0.25}
 #: the attacking plays' ``ATTACK_DEFENDER_1_OPPONENTS`` of each variant
 DEFENDER_1_OPPONENTS = {"ssl-defender-1-opp-2": 2, "ssl-defender-1-always": 0}
 #: ``LONG_SHOT_MASK_M`` of the learned attacking deciders in each variant
-LONG_SHOT = {"ssl-long-shot-5": 5.0, "ssl-long-shot-6": 6.0}
+LONG_SHOT = {"ssl-long-shot-5": 5.0, "ssl-long-shot-6": 6.0, "ssl-long-shot-off": None}
 #: ``ATTACK_PASSING`` fields of each variant
 PASSING = {"keep-2s": {"max_keep_s": 2.0}, "keep-inf": {"max_keep_s": math.inf}, "keep-pass": {"keep_expiry": "pass"},
            "keep-near-4": {"keep_shot_max_m": 4.0}, "keep-near-6": {"keep_shot_max_m": 6.0},
@@ -242,10 +243,10 @@ def main(argv: list[str] | None = None) -> int:
     set_standard_defenders(OPP_DEFENDERS.get(args.variant))
     set_attack_constant("ATTACK_MARK_BIAS", MARK_BIAS.get(args.variant))
     set_attack_constant("ATTACK_DEFENDER_1_OPPONENTS", DEFENDER_1_OPPONENTS.get(args.variant))
-    if args.variant in LONG_SHOT:
-        from ssl_marl.decisions import match_decider
+    from ssl_marl.decisions import long_shot
 
-        match_decider.LONG_SHOT_MASK_M = LONG_SHOT[args.variant]
+    if args.variant in LONG_SHOT:
+        long_shot.LONG_SHOT_MASK_M = LONG_SHOT[args.variant]
     manifest = build_manifest(rules={"variant": args.variant, "env": env,
                                      "attack_passing": {k: str(v) for k, v in PASSING.get(args.variant, {}).items()},
                                      "decision": DECISION.get(args.variant, {}),
@@ -256,7 +257,7 @@ def main(argv: list[str] | None = None) -> int:
                                      "standard_plays_defenders": OPP_DEFENDERS.get(args.variant),
                                      "attack_mark_bias": MARK_BIAS.get(args.variant),
                                      "attack_defender_1_opponents": DEFENDER_1_OPPONENTS.get(args.variant),
-                                     "long_shot_mask_m": LONG_SHOT.get(args.variant),
+                                     "long_shot_mask_m": long_shot.LONG_SHOT_MASK_M,
                                      "blue": args.blue, "yellow": args.yellow, "seconds": args.seconds,
                                      "robots": args.robots, "field": args.field},
                               seeds={"seed": args.seed, "matches": args.matches})

@@ -7,9 +7,10 @@ import math
 import numpy as np
 import pytest
 
-from ssl_marl.decisions import match_decider
+from ssl_marl.decisions import long_shot, match_decider
 from ssl_marl.decisions.attack_drill_features import N_ATTACK_DRILL_OPTIONS, SHOOT
-from ssl_marl.decisions.match_decider import PolicyAttackDecider, limit_long_shots
+from ssl_marl.decisions.long_shot import limit_long_shots
+from ssl_marl.decisions.match_decider import PolicyAttackDecider
 from ssl_marl.physics import FieldGeometry
 
 A, B = FieldGeometry.div_a(), FieldGeometry.div_b()
@@ -54,8 +55,9 @@ def test_bad_long_shot_distances_are_refused():
 
 
 def test_match_deciders_take_the_module_setting(monkeypatch):
-    """:func:`make_match_decider` builds a policy's decider with ``LONG_SHOT_MASK_M`` as it is then."""
-    assert match_decider.make_match_decider(_Shooter(), task=match_decider.DRILL_TASK).long_shot_m \
-        == match_decider.LONG_SHOT_MASK_M
-    monkeypatch.setattr(match_decider, "LONG_SHOT_MASK_M", 6.0)
+    """:func:`make_match_decider` builds a policy's decider with ``LONG_SHOT_MASK_M`` as it is then
+    (6 m: the drill's half of a Division B field lies within 5.4 m of the goal centre)."""
+    assert long_shot.LONG_SHOT_MASK_M == 6.0
     assert match_decider.make_match_decider(_Shooter(), task=match_decider.DRILL_TASK).long_shot_m == 6.0
+    monkeypatch.setattr(long_shot, "LONG_SHOT_MASK_M", None)
+    assert match_decider.make_match_decider(_Shooter(), task=match_decider.DRILL_TASK).long_shot_m is None

@@ -67,6 +67,7 @@ from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, 
                                     attack_decision_option, option_play_decision, request_features)
 from .attack_features import ATTACK_OBS_DIM, OBS_BOUND, attack_observation
 from .dribble_limit import DRIBBLE_MASK_M, check_dribble_mask_m, limit_dribbles
+from .long_shot import limit_long_shots
 
 #: the drill's pass coordinator: the attacking plays' settings, asked every tick; the drill
 #: calls no fouls and its shipped actors were trained with dribbles that run their time, so
@@ -132,10 +133,14 @@ class AttackOptionsMixin(CarrierRequestHooks):
     #: m: dribble distance from which the dribble options are masked (None: never;
     #: :func:`~ssl_marl.decisions.dribble_limit.limit_dribbles`)
     dribble_mask_m: float | None = None
+    #: m: the ball's distance from the opponent goal centre beyond which the shot is offered only
+    #: when nothing else is (None: always; :func:`~ssl_marl.decisions.long_shot.limit_long_shots`)
+    long_shot_m: float | None = None
 
     def request_features(self, req: CarrierRequest) -> tuple[np.ndarray, np.ndarray]:
         self._passes, obs, mask = request_features(req, self.decider.request_params(req))
-        return obs, limit_dribbles(mask, req, DRIBBLE_OPTIONS, self.dribble_mask_m)[0]
+        mask = limit_dribbles(mask, req, DRIBBLE_OPTIONS, self.dribble_mask_m)[0]
+        return obs, limit_long_shots(mask, req.ctx.ball, req.ctx.field, SHOOT, self.long_shot_m)[0]
 
     def start_options(self, chosen: Mapping[str, int]) -> None:
         req = self.decider.request

@@ -62,6 +62,7 @@ from .attack_drill import AttackOptionsMixin, DrillAttackDecider
 from .attack_drill_features import ATTACK_DRILL_OPTIONS, SHOOT, SlotPasses
 from .attack_features import OBS_BOUND
 from .base import DecisionEnv
+from . import long_shot
 from .dribble_limit import DRIBBLE_MASK_M
 from .pfsp import pfsp_weights, win_probability
 
@@ -113,6 +114,8 @@ class AttackMatchEnv(AttackOptionsMixin, DecisionEnv):
             half-time), and the learned decider's dribble mask
             (:data:`~ssl_marl.decisions.dribble_limit.DRIBBLE_MASK_M`), as the match's
             :class:`~ssl_marl.decisions.match_decider.PolicyAttackDecider` plays.
+            The learner's and its snapshots' shots follow the long-shot rule of the match's learned
+            decider (:data:`~ssl_marl.decisions.long_shot.LONG_SHOT_MASK_M`) with or without.
         kwargs: :class:`~ssl_marl.decisions.base.DecisionEnv` options (field, realism,
             max_interval_s, illegal_option, render_mode, tracker).
     """
@@ -145,6 +148,7 @@ class AttackMatchEnv(AttackOptionsMixin, DecisionEnv):
         self.reward_scales = dict(reward_scales or {"goal": 1.0})
         self.ssl_rules = bool(ssl_rules)
         self.dribble_mask_m = DRIBBLE_MASK_M if self.ssl_rules else None
+        self.long_shot_m = long_shot.LONG_SHOT_MASK_M
         self.results: dict[str, list[float]] = {}  # opponent -> [wins (draw 0.5), games]
         self._teams: dict[str, TeamController] = {}
         super().__init__(**kwargs)
@@ -166,7 +170,8 @@ class AttackMatchEnv(AttackOptionsMixin, DecisionEnv):
         from .learned import LearnedDecisionPolicy
         from .match_decider import PolicyAttackDecider
 
-        decider = PolicyAttackDecider(LearnedDecisionPolicy(actor, task="attack-drill"))
+        decider = PolicyAttackDecider(LearnedDecisionPolicy(actor, task="attack-drill"),
+                                      long_shot_m=long_shot.LONG_SHOT_MASK_M)
         return TeamSpec(plays=attack_plays, skills=self.skills, decider=decider)
 
     def league(self) -> list[str]:

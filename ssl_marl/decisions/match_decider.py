@@ -32,7 +32,6 @@ match starts.
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 from typing import Any
 
@@ -46,6 +45,8 @@ from ..plays.pass_coordinator import CarrierRequest, CostDecider
 from .attack_drill_features import (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS, DRIBBLE_OPTIONS, SHOOT,
                                     attack_decision_option, option_play_decision, request_features)
 from .dribble_limit import DRIBBLE_MASK_M, check_dribble_mask_m, limit_dribbles
+from . import long_shot
+from .long_shot import check_long_shot_m, limit_long_shots
 from .attack_features import (ATTACK_OBS_DIM, ATTACK_OPTIONS, DRIBBLE_GOAL, DRIBBLE_LEFT, DRIBBLE_RIGHT, OBS_BOUND,
                               attack_action_mask, attack_observation, option_decision)
 
@@ -57,11 +58,6 @@ TASK_SPACES: dict[str, tuple[int, tuple[str, ...]]] = {TASK: (ATTACK_OBS_DIM, AT
                                                        DRILL_TASK: (ATTACK_DRILL_OBS_DIM, ATTACK_DRILL_OPTIONS)}
 DECISION_CHOICES = ("handcoded", "learned", "improved")
 AGENT = "attacker_0"
-#: m: with the ball farther than this from the opponent goal centre, a learned attacking
-#: decider offers the shot only when no other option is legal (:func:`limit_long_shots`;
-#: the attack drill's carrier never stands this far out); None: the shot always offered.
-#: Read by :func:`make_match_decider` when it builds a decider.
-LONG_SHOT_MASK_M: float | None = None
 
 
 class AttackSpecEnv:
@@ -92,21 +88,6 @@ def ask_policy(policy: Any, spec_env: AttackSpecEnv, obs: np.ndarray, mask: np.n
         raise ValueError(f"{where}: the policy chose option {a}, not legal under mask {mask.tolist()} "
                          f"({spec_env.option_names})")
     return a
-
-
-def limit_long_shots(mask: np.ndarray, ball: np.ndarray, field: Any, shoot_option: int,
-                     max_m: float | None) -> tuple[np.ndarray, bool]:
-    """The long-shot rule on a learned decision's legal options: with the ball (team frame, m)
-    farther than ``max_m`` from the opponent goal centre ``(field.half_length, 0)`` the
-    ``shoot_option`` is masked, unless it is the only legal option. Returns (mask, whether it
-    masked); ``mask`` is not modified. ``max_m`` None: unchanged."""
-    if max_m is None or not mask[shoot_option] or int(np.count_nonzero(mask)) <= 1:
-        return mask, False
-    if math.hypot(float(ball[0]) - field.half_length, float(ball[1])) <= max_m:
-        return mask, False
-    mask = mask.copy()
-    mask[shoot_option] = 0
-    return mask, True
 
 
 class PolicyCarrierDecider:
@@ -181,11 +162,7 @@ class PolicyAttackDecider(AttackDecider):
         if not callable(getattr(policy, "act", None)):
             raise TypeError(f"PolicyAttackDecider: policy must have act(env, agent, obs, info), got {policy!r}")
         self.dribble_mask_m = check_dribble_mask_m(dribble_mask_m, "PolicyAttackDecider")
-        if long_shot_m is not None and not (isinstance(long_shot_m, (int, float)) and not isinstance(long_shot_m, bool)
-                                            and math.isfinite(long_shot_m) and long_shot_m > 0):
-            raise ValueError(f"PolicyAttackDecider: long_shot_m must be None or a finite distance > 0 (m), "
-                             f"got {long_shot_m!r}")
-        self.long_shot_m = long_shot_m
+        self.long_shot_m = check_long_shot_m(long_shot_m, "PolicyAttackDecider")
         self.long_shots_masked = 0
         super().__init__(params)
         self.policy = policy
@@ -335,16 +312,16 @@ def make_match_decider(spec: Any, where: str = "decision", task: str = TASK) -> 
     if not isinstance(spec, (str, Path)):
         if callable(getattr(spec, "decide", None)):
             return spec
-        return (PolicyAttackDecider(spec, long_shot_m=LONG_SHOT_MASK_M) if task == DRILL_TASK
+        return (PolicyAttackDecider(spec, long_shot_m=long_shot.LONG_SHOT_MASK_M) if task == DRILL_TASK
                 else PolicyCarrierDecider(spec))
     path = default_actor_path(task) if spec == "learned" else Path(spec)
     check_actor_file(path, where, task)
     from .learned import LearnedDecisionPolicy
 
     policy = LearnedDecisionPolicy(str(path), task=task)
-    return (PolicyAttackDecider(policy, long_shot_m=LONG_SHOT_MASK_M) if task == DRILL_TASK
+    return (PolicyAttackDecider(policy, long_shot_m=long_shot.LONG_SHOT_MASK_M) if task == DRILL_TASK
             else PolicyCarrierDecider(policy))
 
 
-__all__ = ["PolicyCarrierDecider", "PolicyAttackDecider", "limit_long_shots", "LONG_SHOT_MASK_M", "ImprovedAttackDecider", "AttackSpecEnv", "ask_policy",
+__all__ = ["PolicyCarrierDecider", "PolicyAttackDecider", "ImprovedAttackDecider", "AttackSpecEnv", "ask_policy",
            "make_match_decider", "default_actor_path", "check_actor_file", "DECISION_CHOICES", "TASK", "DRILL_TASK", "TASK_SPACES"]

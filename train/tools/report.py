@@ -233,6 +233,10 @@ MATCH_VARIANTS_DIV_A_TAP = [
     ("SSL format, the learned-decision team as it plays", "div_a/ssl-learned-decision-62010.json"),
     ("SSL format, the keeping attacker taps the ball ahead at 0.7 m (`ssl-tap-0.7`)",
      "div_a/ssl-tap-0.7-learned-decision-62010.json")]
+MATCH_VARIANTS_DIV_A_LONG_SHOT = [
+    ("SSL format, the learned-decision team as it plays", "div_a/ssl-learned-decision-62104.json"),
+    ("SSL format, no learned shot from farther than 6 m while another option is legal (`ssl-long-shot-6`)",
+     "div_a/ssl-long-shot-6-learned-decision-62104.json")]
 MATCH_VARIANTS_DEFENCE = [("the attacking team as it plays (pressed passer; seeds 61500-61509 as above)",
                            "press/press-0.6-61500.json"),
                           ("the opponent's plays keep one defender on the ball-goal line (`opp-one-defender`)",
@@ -715,6 +719,9 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "match_variants_div_a": lambda r: m.match_variants(r, MATCH_VARIANTS_DIV_A),
     "match_variants_div_a_keep": lambda r: m.match_variants(r, MATCH_VARIANTS_DIV_A_KEEP),
     "match_variants_div_a_tap": lambda r: m.match_variants(r, MATCH_VARIANTS_DIV_A_TAP),
+    "match_variants_div_a_long_shot": lambda r: m.match_variants(r, MATCH_VARIANTS_DIV_A_LONG_SHOT),
+    "shot_outcomes_ssl": lambda r: m.shot_outcomes([r / "tuning" / "shot_outcome_probe_ssl_div_a.json",
+                                                    r / "tuning" / "shot_outcome_probe_ssl_div_b.json"]),
     "wall_probe": lambda r: m.wall_probe(r / "tuning" / "wall_probe.json"),
     "shot_outcomes": lambda r: m.shot_outcomes(r / "tuning" / "shot_outcome_probe.json"),
     "pass_losses": lambda r: m.pass_losses([r / "tuning" / "pass_loss_probe_d8f659c.json",

@@ -294,14 +294,17 @@ def colour_balance(results: Path, groups: Iterable[tuple[str, tuple[str, ...]]])
 def shot_outcomes(paths: Path | Iterable[Path]) -> Lines:
     """``benchmarks/shot_outcome_probe.py``'s summaries (one row per record): where the blue shots came from
     and how they ended."""
-    rows = _head("seeds", "shots", "on target", "open < 0.05 rad", "from own half", "from the scoring zone",
-                 "after the carrier's decision: shoot / dribble / pass / none",
+    rows = _head("match (blue vs yellow)", "seeds", "shots", "on target", "open < 0.05 rad", "from own half",
+                 "from the scoring zone", "after the carrier's decision: shoot / dribble / pass / none",
                  "ended: goal / keeper / defender / teammate / out / stopped", "blue goals from no shot")
     for path in [paths] if isinstance(paths, Path) else paths:
         d = json.loads(path.read_text())
-        s, seeds = d["summary"], d["manifest"]["seeds"]["seeds"]
+        s, seeds, rules = d["summary"], d["manifest"]["seeds"]["seeds"], d["manifest"]["rules"]
         o, dec = s["outcomes"], s["after_decision"]
-        rows.append(f"| {min(seeds)}-{max(seeds)} | {s['shots']} | {s['on_target']} | {s['open_below_0_05rad']} | "
+        n = rules.get("robots", 6)  # records without robots / field / format: 6v6 Division B, plain format
+        match = (f"{n}v{n} {rules.get('field', 'div_b')}, {rules.get('format', 'plain')} "
+                 f"({rules['blue']} vs {rules['yellow']})")
+        rows.append(f"| {match} | {min(seeds)}-{max(seeds)} | {s['shots']} | {s['on_target']} | {s['open_below_0_05rad']} | "
                     f"{s['from_own_half']} | {s['from_scoring_zone']} | "
                     f"{' / '.join(str(dec.get(k, 0)) for k in ('shoot', 'dribble', 'pass', 'none'))} | "
                     f"{' / '.join(str(o.get(k, 0)) for k in ('goal', 'keeper', 'defender', 'teammate', 'out', 'stopped'))} | "
