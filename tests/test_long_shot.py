@@ -56,8 +56,8 @@ def test_bad_long_shot_distances_are_refused():
 
 def test_match_deciders_take_the_module_setting(monkeypatch):
     """:func:`make_match_decider` builds a policy's decider with ``LONG_SHOT_MASK_M`` as it is then
-    (6 m: the drill's half of a Division B field lies within 5.4 m of the goal centre)."""
-    assert long_shot.LONG_SHOT_MASK_M == 6.0
-    assert match_decider.make_match_decider(_Shooter(), task=match_decider.DRILL_TASK).long_shot_m == 6.0
-    monkeypatch.setattr(long_shot, "LONG_SHOT_MASK_M", None)
+    (default None: off)."""
+    assert long_shot.LONG_SHOT_MASK_M is None
     assert match_decider.make_match_decider(_Shooter(), task=match_decider.DRILL_TASK).long_shot_m is None
+    monkeypatch.setattr(long_shot, "LONG_SHOT_MASK_M", 6.0)
+    assert match_decider.make_match_decider(_Shooter(), task=match_decider.DRILL_TASK).long_shot_m == 6.0

@@ -2,7 +2,7 @@
 
 The attack drill (:mod:`ssl_marl.decisions.attack_drill`) is played on half a Division B field,
 so its actors never learned what a shot from farther out is worth. With the ball farther than
-:data:`LONG_SHOT_MASK_M` from the opponent goal centre, the match's learned decider
+:data:`LONG_SHOT_MASK_M` (default None: off) from the opponent goal centre, the match's learned decider
 (:class:`~ssl_marl.decisions.match_decider.PolicyAttackDecider`) and the full-match task
 (:class:`~ssl_marl.decisions.attack_match.AttackMatchEnv`) offer the shot only when no other
 option is legal: one rule for both, so what is trained is what plays.
@@ -19,11 +19,11 @@ from ..physics.field import FieldGeometry
 
 #: m: with the ball farther than this from the opponent goal centre, a learned attacking
 #: decider offers the shot only when no other option is legal (:func:`limit_long_shots`).
-#: The drill's half of a Division B field lies within 5.4 m of the goal centre; on Division A
-#: the learned decision's shots from farther out were nearly all blocked (docs/RESULTS.md,
-#: "Division A: long shots"). None: the shot always offered. Read when a decider or the
-#: full-match task is built (:func:`~ssl_marl.decisions.match_decider.make_match_decider`).
-LONG_SHOT_MASK_M: float | None = 6.0
+#: The drill's half of a Division B field lies within 5.4 m of the goal centre. None (the
+#: default): the shot always offered; 6 m did not pay in held-out matches (docs/RESULTS.md,
+#: "Division A: long shots": Division A even, Division B fewer goals). Read when a decider or
+#: the full-match task is built (:func:`~ssl_marl.decisions.match_decider.make_match_decider`).
+LONG_SHOT_MASK_M: float | None = None
 
 
 def check_long_shot_m(value: Any, where: str) -> float | None:

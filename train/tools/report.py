@@ -236,7 +236,9 @@ MATCH_VARIANTS_DIV_A_TAP = [
 MATCH_VARIANTS_DIV_A_LONG_SHOT = [
     ("SSL format, the learned-decision team as it plays", "div_a/ssl-learned-decision-62104.json"),
     ("SSL format, no learned shot from farther than 6 m while another option is legal (`ssl-long-shot-6`)",
-     "div_a/ssl-long-shot-6-learned-decision-62104.json")]
+     "div_a/ssl-long-shot-6-learned-decision-62104.json"),
+    ("6v6 Division B, no learned shot from farther than 6 m (`ssl-long-shot-6`)",
+     "ssl-long-shot-6-learned-decision-62110.json")]
 MATCH_VARIANTS_DEFENCE = [("the attacking team as it plays (pressed passer; seeds 61500-61509 as above)",
                            "press/press-0.6-61500.json"),
                           ("the opponent's plays keep one defender on the ball-goal line (`opp-one-defender`)",
@@ -441,6 +443,8 @@ RESTART_MARGIN_SELFPLAY_108200 = ["match_attack_learned_decision_selfplay_600_ss
 RESTART_MARGIN_BASELINE_108220 = ["match_attack_learned_decision_vs_baseline_600_ssl_108220"]
 RESTART_MARGIN_PASSING_108240 = ["match_attack_learned_decision_vs_passing_learned_600_ssl_108240"]
 RESTART_MARGIN_DIV_A_108260 = ["match_attack_learned_decision_vs_baseline_600_ssl_div_a_11v11_108260"]
+LONG_SHOT_DIV_A_108290 = ["match_attack_learned_decision_vs_baseline_600_ssl_div_a_11v11_108290"]
+LONG_SHOT_BASELINE_108300 = ["match_attack_learned_decision_vs_baseline_600_ssl_108300"]
 #: the second defender only against a threat (ATTACK_DEFENDER_1_OPPONENTS 2, commit 18608a1) against the baseline
 DEFENDER_1_BASELINE_108270 = ["match_attack_learned_decision_vs_baseline_600_ssl_108270"]
 RESTART_MARGIN_BASELINE_108220_POOLED = [("attack-learned-decision (the clone), set-piece passes 0.6 m inside the lines, "
@@ -668,6 +672,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "restart_margin_passing_108240": lambda r: m.series_600(r, RESTART_MARGIN_PASSING_108240),
     "restart_margin_div_a_108260": lambda r: m.series_600(r, RESTART_MARGIN_DIV_A_108260),
     "defender_1_baseline_108270": lambda r: m.series_600(r, DEFENDER_1_BASELINE_108270),
+    "long_shot_div_a_108290": lambda r: m.series_600(r, LONG_SHOT_DIV_A_108290),
+    "long_shot_baseline_108300": lambda r: m.series_600(r, LONG_SHOT_BASELINE_108300),
     "restart_margin_baseline_108220_pooled": lambda r: m.pooled_attack(r, RESTART_MARGIN_BASELINE_108220_POOLED),
     "decision_clone_div_a_108180": lambda r: m.series_600(r, DECISION_CLONE_DIV_A_108180),
     "decision_clone_div_a_108180_pooled": lambda r: m.pooled_sides(r, DECISION_CLONE_DIV_A_108180_POOLED),
