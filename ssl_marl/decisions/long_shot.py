@@ -20,9 +20,10 @@ from ..physics.field import FieldGeometry
 #: m: with the ball farther than this from the opponent goal centre, a learned attacking
 #: decider offers the shot only when no other option is legal (:func:`limit_long_shots`).
 #: The drill's half of a Division B field lies within 5.4 m of the goal centre. None (the
-#: default): the shot always offered; 6 m did not pay in held-out matches (docs/RESULTS.md,
-#: "Division A: long shots": Division A even, Division B fewer goals). Read when a decider or
-#: the full-match task is built (:func:`~ssl_marl.decisions.match_decider.make_match_decider`).
+#: default): the shot always offered; with 6 m, matches on the same new seeds scored exactly as
+#: many goals on both divisions and conceded a few more (docs/RESULTS.md, "Division A: long
+#: shots"). Read when a decider or the full-match task is built
+#: (:func:`~ssl_marl.decisions.match_decider.make_match_decider`).
 LONG_SHOT_MASK_M: float | None = None
 
 

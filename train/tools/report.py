@@ -445,6 +445,15 @@ RESTART_MARGIN_PASSING_108240 = ["match_attack_learned_decision_vs_passing_learn
 RESTART_MARGIN_DIV_A_108260 = ["match_attack_learned_decision_vs_baseline_600_ssl_div_a_11v11_108260"]
 LONG_SHOT_DIV_A_108290 = ["match_attack_learned_decision_vs_baseline_600_ssl_div_a_11v11_108290"]
 LONG_SHOT_BASELINE_108300 = ["match_attack_learned_decision_vs_baseline_600_ssl_108300"]
+LONG_SHOT_OFF = ["match_attack_learned_decision_vs_baseline_600_ssl_div_a_11v11_108290_off",
+                 "match_attack_learned_decision_vs_baseline_600_ssl_108300_off"]
+#: (label, series with the long-shot rule, the same seeds without)
+LONG_SHOT_PAIRED = [("11v11 Division A: with the long-shot rule (A) vs without (B)",
+                     "match_attack_learned_decision_vs_baseline_600_ssl_div_a_11v11_108290",
+                     "match_attack_learned_decision_vs_baseline_600_ssl_div_a_11v11_108290_off"),
+                    ("6v6 Division B: with the long-shot rule (A) vs without (B)",
+                     "match_attack_learned_decision_vs_baseline_600_ssl_108300",
+                     "match_attack_learned_decision_vs_baseline_600_ssl_108300_off")]
 #: the second defender only against a threat (ATTACK_DEFENDER_1_OPPONENTS 2, commit 18608a1) against the baseline
 DEFENDER_1_BASELINE_108270 = ["match_attack_learned_decision_vs_baseline_600_ssl_108270"]
 RESTART_MARGIN_BASELINE_108220_POOLED = [("attack-learned-decision (the clone), set-piece passes 0.6 m inside the lines, "
@@ -674,6 +683,8 @@ TABLES: dict[str, Callable[[Path], list[str]]] = {
     "defender_1_baseline_108270": lambda r: m.series_600(r, DEFENDER_1_BASELINE_108270),
     "long_shot_div_a_108290": lambda r: m.series_600(r, LONG_SHOT_DIV_A_108290),
     "long_shot_baseline_108300": lambda r: m.series_600(r, LONG_SHOT_BASELINE_108300),
+    "long_shot_off": lambda r: m.series_600(r, LONG_SHOT_OFF),
+    "long_shot_paired": lambda r: m.paired_series(r, LONG_SHOT_PAIRED),
     "restart_margin_baseline_108220_pooled": lambda r: m.pooled_attack(r, RESTART_MARGIN_BASELINE_108220_POOLED),
     "decision_clone_div_a_108180": lambda r: m.series_600(r, DECISION_CLONE_DIV_A_108180),
     "decision_clone_div_a_108180_pooled": lambda r: m.pooled_sides(r, DECISION_CLONE_DIV_A_108180_POOLED),
