@@ -22,7 +22,7 @@ blue's last kick before them.
     python benchmarks/shot_outcome_probe.py --format ssl --yellow passing-learned --seeds 61760-61761 \\
         --out results/tuning/shot_outcome_probe_ssl_passing.json
     python benchmarks/shot_outcome_probe.py --format ssl --robots 11 --field div_a --blue attack-learned-decision \\
-        --seeds 62020-62021 --out results/tuning/shot_outcome_probe_ssl_div_a.json
+        --seeds 62100-62101 --out results/tuning/shot_outcome_probe_ssl_div_a.json
 """
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
 """The long-shot rule on a learned attacking decision's options
-(:func:`ssl_marl.decisions.match_decider.limit_long_shots`): far from the opponent goal the
+(:func:`ssl_marl.decisions.long_shot.limit_long_shots`): far from the opponent goal the
 shot is offered only when nothing else is."""
 
 import math
@@ -61,3 +61,24 @@ def test_match_deciders_take_the_module_setting(monkeypatch):
     assert match_decider.make_match_decider(_Shooter(), task=match_decider.DRILL_TASK).long_shot_m is None
     monkeypatch.setattr(long_shot, "LONG_SHOT_MASK_M", 6.0)
     assert match_decider.make_match_decider(_Shooter(), task=match_decider.DRILL_TASK).long_shot_m == 6.0
+
+
+@pytest.mark.parametrize("x, long_shot_m, shoots", [(-2.0, 6.0, False), (-2.0, None, True), (2.5, 6.0, True)])
+def test_a_learned_carrier_far_out_passes_instead_of_shooting(x, long_shot_m, shoots):
+    """Division A, blue's carrier at (x, 0) with the ball, a free teammate 3 m ahead and to the side:
+    a policy that shoots whenever it may shoots from 8 m only without the rule, and from 3.5 m
+    with it too."""
+    from ssl_marl.physics.params import BallParams, RobotParams
+    from ssl_marl.plays.pass_coordinator import CarrierRequest
+    from ssl_marl.plays.pass_decision import Choice, DecisionParams
+    from ssl_marl.plays.play import make_context
+    from ssl_marl.plays.scene import ball_in_front, make_world
+
+    rp, bp = RobotParams(), BallParams()
+    world = make_world(blue=[(x, 0.0, 0.0), (x + 2.5, 1.8, np.pi)], yellow=[(5.8, 0.0, np.pi)],
+                       ball=ball_in_front(x, 0.0, 0.0), blue_on_dribbler=[True, False], frame="blue")
+    ctx = make_context(world, "blue", A, rp)
+    dec = PolicyAttackDecider(_Shooter(), long_shot_m=long_shot_m)
+    d = dec.decide(CarrierRequest(ctx, 0, (1,), DecisionParams(), False, bp, 1.0))
+    assert d.choice is (Choice.SHOOT if shoots else Choice.PASS)
+    assert dec.long_shots_masked == int(long_shot_m is not None and not shoots)
