@@ -170,8 +170,7 @@ class AttackMatchEnv(AttackOptionsMixin, DecisionEnv):
         from .learned import LearnedDecisionPolicy
         from .match_decider import PolicyAttackDecider
 
-        decider = PolicyAttackDecider(LearnedDecisionPolicy(actor, task="attack-drill"),
-                                      long_shot_m=long_shot.LONG_SHOT_MASK_M)
+        decider = PolicyAttackDecider(LearnedDecisionPolicy(actor, task="attack-drill"), long_shot_m=self.long_shot_m)
         return TeamSpec(plays=attack_plays, skills=self.skills, decider=decider)
 
     def league(self) -> list[str]:

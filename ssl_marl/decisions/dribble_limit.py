@@ -23,12 +23,19 @@ from ..plays.pass_coordinator import CarrierRequest
 DRIBBLE_MASK_M = 0.5
 
 
+def check_distance_m(value: Any, where: str, name: str, allow_zero: bool = True) -> float | None:
+    """``value`` as an optional distance (m): None, or finite and >= 0 (> 0 unless
+    ``allow_zero``); ValueError naming ``where`` and the parameter ``name`` otherwise."""
+    if value is not None and not (isinstance(value, (int, float)) and not isinstance(value, bool)
+                                  and math.isfinite(value) and (value >= 0 if allow_zero else value > 0)):
+        raise ValueError(f"{where}: {name} must be None or a finite distance {'>=' if allow_zero else '>'} 0 (m), "
+                         f"got {value!r}")
+    return value
+
+
 def check_dribble_mask_m(value: Any, where: str) -> float | None:
     """``value`` as a dribble-mask distance (m): None or finite and >= 0; ValueError naming ``where`` otherwise."""
-    if value is not None and not (isinstance(value, (int, float)) and not isinstance(value, bool)
-                                  and math.isfinite(value) and value >= 0):
-        raise ValueError(f"{where}: dribble_mask_m must be None or a finite distance >= 0 (m), got {value!r}")
-    return value
+    return check_distance_m(value, where, "dribble_mask_m")
 
 
 def limit_dribbles(mask: np.ndarray, request: CarrierRequest, dribble_options: tuple[int, ...],
@@ -46,4 +53,4 @@ def limit_dribbles(mask: np.ndarray, request: CarrierRequest, dribble_options: t
     return mask, True
 
 
-__all__ = ["DRIBBLE_MASK_M", "check_dribble_mask_m", "limit_dribbles"]
+__all__ = ["DRIBBLE_MASK_M", "check_distance_m", "check_dribble_mask_m", "limit_dribbles"]

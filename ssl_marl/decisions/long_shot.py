@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from ..physics.field import FieldGeometry
+from .dribble_limit import check_distance_m
 
 #: m: with the ball farther than this from the opponent goal centre, a learned attacking
 #: decider offers the shot only when no other option is legal (:func:`limit_long_shots`).
@@ -29,10 +30,7 @@ LONG_SHOT_MASK_M: float | None = None
 
 def check_long_shot_m(value: Any, where: str) -> float | None:
     """``value`` as a long-shot distance (m): None or finite and > 0; ValueError naming ``where`` otherwise."""
-    if value is not None and not (isinstance(value, (int, float)) and not isinstance(value, bool)
-                                  and math.isfinite(value) and value > 0):
-        raise ValueError(f"{where}: long_shot_m must be None or a finite distance > 0 (m), got {value!r}")
-    return value
+    return check_distance_m(value, where, "long_shot_m", allow_zero=False)
 
 
 def limit_long_shots(mask: np.ndarray, ball: np.ndarray, field: FieldGeometry, shoot_option: int,

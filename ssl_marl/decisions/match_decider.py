@@ -312,15 +312,22 @@ def make_match_decider(spec: Any, where: str = "decision", task: str = TASK) -> 
     if not isinstance(spec, (str, Path)):
         if callable(getattr(spec, "decide", None)):
             return spec
-        return (PolicyAttackDecider(spec, long_shot_m=long_shot.LONG_SHOT_MASK_M) if task == DRILL_TASK
-                else PolicyCarrierDecider(spec))
+        return _policy_decider(spec, task)
     path = default_actor_path(task) if spec == "learned" else Path(spec)
     check_actor_file(path, where, task)
     from .learned import LearnedDecisionPolicy
 
     policy = LearnedDecisionPolicy(str(path), task=task)
-    return (PolicyAttackDecider(policy, long_shot_m=long_shot.LONG_SHOT_MASK_M) if task == DRILL_TASK
-            else PolicyCarrierDecider(policy))
+    return _policy_decider(policy, task)
+
+
+def _policy_decider(policy: Any, task: str) -> Any:
+    """The match decider of decision policy ``policy`` for ``task``: the attacking plays' with the
+    long-shot rule as set now (:data:`~ssl_marl.decisions.long_shot.LONG_SHOT_MASK_M`), else the
+    passing plays'."""
+    if task == DRILL_TASK:
+        return PolicyAttackDecider(policy, long_shot_m=long_shot.LONG_SHOT_MASK_M)
+    return PolicyCarrierDecider(policy)
 
 
 __all__ = ["PolicyCarrierDecider", "PolicyAttackDecider", "ImprovedAttackDecider", "AttackSpecEnv", "ask_policy",

@@ -582,17 +582,22 @@ def colour_mirror(results: Path, files: Iterable[str]) -> Lines:
 def paired_series(results: Path, rows_spec: Iterable[tuple[str, str, str]]) -> Lines:
     """Two match series on the same seeds, paired match by match: (label, series A, series B) with
     blue the team compared; the mean difference A - B per match of blue's goals and of the goal
-    difference, with its 95 % interval (normal approximation)."""
-    from train.tools.report_tables import paired_difference
+    difference, with its 95 % interval (:func:`ssl_marl.runners.statistics.t_interval`, as every series)."""
+    from ssl_marl.runners.statistics import series_statistics, t_interval
 
     rows = _head("comparison (A vs B)", "seeds", "matches", "A: W-D-L, goals", "B: W-D-L, goals",
                  "blue goals per match A - B [95% CI]", "goal diff per match A - B [95% CI]")
 
+    def goals(ms: list[dict]) -> tuple[list[int], list[int]]:
+        return [m["score"]["blue"] for m in ms], [m["score"]["yellow"] for m in ms]
+
     def wdl(ms: list[dict]) -> str:
-        w = sum(m["score"]["blue"] > m["score"]["yellow"] for m in ms)
-        d = sum(m["score"]["blue"] == m["score"]["yellow"] for m in ms)
-        return (f"{w}-{d}-{len(ms) - w - d}, {sum(m['score']['blue'] for m in ms)}-"
-                f"{sum(m['score']['yellow'] for m in ms)}")
+        s = series_statistics(*goals(ms))
+        return f"{s['wins']}-{s['draws']}-{s['losses']}, {s['goals_for']}-{s['goals_against']}"
+
+    def diff(values: list[float]) -> str:
+        lo, hi = t_interval(values)
+        return f"{sum(values) / len(values):+.2f} [{lo:+.2f}, {hi:+.2f}]"
 
     for label, a_name, b_name in rows_spec:
         a = {m["seed"]: m for m in load_result(results / f"{a_name}.json")["matches"]}
@@ -600,11 +605,8 @@ def paired_series(results: Path, rows_spec: Iterable[tuple[str, str, str]]) -> L
         seeds = sorted(set(a) & set(b))
         if not seeds or len(seeds) != len(a) or len(seeds) != len(b):
             raise ValueError(f"paired_series: {a_name} and {b_name} are not played on the same seeds")
-        ma, mb = [a[s] for s in seeds], [b[s] for s in seeds]
-        g = paired_difference([m["score"]["blue"] for m in ma], [m["score"]["blue"] for m in mb])
-        gd = paired_difference([m["score"]["blue"] - m["score"]["yellow"] for m in ma],
-                               [m["score"]["blue"] - m["score"]["yellow"] for m in mb])
-        rows.append(f"| {label} | {seeds[0]}-{seeds[-1]} | {len(seeds)} | {wdl(ma)} | {wdl(mb)} | "
-                    f"{g[0]:+.2f} [{g[0] - g[1]:+.2f}, {g[0] + g[1]:+.2f}] | "
-                    f"{gd[0]:+.2f} [{gd[0] - gd[1]:+.2f}, {gd[0] + gd[1]:+.2f}] |")
+        (fa, aa), (fb, ab) = goals([a[s] for s in seeds]), goals([b[s] for s in seeds])
+        rows.append(f"| {label} | {seeds[0]}-{seeds[-1]} | {len(seeds)} | {wdl([a[s] for s in seeds])} | "
+                    f"{wdl([b[s] for s in seeds])} | {diff([x - y for x, y in zip(fa, fb)])} | "
+                    f"{diff([(x - u) - (y - v) for x, u, y, v in zip(fa, aa, fb, ab)])} |")
     return rows
